@@ -1,0 +1,308 @@
+//! Dubins shortest paths for a turn radius `r` (Dubins 1957; the six candidate words of
+//! Shkel & Lumelsky 2001).
+//!
+//! Every word is solved from the geometry of its turning circles rather than from the normalised
+//! closed forms, which makes the special cases explicit:
+//! * **CSC** (LSL, RSR, LSR, RSL): the straight is the common tangent of the start circle (centre
+//!   `c1`, direction `k1`) and the goal circle (`c2`, `k2`). With `v = c2 − c1`, the tangent of
+//!   heading φ and length `L` satisfies `v = L·u(φ) + (k2 − k1)·r·n(φ)` (u the unit vector, n its
+//!   left normal), so `L = sqrt(|v|² − (k2−k1)²r²)` and `φ = ∠v + atan2((k1−k2)·r, L)`.
+//! * **CCC** (RLR, LRL): the middle circle touches both end circles, so its centre lies at
+//!   `c1 + 2r·u(∠v ± γ)` with `cos γ = |v| / 4r`. Both signs are tried and the shorter kept:
+//!   choosing one branch by formula is where well-known implementations went wrong.
+//!
+//! Pitfalls handled: an `acos`/`sqrt` argument a rounding error outside its domain is clamped;
+//! coincident circle centres (a goal on the start's turning circle) take φ = start heading so
+//! the path never gains a spurious full loop; turn angles within [`ANGLE_TOLERANCE`] of 2π count
+//! as zero; headings of any magnitude are reduced first. Work is done relative to the start
+//! position, so nearly coincident poses keep their full precision.
+//!
+//! [`ANGLE_TOLERANCE`]: super::ANGLE_TOLERANCE
+
+use super::{wrap_to_pi, wrap_to_tau, Arc, Pose, Primitive, Segment, Turn, Vec2};
+
+/// The six Dubins words. `L` left arc, `R` right arc, `S` straight.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(u8)]
+pub enum DubinsWord {
+    /// Left, straight, left.
+    Lsl = 0,
+    /// Right, straight, right.
+    Rsr = 1,
+    /// Left, straight, right.
+    Lsr = 2,
+    /// Right, straight, left.
+    Rsl = 3,
+    /// Right, left, right.
+    Rlr = 4,
+    /// Left, right, left.
+    Lrl = 5,
+}
+
+impl DubinsWord {
+    /// All six words, in their numeric order.
+    pub const ALL: [DubinsWord; 6] = [
+        DubinsWord::Lsl,
+        DubinsWord::Rsr,
+        DubinsWord::Lsr,
+        DubinsWord::Rsl,
+        DubinsWord::Rlr,
+        DubinsWord::Lrl,
+    ];
+
+    /// The word with numeric code `code` (0–5), as stored in a network.
+    pub fn from_code(code: u8) -> Option<Self> {
+        Self::ALL.get(code as usize).copied()
+    }
+
+    /// The numeric code stored in a network.
+    pub fn code(self) -> u8 {
+        self as u8
+    }
+
+    /// The turns of the first and last letters, and of the middle one (`None` for a straight).
+    pub fn letters(self) -> (Turn, Option<Turn>, Turn) {
+        use Turn::{Left as L, Right as R};
+        match self {
+            DubinsWord::Lsl => (L, None, L),
+            DubinsWord::Rsr => (R, None, R),
+            DubinsWord::Lsr => (L, None, R),
+            DubinsWord::Rsl => (R, None, L),
+            DubinsWord::Rlr => (R, Some(L), R),
+            DubinsWord::Lrl => (L, Some(R), L),
+        }
+    }
+
+    /// Whether the word is curve-curve-curve.
+    pub fn is_ccc(self) -> bool {
+        self.letters().1.is_some()
+    }
+
+    /// The word's name in capitals, e.g. `"LSR"`.
+    pub fn name(self) -> &'static str {
+        ["LSL", "RSR", "LSR", "RSL", "RLR", "LRL"][self as usize]
+    }
+}
+
+/// A set of admissible Dubins words (for example without the CCC words).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct WordSet(u8);
+
+impl WordSet {
+    /// All six words.
+    pub const ALL: WordSet = WordSet(0b11_1111);
+    /// The four CSC words only.
+    pub const CSC_ONLY: WordSet = WordSet(0b00_1111);
+
+    /// Whether `w` is in the set.
+    pub fn contains(self, w: DubinsWord) -> bool {
+        self.0 & (1 << w as u8) != 0
+    }
+}
+
+/// A Dubins path: a start pose, a turn radius, a word and the length of each of its three
+/// pieces in metres (a piece of length 0 is skipped when flown).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct DubinsPath {
+    /// Where the path starts.
+    pub start: Pose,
+    /// Turn radius, metres.
+    pub radius: f32,
+    /// The word.
+    pub word: DubinsWord,
+    /// Lengths of the three pieces, metres (arc pieces: radius × turn angle).
+    pub lengths: [f32; 3],
+}
+
+impl DubinsPath {
+    /// The shortest path from `start` to `goal` with turn radius `radius` over all six words.
+    /// `None` when an input is not finite or the radius is not positive.
+    pub fn shortest(start: &Pose, goal: &Pose, radius: f32) -> Option<Self> {
+        Self::shortest_among(start, goal, radius, WordSet::ALL)
+    }
+
+    /// The shortest path using only the words in `words`. `None` when an input is not finite,
+    /// the radius is not positive, or no admissible word connects the poses (possible only
+    /// without the CCC words: every CSC word may be infeasible when the circles overlap, but LSL
+    /// and RSR never are).
+    pub fn shortest_among(start: &Pose, goal: &Pose, radius: f32, words: WordSet) -> Option<Self> {
+        let mut best: Option<Self> = None;
+        for w in DubinsWord::ALL {
+            if !words.contains(w) {
+                continue;
+            }
+            if let Some(p) = Self::with_word(start, goal, radius, w) {
+                if best.map_or(true, |b| p.length() < b.length()) {
+                    best = Some(p);
+                }
+            }
+        }
+        best
+    }
+
+    /// The path of word `word` from `start` to `goal`, or `None` if that word cannot connect
+    /// them (or an input is not finite, or the radius is not positive).
+    pub fn with_word(start: &Pose, goal: &Pose, radius: f32, word: DubinsWord) -> Option<Self> {
+        if !start.is_finite() || !goal.is_finite() || !(radius > 0.0) || !radius.is_finite() {
+            return None;
+        }
+        let r = radius;
+        // Work relative to the start position.
+        let s = Pose {
+            position: Vec2::default(),
+            heading: wrap_to_pi(start.heading),
+        };
+        let g = Pose {
+            position: goal.position - start.position,
+            heading: wrap_to_pi(goal.heading),
+        };
+        let (k1, middle, k3) = word.letters();
+        let c1 = k1.centre(&s, r);
+        let c3 = k3.centre(&g, r);
+        let v = c3 - c1;
+        let d = v.norm();
+        let angles = match middle {
+            None => csc_angles(&s, &g, k1, k3, v, d, r)?,
+            Some(_) => ccc_angles(&s, &g, k1, c1, v, d, r)?,
+        };
+        let lengths = match middle {
+            None => [angles.0 * r, angles.1, angles.2 * r],
+            Some(_) => [angles.0 * r, angles.1 * r, angles.2 * r],
+        };
+        Some(Self {
+            start: Pose {
+                position: start.position,
+                heading: s.heading,
+            },
+            radius,
+            word,
+            lengths,
+        })
+    }
+
+    /// Total length, metres.
+    pub fn length(&self) -> f32 {
+        self.lengths[0] + self.lengths[1] + self.lengths[2]
+    }
+
+    /// The path's primitives in order; pieces of zero length are `None`.
+    pub fn primitives(&self) -> [Option<Primitive>; 3] {
+        let (k1, middle, k3) = self.word.letters();
+        let mut pose = self.start;
+        let mut out = [None; 3];
+        let kinds = [Some(k1), middle, Some(k3)];
+        for (i, kind) in kinds.iter().enumerate() {
+            let len = self.lengths[i];
+            let prim = match kind {
+                Some(turn) => {
+                    Primitive::Arc(Arc::from_pose(&pose, *turn, self.radius, len / self.radius))
+                }
+                None => Primitive::Line(Segment::new(
+                    pose.position,
+                    pose.position + pose.direction() * len,
+                )),
+            };
+            let end = prim.pose_at(len);
+            // A straight keeps the heading exactly; an arc's end heading comes from its geometry.
+            pose = match prim {
+                Primitive::Line(_) => Pose {
+                    position: end.position,
+                    heading: pose.heading,
+                },
+                Primitive::Arc(_) => end,
+            };
+            if len > 0.0 {
+                out[i] = Some(prim);
+            }
+        }
+        out
+    }
+
+    /// The pose at arc length `s` from the start (clamped to the path).
+    pub fn sample(&self, s: f32) -> Pose {
+        let mut rest = s.max(0.0);
+        let mut last = self.start;
+        for prim in self.primitives().into_iter().flatten() {
+            let len = prim.length();
+            if rest <= len {
+                return prim.pose_at(rest);
+            }
+            rest -= len;
+            last = prim.pose_at(len);
+        }
+        last
+    }
+
+    /// The pose at the end of the path.
+    pub fn end(&self) -> Pose {
+        self.sample(self.length())
+    }
+}
+
+/// Turn angles (first, last) and the straight's length for a CSC word.
+fn csc_angles(
+    s: &Pose,
+    g: &Pose,
+    k1: Turn,
+    k3: Turn,
+    v: Vec2,
+    d: f32,
+    r: f32,
+) -> Option<(f32, f32, f32)> {
+    let (a, b) = (k1.sign(), k3.sign());
+    let offset = (a - b) * r; // 0 for LSL/RSR, ±2r for LSR/RSL
+    let l_sq = d * d - offset * offset;
+    let straight = if l_sq >= 0.0 {
+        libm::sqrtf(l_sq)
+    } else if l_sq > -1e-5 * offset * offset {
+        0.0 // touching circles: a rounding error below zero
+    } else {
+        return None; // overlapping circles: no inner tangent
+    };
+    let phi = if offset == 0.0 && d <= 1e-6 * r {
+        // Coincident circles: the tangent direction is free; leaving at once avoids a full loop.
+        s.heading
+    } else {
+        v.angle() + libm::atan2f(offset, straight)
+    };
+    let first = wrap_to_tau(a * (phi - s.heading));
+    let last = wrap_to_tau(b * (g.heading - phi));
+    Some((first, straight, last))
+}
+
+/// Turn angles of the three arcs of a CCC word, the shorter of the two middle-circle branches.
+fn ccc_angles(
+    s: &Pose,
+    g: &Pose,
+    k1: Turn,
+    c1: Vec2,
+    v: Vec2,
+    d: f32,
+    r: f32,
+) -> Option<(f32, f32, f32)> {
+    if d > 4.0 * r * (1.0 + 1e-6) {
+        return None;
+    }
+    let a = k1.sign();
+    let gamma = libm::acosf((d / (4.0 * r)).clamp(-1.0, 1.0));
+    let psi = if d > 0.0 { v.angle() } else { s.heading };
+    let mut best: Option<(f32, f32, f32)> = None;
+    for branch in [gamma, -gamma] {
+        let c2 = c1 + Vec2::from_angle(psi + branch) * (2.0 * r);
+        let c3 = c1 + v;
+        // Headings where the arcs meet: at the midpoint of the centres, perpendicular to them.
+        let h12 = (c2 - c1).angle() + a * core::f32::consts::FRAC_PI_2;
+        let h23 = (c3 - c2).angle() - a * core::f32::consts::FRAC_PI_2;
+        let first = wrap_to_tau(a * (h12 - s.heading));
+        let middle = wrap_to_tau(-a * (h23 - h12));
+        let last = wrap_to_tau(a * (g.heading - h23));
+        let total = first + middle + last;
+        if best.map_or(true, |(x, y, z)| total < x + y + z) {
+            best = Some((first, middle, last));
+        }
+    }
+    best
+}

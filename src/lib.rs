@@ -1,0 +1,37 @@
+//! # skyroute: the onboard core
+//!
+//! A flight-path planner for fixed-wing UAVs that runs on the flight computer: `#![no_std]`, no
+//! allocator, no `unsafe`, fixed memory, bounded work.
+//!
+//! The ground tool (`prep/`) turns a mission area into a preprocessed [`network`] of flyable
+//! trajectories. Onboard, [`Network::from_bytes`] validates that byte image once, where it lies
+//! (a static slice in flash), and a [`Planner`] whose capacities are const generics prunes the
+//! network for pop-up obstacles, connects the current pose and the goal, and runs Dijkstra (or A*)
+//! within a work budget whose worst case is a documented function of the network's counts.
+//!
+//! ## Conventions
+//! * Lengths are `f32` metres in the network's local frame: `x` east, `y` north of the frame's
+//!   geographic origin (stored in the network header).
+//! * Angles are `f32` radians. A **heading** is the *mathematical* direction of flight, counter-
+//!   clockwise from east (`x`). Compass headings (clockwise from north) are converted at the
+//!   interface with [`geometry::heading_from_compass_deg`].
+//! * A positive arc sweep turns left (counter-clockwise).
+//!
+//! ## Modules
+//! * [`geometry`]: poses, lines, arcs, Dubins paths and the exact collision predicates.
+//! * [`network`]: the network format v1 (see `docs/FORMAT.md`), its validating loader and accessors.
+//! * [`planner`]: the fixed-memory planner: pop-ups, endpoint connection, search, routes.
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+#[cfg(feature = "std")]
+extern crate std;
+
+pub mod geometry;
+pub mod network;
+pub mod planner;
+
+pub use geometry::{Arc, DubinsPath, DubinsWord, Pose, Primitive, Segment, Turn, Vec2};
+pub use network::{LoadError, Network};
+pub use planner::{Goal, PlanError, Planner, PlannerConfig, Popup, PopupError, Query, Search};

@@ -1,0 +1,269 @@
+//! Why a network byte image was rejected.
+
+use core::fmt;
+
+/// A part of the network image, named in [`LoadError`]s.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Section {
+    /// The fixed header.
+    Header,
+    /// The vertex poses.
+    Vertices,
+    /// The CSR offsets of the edges by source vertex.
+    EdgeOffsets,
+    /// The edge records.
+    Edges,
+    /// The obstacle records.
+    Obstacles,
+    /// The polygon points of the obstacles.
+    ObstaclePoints,
+    /// The grid index's per-cell offsets.
+    CellOffsets,
+    /// The grid index's edge lists.
+    CellEntries,
+}
+
+/// A scalar header parameter, named in [`LoadError::InvalidParameter`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Parameter {
+    /// The turn radius must be finite and positive.
+    TurnRadius,
+    /// The clearance must be finite and not negative.
+    Clearance,
+    /// The frame origin must be a finite latitude in [−90, 90] and longitude in [−180, 180].
+    Origin,
+    /// The grid origin must be finite.
+    GridOrigin,
+    /// The grid cell size must be finite and positive.
+    GridCell,
+    /// The grid must have at least one cell along each axis.
+    GridDimensions,
+    /// The reserved flags must be zero.
+    Flags,
+}
+
+/// Why [`Network::from_bytes`](super::Network::from_bytes) rejected an image. Every variant
+/// carries the numbers that locate the problem.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum LoadError {
+    /// The image ends before the header or the body it declares.
+    Truncated {
+        /// Bytes the header and body need.
+        needed: usize,
+        /// Bytes present.
+        available: usize,
+    },
+    /// The image continues past the body the header declares.
+    TrailingBytes {
+        /// Bytes after the body.
+        extra: usize,
+    },
+    /// The image does not start with `SKYR`.
+    BadMagic {
+        /// The first four bytes found.
+        found: [u8; 4],
+    },
+    /// A format version this build does not read.
+    UnsupportedVersion {
+        /// The version in the header.
+        found: u16,
+        /// The version this build reads.
+        supported: u16,
+    },
+    /// A network mode this build does not know.
+    UnknownMode {
+        /// The mode code in the header.
+        mode: u8,
+    },
+    /// More vertices than the planner has room for.
+    TooManyVertices {
+        /// Vertices in the network.
+        count: u32,
+        /// The planner's capacity.
+        capacity: usize,
+    },
+    /// More edges than the planner has room for.
+    TooManyEdges {
+        /// Edges in the network.
+        count: u32,
+        /// The planner's capacity.
+        capacity: usize,
+    },
+    /// The counts describe a body larger than any address space this runs in.
+    CountsTooLarge,
+    /// The body length in the header disagrees with the one its counts imply.
+    BodyLengthMismatch {
+        /// Body length in the header.
+        declared: u32,
+        /// Body length the counts imply.
+        expected: usize,
+    },
+    /// The body's CRC-32 does not match the header's.
+    ChecksumMismatch {
+        /// CRC in the header.
+        stored: u32,
+        /// CRC of the body as found.
+        computed: u32,
+    },
+    /// A header parameter is out of its domain.
+    InvalidParameter {
+        /// Which one.
+        parameter: Parameter,
+    },
+    /// A record could not be decoded.
+    Malformed {
+        /// Where.
+        section: Section,
+        /// Record index.
+        index: u32,
+    },
+    /// A value is NaN or infinite.
+    NonFinite {
+        /// Where.
+        section: Section,
+        /// Record index.
+        index: u32,
+    },
+    /// Offsets are not non-decreasing from 0 to the count they index.
+    BadOffsets {
+        /// Which offset table.
+        section: Section,
+        /// The first offending entry.
+        index: u32,
+    },
+    /// An index points past the end of what it indexes.
+    IndexOutOfRange {
+        /// Where.
+        section: Section,
+        /// Record index.
+        index: u32,
+        /// The stored index.
+        value: u32,
+        /// The number of items it may point into.
+        limit: u32,
+    },
+    /// An edge's stored source disagrees with the CSR offsets.
+    EdgeSourceMismatch {
+        /// Edge index.
+        edge: u32,
+        /// Stored source.
+        stored: u32,
+        /// Source the offsets imply.
+        expected: u32,
+    },
+    /// An edge has a negative cost or piece length.
+    NegativeValue {
+        /// Edge index.
+        edge: u32,
+    },
+    /// An edge has a geometry kind this build does not know.
+    UnknownGeometry {
+        /// Edge index.
+        edge: u32,
+        /// The kind code.
+        code: u8,
+    },
+    /// An obstacle is neither a polygon of at least 3 points nor a circle of positive radius.
+    BadObstacle {
+        /// Obstacle index.
+        obstacle: u32,
+    },
+    /// The grid index does not cover the area that the edges can reach (every vertex's
+    /// surroundings within four turn radii), so pop-up pruning could miss edges.
+    GridTooSmall {
+        /// A vertex outside the covered area.
+        vertex: u32,
+    },
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use LoadError::*;
+        match *self {
+            Truncated { needed, available } => {
+                write!(
+                    f,
+                    "network truncated: needs {needed} bytes, {available} present"
+                )
+            }
+            TrailingBytes { extra } => write!(f, "{extra} unexpected bytes after the network body"),
+            BadMagic { found } => write!(f, "not a skyroute network (magic {found:02x?})"),
+            UnsupportedVersion { found, supported } => {
+                write!(
+                    f,
+                    "network format version {found}, this build reads {supported}"
+                )
+            }
+            UnknownMode { mode } => write!(f, "unknown network mode {mode}"),
+            TooManyVertices { count, capacity } => {
+                write!(
+                    f,
+                    "{count} vertices exceed the planner's capacity of {capacity}"
+                )
+            }
+            TooManyEdges { count, capacity } => {
+                write!(
+                    f,
+                    "{count} edges exceed the planner's capacity of {capacity}"
+                )
+            }
+            CountsTooLarge => write!(f, "the header's counts overflow the address space"),
+            BodyLengthMismatch { declared, expected } => {
+                write!(
+                    f,
+                    "header declares a {declared}-byte body, its counts imply {expected}"
+                )
+            }
+            ChecksumMismatch { stored, computed } => {
+                write!(
+                    f,
+                    "body CRC-32 {computed:#010x} does not match the header's {stored:#010x}"
+                )
+            }
+            InvalidParameter { parameter } => write!(f, "invalid header parameter {parameter:?}"),
+            Malformed { section, index } => write!(f, "{section:?} record {index} is malformed"),
+            NonFinite { section, index } => {
+                write!(
+                    f,
+                    "{section:?} record {index} holds a NaN or infinite value"
+                )
+            }
+            BadOffsets { section, index } => {
+                write!(f, "{section:?} offset {index} is out of order")
+            }
+            IndexOutOfRange {
+                section,
+                index,
+                value,
+                limit,
+            } => {
+                write!(
+                    f,
+                    "{section:?} record {index} points at {value}, past the limit {limit}"
+                )
+            }
+            EdgeSourceMismatch {
+                edge,
+                stored,
+                expected,
+            } => {
+                write!(
+                    f,
+                    "edge {edge} says source {stored}, the offsets say {expected}"
+                )
+            }
+            NegativeValue { edge } => write!(f, "edge {edge} has a negative cost or length"),
+            UnknownGeometry { edge, code } => write!(f, "edge {edge} has unknown geometry {code}"),
+            BadObstacle { obstacle } => write!(f, "obstacle {obstacle} is malformed"),
+            GridTooSmall { vertex } => {
+                write!(f, "grid index does not cover the reach of vertex {vertex}")
+            }
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for LoadError {}

@@ -1,0 +1,230 @@
+//! The records of network format v1 (specified in `docs/FORMAT.md`).
+//!
+//! Every record is serialized with postcard using fixed-width little-endian integers
+//! (`postcard::fixint::le`), `f32`/`f64` as their IEEE-754 bits and `u8` as one byte, so each
+//! record kind has a fixed encoded size and record `i` of a section starts at
+//! `section_start + i · SIZE`. That lets the onboard loader read any record where it lies in
+//! flash, without copying the network into RAM.
+
+use serde::{Deserialize, Serialize};
+
+/// The four bytes every network starts with.
+pub const MAGIC: [u8; 4] = *b"SKYR";
+
+/// The format version this crate reads and writes.
+pub const FORMAT_VERSION: u16 = 1;
+
+/// Network mode: a multi-query Dubins roadmap (Niendorf et al.).
+pub const MODE_ROADMAP: u8 = 0;
+
+/// Obstacle kind code: a simple polygon.
+pub const OBSTACLE_POLYGON: u8 = 0;
+/// Obstacle kind code: a circle.
+pub const OBSTACLE_CIRCLE: u8 = 1;
+
+/// The fixed header in front of the body.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Header {
+    /// [`MAGIC`].
+    pub magic: [u8; 4],
+    /// [`FORMAT_VERSION`].
+    #[serde(with = "postcard::fixint::le")]
+    pub version: u16,
+    /// Network mode ([`MODE_ROADMAP`]).
+    pub mode: u8,
+    /// Reserved, zero.
+    pub flags: u8,
+    /// Latitude of the local frame's origin, degrees (WGS-84).
+    pub origin_lat_deg: f64,
+    /// Longitude of the local frame's origin, degrees (WGS-84).
+    pub origin_lon_deg: f64,
+    /// Turn radius of every Dubins edge, metres.
+    pub turn_radius_m: f32,
+    /// Clearance kept from obstacles, metres.
+    pub clearance_m: f32,
+    /// Number of vertices.
+    #[serde(with = "postcard::fixint::le")]
+    pub vertex_count: u32,
+    /// Number of edges.
+    #[serde(with = "postcard::fixint::le")]
+    pub edge_count: u32,
+    /// Number of static obstacles.
+    #[serde(with = "postcard::fixint::le")]
+    pub obstacle_count: u32,
+    /// Number of polygon points over all obstacles.
+    #[serde(with = "postcard::fixint::le")]
+    pub obstacle_point_count: u32,
+    /// West edge of the grid index, metres.
+    pub grid_origin_x: f32,
+    /// South edge of the grid index, metres.
+    pub grid_origin_y: f32,
+    /// Side of a grid cell, metres.
+    pub grid_cell_m: f32,
+    /// Grid cells along x.
+    #[serde(with = "postcard::fixint::le")]
+    pub grid_nx: u32,
+    /// Grid cells along y.
+    #[serde(with = "postcard::fixint::le")]
+    pub grid_ny: u32,
+    /// Number of (cell, edge) entries in the grid index.
+    #[serde(with = "postcard::fixint::le")]
+    pub grid_entry_count: u32,
+    /// Bytes in the body that follows the header.
+    #[serde(with = "postcard::fixint::le")]
+    pub body_len: u32,
+    /// CRC-32 of the body.
+    #[serde(with = "postcard::fixint::le")]
+    pub body_crc: u32,
+}
+
+impl Header {
+    /// Encoded size of the header.
+    pub const SIZE: usize = 80;
+}
+
+/// A vertex: a pose.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct VertexRecord {
+    /// East, metres.
+    pub x: f32,
+    /// North, metres.
+    pub y: f32,
+    /// Heading, radians counter-clockwise from east.
+    pub heading: f32,
+}
+
+impl VertexRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 12;
+}
+
+/// A `u32` (an offset or an index) as a fixed-width record.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct U32Record(#[serde(with = "postcard::fixint::le")] pub u32);
+
+impl U32Record {
+    /// Encoded size.
+    pub const SIZE: usize = 4;
+}
+
+/// A directed edge.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EdgeRecord {
+    /// Source vertex (must agree with the CSR offsets).
+    #[serde(with = "postcard::fixint::le")]
+    pub source: u32,
+    /// Target vertex.
+    #[serde(with = "postcard::fixint::le")]
+    pub target: u32,
+    /// Cost of traversal (≥ 0), metres of flight for a roadmap.
+    pub cost: f32,
+    /// Geometry kind: 0–5 a Dubins word ([`crate::DubinsWord::code`]).
+    pub geometry: u8,
+    /// Geometry parameters: for a Dubins word, the lengths of its three pieces, metres.
+    pub params: [f32; 3],
+}
+
+impl EdgeRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 25;
+}
+
+/// A static obstacle.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ObstacleRecord {
+    /// [`OBSTACLE_POLYGON`] or [`OBSTACLE_CIRCLE`].
+    pub kind: u8,
+    /// Polygon: index of its first point in the point section.
+    #[serde(with = "postcard::fixint::le")]
+    pub first_point: u32,
+    /// Polygon: number of points (≥ 3).
+    #[serde(with = "postcard::fixint::le")]
+    pub point_count: u32,
+    /// Circle: centre x, centre y, radius (metres); zero for a polygon.
+    pub circle: [f32; 3],
+    /// Bounding box: min x, min y, max x, max y.
+    pub bbox: [f32; 4],
+}
+
+impl ObstacleRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 37;
+}
+
+/// A polygon point.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PointRecord {
+    /// East, metres.
+    pub x: f32,
+    /// North, metres.
+    pub y: f32,
+}
+
+impl PointRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 8;
+}
+
+#[cfg(all(test, feature = "std"))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn encoded_sizes_match_the_constants() {
+        let h = Header {
+            magic: MAGIC,
+            version: 1,
+            mode: 0,
+            flags: 0,
+            origin_lat_deg: 1.0,
+            origin_lon_deg: 2.0,
+            turn_radius_m: 3.0,
+            clearance_m: 4.0,
+            vertex_count: u32::MAX,
+            edge_count: 5,
+            obstacle_count: 6,
+            obstacle_point_count: 7,
+            grid_origin_x: 0.0,
+            grid_origin_y: 0.0,
+            grid_cell_m: 1.0,
+            grid_nx: u32::MAX,
+            grid_ny: 1,
+            grid_entry_count: 0,
+            body_len: 0,
+            body_crc: 0,
+        };
+        assert_eq!(postcard::to_stdvec(&h).unwrap().len(), Header::SIZE);
+        let v = VertexRecord {
+            x: 1.0,
+            y: 2.0,
+            heading: 3.0,
+        };
+        assert_eq!(postcard::to_stdvec(&v).unwrap().len(), VertexRecord::SIZE);
+        assert_eq!(
+            postcard::to_stdvec(&U32Record(u32::MAX)).unwrap().len(),
+            U32Record::SIZE
+        );
+        let e = EdgeRecord {
+            source: u32::MAX,
+            target: 7,
+            cost: 1.0,
+            geometry: 3,
+            params: [1.0; 3],
+        };
+        assert_eq!(postcard::to_stdvec(&e).unwrap().len(), EdgeRecord::SIZE);
+        let o = ObstacleRecord {
+            kind: 0,
+            first_point: u32::MAX,
+            point_count: 1,
+            circle: [0.0; 3],
+            bbox: [0.0; 4],
+        };
+        assert_eq!(postcard::to_stdvec(&o).unwrap().len(), ObstacleRecord::SIZE);
+        assert_eq!(
+            postcard::to_stdvec(&PointRecord { x: 1.0, y: 2.0 })
+                .unwrap()
+                .len(),
+            PointRecord::SIZE
+        );
+    }
+}

@@ -1,0 +1,687 @@
+//! The preprocessed network: format v1, its validating loader and read-only accessors.
+//!
+//! [`Network::from_bytes`] checks an image once (magic, version, length, checksum, counts,
+//! every index and every float) and then reads it where it lies: the network is never copied
+//! into RAM. After a successful load no accessor can panic, and none returns `None` for an
+//! index below the corresponding count.
+
+mod crc;
+mod error;
+pub mod format;
+#[cfg(feature = "std")]
+pub mod write;
+
+pub use crc::crc32;
+pub use error::{LoadError, Parameter, Section};
+
+use crate::geometry::predicates::PolygonView;
+use crate::geometry::{DubinsPath, DubinsWord, Pose, Vec2};
+use format::*;
+use serde::de::DeserializeOwned;
+
+/// A validated network image, borrowed from where it lies (for example a static slice in flash).
+#[derive(Clone, Copy, Debug)]
+pub struct Network<'a> {
+    bytes: &'a [u8],
+    header: Header,
+    layout: Layout,
+}
+
+/// Byte offsets of each section within the image.
+#[derive(Clone, Copy, Debug, Default)]
+struct Layout {
+    vertices: usize,
+    edge_offsets: usize,
+    edges: usize,
+    obstacles: usize,
+    points: usize,
+    cell_offsets: usize,
+    cell_entries: usize,
+    end: usize,
+}
+
+impl Layout {
+    /// Section offsets implied by the header's counts, or `None` on arithmetic overflow.
+    fn from_header(h: &Header) -> Option<Self> {
+        let v = h.vertex_count as usize;
+        let cells = (h.grid_nx as usize).checked_mul(h.grid_ny as usize)?;
+        let mut at = Header::SIZE;
+        let mut next = |count: usize, size: usize| -> Option<usize> {
+            let start = at;
+            at = at.checked_add(count.checked_mul(size)?)?;
+            Some(start)
+        };
+        Some(Layout {
+            vertices: next(v, VertexRecord::SIZE)?,
+            edge_offsets: next(v.checked_add(1)?, U32Record::SIZE)?,
+            edges: next(h.edge_count as usize, EdgeRecord::SIZE)?,
+            obstacles: next(h.obstacle_count as usize, ObstacleRecord::SIZE)?,
+            points: next(h.obstacle_point_count as usize, PointRecord::SIZE)?,
+            cell_offsets: next(cells.checked_add(1)?, U32Record::SIZE)?,
+            cell_entries: next(h.grid_entry_count as usize, U32Record::SIZE)?,
+            end: at,
+        })
+    }
+}
+
+/// A directed edge of the network.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Edge {
+    /// Source vertex.
+    pub source: u32,
+    /// Target vertex.
+    pub target: u32,
+    /// Cost (≥ 0).
+    pub cost: f32,
+    /// Its Dubins word.
+    pub word: DubinsWord,
+    /// Lengths of the word's three pieces, metres.
+    pub lengths: [f32; 3],
+}
+
+/// A static obstacle of the network.
+#[derive(Clone, Copy, Debug)]
+pub enum Obstacle<'a> {
+    /// A simple polygon.
+    Polygon(PolygonRef<'a>),
+    /// A disc.
+    Circle {
+        /// Centre.
+        centre: Vec2,
+        /// Radius, metres.
+        radius: f32,
+    },
+}
+
+/// A polygon stored in the network, read in place.
+#[derive(Clone, Copy, Debug)]
+pub struct PolygonRef<'a> {
+    network: Network<'a>,
+    first: u32,
+    count: u32,
+}
+
+impl PolygonView for PolygonRef<'_> {
+    fn vertex_count(&self) -> usize {
+        self.count as usize
+    }
+    fn vertex(&self, i: usize) -> Option<Vec2> {
+        if i >= self.count as usize {
+            return None;
+        }
+        let p: PointRecord = self.network.record(
+            self.network.layout.points,
+            PointRecord::SIZE,
+            self.first as usize + i,
+        )?;
+        Some(Vec2::new(p.x, p.y))
+    }
+}
+
+/// The grid cells `[x0, x1] × [y0, y1]` (inclusive) that overlap a rectangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CellRange {
+    /// First column.
+    pub x0: u32,
+    /// First row.
+    pub y0: u32,
+    /// Last column.
+    pub x1: u32,
+    /// Last row.
+    pub y1: u32,
+}
+
+impl<'a> Network<'a> {
+    /// A network with nothing in it: no vertices, edges, obstacles or grid cells.
+    pub const fn empty() -> Self {
+        Network {
+            bytes: &[],
+            header: Header {
+                magic: MAGIC,
+                version: FORMAT_VERSION,
+                mode: MODE_ROADMAP,
+                flags: 0,
+                origin_lat_deg: 0.0,
+                origin_lon_deg: 0.0,
+                turn_radius_m: 1.0,
+                clearance_m: 0.0,
+                vertex_count: 0,
+                edge_count: 0,
+                obstacle_count: 0,
+                obstacle_point_count: 0,
+                grid_origin_x: 0.0,
+                grid_origin_y: 0.0,
+                grid_cell_m: 1.0,
+                grid_nx: 0,
+                grid_ny: 0,
+                grid_entry_count: 0,
+                body_len: 0,
+                body_crc: 0,
+            },
+            layout: Layout {
+                vertices: 0,
+                edge_offsets: 0,
+                edges: 0,
+                obstacles: 0,
+                points: 0,
+                cell_offsets: 0,
+                cell_entries: 0,
+                end: 0,
+            },
+        }
+    }
+
+    /// Validates `bytes` as a network image without capacity limits. See
+    /// [`Network::from_bytes_with_capacity`].
+    pub fn from_bytes(bytes: &'a [u8]) -> Result<Self, LoadError> {
+        Self::from_bytes_with_capacity(bytes, usize::MAX, usize::MAX)
+    }
+
+    /// Validates `bytes` as a network image for a planner with room for `max_vertices` and
+    /// `max_edges`. The header's counts are checked against the capacities and the length
+    /// before any body record is decoded; then the checksum; then every record.
+    /// Work: O(bytes) once.
+    pub fn from_bytes_with_capacity(
+        bytes: &'a [u8],
+        max_vertices: usize,
+        max_edges: usize,
+    ) -> Result<Self, LoadError> {
+        let head = bytes.get(..Header::SIZE).ok_or(LoadError::Truncated {
+            needed: Header::SIZE,
+            available: bytes.len(),
+        })?;
+        if head[..4] != MAGIC {
+            let mut found = [0u8; 4];
+            found.copy_from_slice(&head[..4]);
+            return Err(LoadError::BadMagic { found });
+        }
+        let header: Header = postcard::from_bytes(head).map_err(|_| LoadError::Malformed {
+            section: Section::Header,
+            index: 0,
+        })?;
+        if header.version != FORMAT_VERSION {
+            return Err(LoadError::UnsupportedVersion {
+                found: header.version,
+                supported: FORMAT_VERSION,
+            });
+        }
+        if header.mode != MODE_ROADMAP {
+            return Err(LoadError::UnknownMode { mode: header.mode });
+        }
+        if header.vertex_count as usize > max_vertices {
+            return Err(LoadError::TooManyVertices {
+                count: header.vertex_count,
+                capacity: max_vertices,
+            });
+        }
+        if header.edge_count as usize > max_edges {
+            return Err(LoadError::TooManyEdges {
+                count: header.edge_count,
+                capacity: max_edges,
+            });
+        }
+        let layout = Layout::from_header(&header).ok_or(LoadError::CountsTooLarge)?;
+        let expected_body = layout.end - Header::SIZE;
+        if header.body_len as usize != expected_body {
+            return Err(LoadError::BodyLengthMismatch {
+                declared: header.body_len,
+                expected: expected_body,
+            });
+        }
+        if bytes.len() < layout.end {
+            return Err(LoadError::Truncated {
+                needed: layout.end,
+                available: bytes.len(),
+            });
+        }
+        if bytes.len() > layout.end {
+            return Err(LoadError::TrailingBytes {
+                extra: bytes.len() - layout.end,
+            });
+        }
+        let computed = crc32(&bytes[Header::SIZE..layout.end]);
+        if computed != header.body_crc {
+            return Err(LoadError::ChecksumMismatch {
+                stored: header.body_crc,
+                computed,
+            });
+        }
+        let net = Network {
+            bytes,
+            header,
+            layout,
+        };
+        net.validate_parameters()?;
+        net.validate_vertices()?;
+        net.validate_edges()?;
+        net.validate_obstacles()?;
+        net.validate_grid()?;
+        Ok(net)
+    }
+
+    fn validate_parameters(&self) -> Result<(), LoadError> {
+        let h = &self.header;
+        let bad = |parameter| Err(LoadError::InvalidParameter { parameter });
+        if h.flags != 0 {
+            return bad(Parameter::Flags);
+        }
+        if !(h.turn_radius_m.is_finite() && h.turn_radius_m > 0.0) {
+            return bad(Parameter::TurnRadius);
+        }
+        if !(h.clearance_m.is_finite() && h.clearance_m >= 0.0) {
+            return bad(Parameter::Clearance);
+        }
+        if !(h.origin_lat_deg.abs() <= 90.0 && h.origin_lon_deg.abs() <= 180.0) {
+            return bad(Parameter::Origin);
+        }
+        if !(h.grid_origin_x.is_finite() && h.grid_origin_y.is_finite()) {
+            return bad(Parameter::GridOrigin);
+        }
+        if !(h.grid_cell_m.is_finite() && h.grid_cell_m > 0.0) {
+            return bad(Parameter::GridCell);
+        }
+        if h.grid_nx == 0 || h.grid_ny == 0 {
+            return bad(Parameter::GridDimensions);
+        }
+        Ok(())
+    }
+
+    fn validate_vertices(&self) -> Result<(), LoadError> {
+        for i in 0..self.header.vertex_count {
+            let v: VertexRecord = self.checked_record(
+                Section::Vertices,
+                self.layout.vertices,
+                VertexRecord::SIZE,
+                i,
+            )?;
+            if !(v.x.is_finite() && v.y.is_finite() && v.heading.is_finite()) {
+                return Err(LoadError::NonFinite {
+                    section: Section::Vertices,
+                    index: i,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_edges(&self) -> Result<(), LoadError> {
+        let (v, e) = (self.header.vertex_count, self.header.edge_count);
+        self.validate_offsets(Section::EdgeOffsets, self.layout.edge_offsets, v, e)?;
+        let mut source = 0u32;
+        for i in 0..e {
+            // Advance to the vertex whose range holds edge i (empty ranges are skipped).
+            while self.offset(self.layout.edge_offsets, source + 1) <= i {
+                source += 1;
+            }
+            let r: EdgeRecord =
+                self.checked_record(Section::Edges, self.layout.edges, EdgeRecord::SIZE, i)?;
+            if r.source != source {
+                return Err(LoadError::EdgeSourceMismatch {
+                    edge: i,
+                    stored: r.source,
+                    expected: source,
+                });
+            }
+            if r.target >= v {
+                return Err(LoadError::IndexOutOfRange {
+                    section: Section::Edges,
+                    index: i,
+                    value: r.target,
+                    limit: v,
+                });
+            }
+            if !r.cost.is_finite() || r.params.iter().any(|x| !x.is_finite()) {
+                return Err(LoadError::NonFinite {
+                    section: Section::Edges,
+                    index: i,
+                });
+            }
+            if r.cost < 0.0 || r.params.iter().any(|&x| x < 0.0) {
+                return Err(LoadError::NegativeValue { edge: i });
+            }
+            if DubinsWord::from_code(r.geometry).is_none() {
+                return Err(LoadError::UnknownGeometry {
+                    edge: i,
+                    code: r.geometry,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_obstacles(&self) -> Result<(), LoadError> {
+        let points = self.header.obstacle_point_count;
+        for i in 0..self.header.obstacle_point_count {
+            let p: PointRecord = self.checked_record(
+                Section::ObstaclePoints,
+                self.layout.points,
+                PointRecord::SIZE,
+                i,
+            )?;
+            if !(p.x.is_finite() && p.y.is_finite()) {
+                return Err(LoadError::NonFinite {
+                    section: Section::ObstaclePoints,
+                    index: i,
+                });
+            }
+        }
+        for i in 0..self.header.obstacle_count {
+            let o: ObstacleRecord = self.checked_record(
+                Section::Obstacles,
+                self.layout.obstacles,
+                ObstacleRecord::SIZE,
+                i,
+            )?;
+            if o.circle.iter().chain(o.bbox.iter()).any(|x| !x.is_finite()) {
+                return Err(LoadError::NonFinite {
+                    section: Section::Obstacles,
+                    index: i,
+                });
+            }
+            let ok = match o.kind {
+                OBSTACLE_POLYGON => {
+                    let end = o.first_point as u64 + o.point_count as u64;
+                    if end > points as u64 {
+                        return Err(LoadError::IndexOutOfRange {
+                            section: Section::Obstacles,
+                            index: i,
+                            value: o.first_point.saturating_add(o.point_count),
+                            limit: points,
+                        });
+                    }
+                    o.point_count >= 3
+                }
+                OBSTACLE_CIRCLE => o.circle[2] > 0.0,
+                _ => false,
+            };
+            if !ok || o.bbox[0] > o.bbox[2] || o.bbox[1] > o.bbox[3] {
+                return Err(LoadError::BadObstacle { obstacle: i });
+            }
+        }
+        Ok(())
+    }
+
+    fn validate_grid(&self) -> Result<(), LoadError> {
+        let h = &self.header;
+        let cells = h
+            .grid_nx
+            .checked_mul(h.grid_ny)
+            .ok_or(LoadError::CountsTooLarge)?;
+        self.validate_offsets(
+            Section::CellOffsets,
+            self.layout.cell_offsets,
+            cells,
+            h.grid_entry_count,
+        )?;
+        for i in 0..h.grid_entry_count {
+            let U32Record(e) = self.checked_record(
+                Section::CellEntries,
+                self.layout.cell_entries,
+                U32Record::SIZE,
+                i,
+            )?;
+            if e >= h.edge_count {
+                return Err(LoadError::IndexOutOfRange {
+                    section: Section::CellEntries,
+                    index: i,
+                    value: e,
+                    limit: h.edge_count,
+                });
+            }
+        }
+        // Every Dubins path stays within 4r of its start (CSC within 2r; the middle circle of a
+        // CCC word is 2r from the first circle's centre, so its points are within 4r).
+        let reach = 4.0 * h.turn_radius_m;
+        let (x1, y1) = (
+            h.grid_origin_x + h.grid_cell_m * h.grid_nx as f32,
+            h.grid_origin_y + h.grid_cell_m * h.grid_ny as f32,
+        );
+        for i in 0..h.vertex_count {
+            let p = self
+                .vertex(i)
+                .ok_or(LoadError::Malformed {
+                    section: Section::Vertices,
+                    index: i,
+                })?
+                .position;
+            if p.x - reach < h.grid_origin_x
+                || p.y - reach < h.grid_origin_y
+                || p.x + reach > x1
+                || p.y + reach > y1
+            {
+                return Err(LoadError::GridTooSmall { vertex: i });
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks that `count + 1` offsets at `base` run non-decreasing from 0 to `total`.
+    fn validate_offsets(
+        &self,
+        section: Section,
+        base: usize,
+        count: u32,
+        total: u32,
+    ) -> Result<(), LoadError> {
+        let mut previous = 0u32;
+        for i in 0..=count {
+            let U32Record(o) = self.checked_record(section, base, U32Record::SIZE, i)?;
+            let first_ok = i != 0 || o == 0;
+            let last_ok = i != count || o == total;
+            if o < previous || o > total || !first_ok || !last_ok {
+                return Err(LoadError::BadOffsets { section, index: i });
+            }
+            previous = o;
+        }
+        Ok(())
+    }
+
+    fn checked_record<T: DeserializeOwned>(
+        &self,
+        section: Section,
+        base: usize,
+        size: usize,
+        i: u32,
+    ) -> Result<T, LoadError> {
+        self.record(base, size, i as usize)
+            .ok_or(LoadError::Malformed { section, index: i })
+    }
+
+    /// Decodes record `i` of the section at `base` whose records are `size` bytes long.
+    fn record<T: DeserializeOwned>(&self, base: usize, size: usize, i: usize) -> Option<T> {
+        let start = base.checked_add(i.checked_mul(size)?)?;
+        postcard::from_bytes(self.bytes.get(start..start.checked_add(size)?)?).ok()
+    }
+
+    /// Offset `i` of an offset table (0 if unreadable, which validation rules out).
+    fn offset(&self, base: usize, i: u32) -> u32 {
+        self.record::<U32Record>(base, U32Record::SIZE, i as usize)
+            .map_or(0, |r| r.0)
+    }
+
+    /// The header.
+    pub fn header(&self) -> &Header {
+        &self.header
+    }
+
+    /// The image's length in bytes.
+    pub fn byte_len(&self) -> usize {
+        self.bytes.len()
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> u32 {
+        self.header.vertex_count
+    }
+
+    /// Number of edges.
+    pub fn edge_count(&self) -> u32 {
+        self.header.edge_count
+    }
+
+    /// Number of static obstacles.
+    pub fn obstacle_count(&self) -> u32 {
+        self.header.obstacle_count
+    }
+
+    /// Turn radius of the Dubins edges, metres.
+    pub fn turn_radius(&self) -> f32 {
+        self.header.turn_radius_m
+    }
+
+    /// Clearance kept from obstacles, metres.
+    pub fn clearance(&self) -> f32 {
+        self.header.clearance_m
+    }
+
+    /// The local frame's origin `(latitude, longitude)` in degrees.
+    pub fn origin_deg(&self) -> (f64, f64) {
+        (self.header.origin_lat_deg, self.header.origin_lon_deg)
+    }
+
+    /// Vertex `i`'s pose.
+    pub fn vertex(&self, i: u32) -> Option<Pose> {
+        if i >= self.header.vertex_count {
+            return None;
+        }
+        let v: VertexRecord = self.record(self.layout.vertices, VertexRecord::SIZE, i as usize)?;
+        Some(Pose::new(v.x, v.y, v.heading))
+    }
+
+    /// The edge indices leaving vertex `v`, as a half-open range.
+    pub fn out_edges(&self, v: u32) -> core::ops::Range<u32> {
+        if v >= self.header.vertex_count {
+            return 0..0;
+        }
+        self.offset(self.layout.edge_offsets, v)..self.offset(self.layout.edge_offsets, v + 1)
+    }
+
+    /// Edge `i`.
+    pub fn edge(&self, i: u32) -> Option<Edge> {
+        if i >= self.header.edge_count {
+            return None;
+        }
+        let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, i as usize)?;
+        Some(Edge {
+            source: r.source,
+            target: r.target,
+            cost: r.cost,
+            word: DubinsWord::from_code(r.geometry)?,
+            lengths: r.params,
+        })
+    }
+
+    /// The cost and target of edge `i`, the two fields the search reads.
+    pub fn edge_cost_target(&self, i: u32) -> Option<(f32, u32)> {
+        self.edge(i).map(|e| (e.cost, e.target))
+    }
+
+    /// Edge `i`'s geometry as a Dubins path from its source's pose.
+    pub fn edge_path(&self, i: u32) -> Option<DubinsPath> {
+        let e = self.edge(i)?;
+        Some(DubinsPath {
+            start: self.vertex(e.source)?,
+            radius: self.header.turn_radius_m,
+            word: e.word,
+            lengths: e.lengths,
+        })
+    }
+
+    /// Static obstacle `i` and its bounding box `(min, max)`.
+    pub fn obstacle(&self, i: u32) -> Option<(Obstacle<'a>, (Vec2, Vec2))> {
+        if i >= self.header.obstacle_count {
+            return None;
+        }
+        let o: ObstacleRecord =
+            self.record(self.layout.obstacles, ObstacleRecord::SIZE, i as usize)?;
+        let bbox = (
+            Vec2::new(o.bbox[0], o.bbox[1]),
+            Vec2::new(o.bbox[2], o.bbox[3]),
+        );
+        let obstacle = match o.kind {
+            OBSTACLE_POLYGON => Obstacle::Polygon(PolygonRef {
+                network: *self,
+                first: o.first_point,
+                count: o.point_count,
+            }),
+            _ => Obstacle::Circle {
+                centre: Vec2::new(o.circle[0], o.circle[1]),
+                radius: o.circle[2],
+            },
+        };
+        Some((obstacle, bbox))
+    }
+
+    /// Total number of polygon edges and circles over all obstacles: the number of elementary
+    /// predicate evaluations one primitive costs against every obstacle.
+    pub fn obstacle_elements(&self) -> u32 {
+        self.header.obstacle_point_count + self.header.obstacle_count
+    }
+
+    /// The grid cells overlapping the rectangle `[min, max]`, clamped to the grid; `None` when
+    /// the rectangle lies wholly outside the grid or is not finite.
+    pub fn cells_overlapping(&self, min: Vec2, max: Vec2) -> Option<CellRange> {
+        let h = &self.header;
+        let to_cell = |v: f32, origin: f32, n: u32| -> Option<f32> {
+            let c = libm::floorf((v - origin) / h.grid_cell_m);
+            c.is_finite().then_some(c.clamp(-1.0, n as f32))
+        };
+        let (x0, x1) = (
+            to_cell(min.x, h.grid_origin_x, h.grid_nx)?,
+            to_cell(max.x, h.grid_origin_x, h.grid_nx)?,
+        );
+        let (y0, y1) = (
+            to_cell(min.y, h.grid_origin_y, h.grid_ny)?,
+            to_cell(max.y, h.grid_origin_y, h.grid_ny)?,
+        );
+        if x1 < 0.0
+            || y1 < 0.0
+            || x0 >= h.grid_nx as f32
+            || y0 >= h.grid_ny as f32
+            || x0 > x1
+            || y0 > y1
+        {
+            return None;
+        }
+        let last = |c: f32, n: u32| (c as u32).min(n - 1);
+        Some(CellRange {
+            x0: x0.max(0.0) as u32,
+            y0: y0.max(0.0) as u32,
+            x1: last(x1, h.grid_nx),
+            y1: last(y1, h.grid_ny),
+        })
+    }
+
+    /// The range of grid entries for cell `(x, y)`; read them with [`Network::cell_entry`].
+    pub fn cell_entries(&self, x: u32, y: u32) -> core::ops::Range<u32> {
+        let h = &self.header;
+        if x >= h.grid_nx || y >= h.grid_ny {
+            return 0..0;
+        }
+        let c = y * h.grid_nx + x;
+        self.offset(self.layout.cell_offsets, c)..self.offset(self.layout.cell_offsets, c + 1)
+    }
+
+    /// Grid entry `k`: an edge index.
+    pub fn cell_entry(&self, k: u32) -> Option<u32> {
+        if k >= self.header.grid_entry_count {
+            return None;
+        }
+        self.record::<U32Record>(self.layout.cell_entries, U32Record::SIZE, k as usize)
+            .map(|r| r.0)
+    }
+
+    /// The largest number of grid entries in any one cell.
+    pub fn max_cell_entries(&self) -> u32 {
+        let h = &self.header;
+        let mut most = 0;
+        for y in 0..h.grid_ny {
+            for x in 0..h.grid_nx {
+                let r = self.cell_entries(x, y);
+                most = most.max(r.end.saturating_sub(r.start));
+            }
+        }
+        most
+    }
+}

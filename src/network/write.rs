@@ -1,0 +1,289 @@
+//! The network writer (host only, feature `std`): the ground tool's half of format v1.
+
+use super::format::*;
+use super::{crc32, Network};
+use crate::geometry::{DubinsPath, DubinsWord, Pose, Vec2};
+use std::vec::Vec;
+
+/// A directed edge to write.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeSpec {
+    /// Source vertex.
+    pub source: u32,
+    /// Target vertex.
+    pub target: u32,
+    /// Cost (≥ 0).
+    pub cost: f32,
+    /// Dubins word.
+    pub word: DubinsWord,
+    /// Lengths of the word's pieces, metres.
+    pub lengths: [f32; 3],
+}
+
+/// A static obstacle to write.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ObstacleSpec {
+    /// A simple polygon (not closed: the last point joins the first implicitly).
+    Polygon(Vec<Vec2>),
+    /// A disc.
+    Circle {
+        /// Centre.
+        centre: Vec2,
+        /// Radius, metres.
+        radius: f32,
+    },
+}
+
+/// Everything a roadmap network holds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NetworkSpec {
+    /// Latitude of the local frame's origin, degrees.
+    pub origin_lat_deg: f64,
+    /// Longitude of the local frame's origin, degrees.
+    pub origin_lon_deg: f64,
+    /// Turn radius, metres.
+    pub turn_radius_m: f32,
+    /// Clearance from obstacles, metres.
+    pub clearance_m: f32,
+    /// Vertex poses.
+    pub vertices: Vec<Pose>,
+    /// Edges in any order (written grouped by source, keeping their relative order).
+    pub edges: Vec<EdgeSpec>,
+    /// Static obstacles.
+    pub obstacles: Vec<ObstacleSpec>,
+    /// Side of a grid-index cell, metres.
+    pub grid_cell_m: f32,
+}
+
+/// Why a network could not be written.
+#[derive(Clone, Debug, PartialEq)]
+pub enum WriteError {
+    /// A count does not fit the format's 32-bit fields.
+    TooLarge(&'static str),
+    /// An edge names a vertex that does not exist.
+    BadEdge {
+        /// Edge index in the spec.
+        edge: usize,
+    },
+    /// The written image failed its own validation (a bug, or non-finite input).
+    Invalid(super::LoadError),
+}
+
+impl core::fmt::Display for WriteError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            WriteError::TooLarge(what) => write!(f, "too many {what} for format v1"),
+            WriteError::BadEdge { edge } => write!(f, "edge {edge} names a missing vertex"),
+            WriteError::Invalid(e) => write!(f, "the network does not validate: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for WriteError {}
+
+fn count(n: usize, what: &'static str) -> Result<u32, WriteError> {
+    u32::try_from(n).map_err(|_| WriteError::TooLarge(what))
+}
+
+fn push<T: serde::Serialize>(out: &mut Vec<u8>, record: &T) {
+    // Serializing a fixed-size record into a Vec cannot fail.
+    if let Ok(bytes) = postcard::to_stdvec(record) {
+        out.extend_from_slice(&bytes);
+    }
+}
+
+/// Encodes a network and validates the result with [`Network::from_bytes`].
+pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
+    let vertex_count = count(spec.vertices.len(), "vertices")?;
+    let edge_count = count(spec.edges.len(), "edges")?;
+    for (i, e) in spec.edges.iter().enumerate() {
+        if e.source >= vertex_count || e.target >= vertex_count {
+            return Err(WriteError::BadEdge { edge: i });
+        }
+    }
+    let mut edges = spec.edges.clone();
+    edges.sort_by_key(|e| e.source); // stable: keeps each source's order
+
+    let mut body = Vec::new();
+    for v in &spec.vertices {
+        push(
+            &mut body,
+            &VertexRecord {
+                x: v.position.x,
+                y: v.position.y,
+                heading: v.heading,
+            },
+        );
+    }
+    let mut offset = 0u32;
+    push(&mut body, &U32Record(0));
+    for v in 0..vertex_count {
+        offset += edges[offset as usize..]
+            .iter()
+            .take_while(|e| e.source == v)
+            .count() as u32;
+        push(&mut body, &U32Record(offset));
+    }
+    for e in &edges {
+        push(
+            &mut body,
+            &EdgeRecord {
+                source: e.source,
+                target: e.target,
+                cost: e.cost,
+                geometry: e.word.code(),
+                params: e.lengths,
+            },
+        );
+    }
+    let mut point_count = 0u32;
+    for o in &spec.obstacles {
+        let record = match o {
+            ObstacleSpec::Polygon(points) => {
+                let (lo, hi) = bbox(points.iter().copied());
+                let r = ObstacleRecord {
+                    kind: OBSTACLE_POLYGON,
+                    first_point: point_count,
+                    point_count: count(points.len(), "polygon points")?,
+                    circle: [0.0; 3],
+                    bbox: [lo.x, lo.y, hi.x, hi.y],
+                };
+                point_count = point_count
+                    .checked_add(r.point_count)
+                    .ok_or(WriteError::TooLarge("polygon points"))?;
+                r
+            }
+            ObstacleSpec::Circle { centre, radius } => ObstacleRecord {
+                kind: OBSTACLE_CIRCLE,
+                first_point: 0,
+                point_count: 0,
+                circle: [centre.x, centre.y, *radius],
+                bbox: [
+                    centre.x - radius,
+                    centre.y - radius,
+                    centre.x + radius,
+                    centre.y + radius,
+                ],
+            },
+        };
+        push(&mut body, &record);
+    }
+    for o in &spec.obstacles {
+        if let ObstacleSpec::Polygon(points) = o {
+            for p in points {
+                push(&mut body, &PointRecord { x: p.x, y: p.y });
+            }
+        }
+    }
+    let grid = GridIndex::build(spec, &edges);
+    for o in &grid.offsets {
+        push(&mut body, &U32Record(*o));
+    }
+    for e in &grid.entries {
+        push(&mut body, &U32Record(*e));
+    }
+
+    let header = Header {
+        magic: MAGIC,
+        version: FORMAT_VERSION,
+        mode: MODE_ROADMAP,
+        flags: 0,
+        origin_lat_deg: spec.origin_lat_deg,
+        origin_lon_deg: spec.origin_lon_deg,
+        turn_radius_m: spec.turn_radius_m,
+        clearance_m: spec.clearance_m,
+        vertex_count,
+        edge_count,
+        obstacle_count: count(spec.obstacles.len(), "obstacles")?,
+        obstacle_point_count: point_count,
+        grid_origin_x: grid.origin.x,
+        grid_origin_y: grid.origin.y,
+        grid_cell_m: spec.grid_cell_m,
+        grid_nx: grid.nx,
+        grid_ny: grid.ny,
+        grid_entry_count: count(grid.entries.len(), "grid entries")?,
+        body_len: count(body.len(), "body bytes")?,
+        body_crc: crc32(&body),
+    };
+    let mut out = Vec::with_capacity(Header::SIZE + body.len());
+    push(&mut out, &header);
+    out.extend_from_slice(&body);
+    Network::from_bytes(&out).map_err(WriteError::Invalid)?;
+    Ok(out)
+}
+
+fn bbox(points: impl Iterator<Item = Vec2>) -> (Vec2, Vec2) {
+    let mut lo = Vec2::new(f32::INFINITY, f32::INFINITY);
+    let mut hi = Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY);
+    for p in points {
+        lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    (lo, hi)
+}
+
+/// The uniform grid index: for each cell, the edges with a primitive whose bounding box
+/// (widened by a small margin against rounding) overlaps the cell. A superset of the edges
+/// whose geometry passes through the cell, which is what pop-up pruning needs.
+struct GridIndex {
+    origin: Vec2,
+    nx: u32,
+    ny: u32,
+    offsets: Vec<u32>,
+    entries: Vec<u32>,
+}
+
+impl GridIndex {
+    fn build(spec: &NetworkSpec, edges: &[EdgeSpec]) -> Self {
+        let cell = spec.grid_cell_m;
+        let reach = 4.0 * spec.turn_radius_m + cell;
+        let (lo, hi) = if spec.vertices.is_empty() {
+            (Vec2::default(), Vec2::default())
+        } else {
+            bbox(spec.vertices.iter().map(|v| v.position))
+        };
+        let origin = Vec2::new(lo.x - reach, lo.y - reach);
+        let nx = (((hi.x - lo.x + 2.0 * reach) / cell).ceil() as u32).max(1);
+        let ny = (((hi.y - lo.y + 2.0 * reach) / cell).ceil() as u32).max(1);
+        let mut cells: Vec<Vec<u32>> = vec![Vec::new(); (nx * ny) as usize];
+        let margin = 1e-3 * cell + 0.01;
+        for (i, e) in edges.iter().enumerate() {
+            let path = DubinsPath {
+                start: spec.vertices[e.source as usize],
+                radius: spec.turn_radius_m,
+                word: e.word,
+                lengths: e.lengths,
+            };
+            let mut touched: Vec<u32> = Vec::new();
+            for prim in path.primitives().into_iter().flatten() {
+                let (a, b) = prim.bounding_box();
+                let cx = |v: f32| (((v - origin.x) / cell).floor().max(0.0) as u32).min(nx - 1);
+                let cy = |v: f32| (((v - origin.y) / cell).floor().max(0.0) as u32).min(ny - 1);
+                for y in cy(a.y - margin)..=cy(b.y + margin) {
+                    for x in cx(a.x - margin)..=cx(b.x + margin) {
+                        touched.push(y * nx + x);
+                    }
+                }
+            }
+            touched.sort_unstable();
+            touched.dedup();
+            for c in touched {
+                cells[c as usize].push(i as u32);
+            }
+        }
+        let mut offsets = Vec::with_capacity(cells.len() + 1);
+        let mut entries = Vec::new();
+        offsets.push(0);
+        for c in &cells {
+            entries.extend_from_slice(c);
+            offsets.push(entries.len() as u32);
+        }
+        GridIndex {
+            origin,
+            nx,
+            ny,
+            offsets,
+            entries,
+        }
+    }
+}

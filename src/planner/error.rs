@@ -1,0 +1,128 @@
+//! Errors of the planner's operations.
+
+use core::fmt;
+
+/// Which input of a query was rejected.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum QueryField {
+    /// The start pose.
+    Start,
+    /// The goal position or heading.
+    Goal,
+}
+
+/// Why [`Planner::plan`](super::Planner::plan) found no route. The previous route is kept.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum PlanError {
+    /// A position or heading is NaN or infinite.
+    NonFinite {
+        /// Which one.
+        field: QueryField,
+    },
+    /// The start or goal lies inside a static obstacle.
+    InsideObstacle {
+        /// Start or goal.
+        field: QueryField,
+        /// The obstacle's index in the network.
+        obstacle: u32,
+    },
+    /// The start or goal lies inside an active pop-up.
+    InsidePopup {
+        /// Start or goal.
+        field: QueryField,
+        /// The pop-up's id.
+        popup: u8,
+    },
+    /// No collision-free connection from the start to a nearby vertex (or to the goal).
+    StartUnconnected,
+    /// No collision-free connection from a nearby vertex to the goal.
+    GoalUnconnected,
+    /// The search exhausted the reachable network without reaching the goal.
+    NoRoute,
+    /// The work budget ran out before the query finished.
+    BudgetExhausted {
+        /// Work done when it stopped.
+        used: u64,
+        /// The budget given.
+        budget: u64,
+    },
+    /// The route has more primitives than the planner's route capacity.
+    RouteTooLong {
+        /// Primitives the route needs.
+        primitives: u32,
+        /// The capacity `R`.
+        capacity: u32,
+    },
+    /// An internal invariant failed (a bug; reported instead of panicking).
+    Internal,
+}
+
+impl fmt::Display for PlanError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use PlanError::*;
+        match *self {
+            NonFinite { field } => write!(f, "{field:?} has a NaN or infinite value"),
+            InsideObstacle { field, obstacle } => {
+                write!(f, "{field:?} lies inside obstacle {obstacle}")
+            }
+            InsidePopup { field, popup } => write!(f, "{field:?} lies inside pop-up {popup}"),
+            StartUnconnected => write!(f, "no collision-free connection from the start"),
+            GoalUnconnected => write!(f, "no collision-free connection to the goal"),
+            NoRoute => write!(f, "the goal cannot be reached in the network"),
+            BudgetExhausted { used, budget } => {
+                write!(f, "work budget of {budget} exhausted after {used}")
+            }
+            RouteTooLong {
+                primitives,
+                capacity,
+            } => {
+                write!(
+                    f,
+                    "route needs {primitives} primitives, capacity is {capacity}"
+                )
+            }
+            Internal => write!(f, "internal planner invariant failed"),
+        }
+    }
+}
+
+/// Why a pop-up was not added or removed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum PopupError {
+    /// All `P` pop-up slots are in use.
+    NoFreeSlot {
+        /// The capacity `P`.
+        capacity: u8,
+    },
+    /// A coordinate or radius is NaN or infinite.
+    NonFinite,
+    /// A circle's radius is not positive.
+    NonPositiveRadius,
+    /// A polygon has fewer than 3 vertices, a zero-length edge, or edges that cross.
+    NotSimple,
+    /// No active pop-up has this id.
+    UnknownId {
+        /// The id given.
+        id: u8,
+    },
+}
+
+impl fmt::Display for PopupError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            PopupError::NoFreeSlot { capacity } => write!(f, "all {capacity} pop-up slots in use"),
+            PopupError::NonFinite => write!(f, "pop-up has a NaN or infinite value"),
+            PopupError::NonPositiveRadius => write!(f, "pop-up radius is not positive"),
+            PopupError::NotSimple => write!(f, "pop-up polygon is not simple"),
+            PopupError::UnknownId { id } => write!(f, "no active pop-up with id {id}"),
+        }
+    }
+}
+
+#[cfg(feature = "std")]
+impl std::error::Error for PlanError {}
+#[cfg(feature = "std")]
+impl std::error::Error for PopupError {}

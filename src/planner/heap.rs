@@ -1,0 +1,213 @@
+//! A fixed-capacity indexed binary min-heap with decrease-key, over item ids `0..N`.
+//!
+//! Each operation reports the number of levels it sifted through, so the caller can count work:
+//! a push, decrease or pop moves through at most `⌊log2 N⌋ + 1` levels (heap invariant, Cormen
+//! et al. §6.5), which is what the planner's work bound charges for it.
+
+/// Where an item stands in the heap's life cycle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ItemState {
+    /// Never pushed since the last [`IndexedHeap::clear`].
+    Unseen,
+    /// In the heap.
+    Queued,
+    /// Popped: its key is final.
+    Done,
+}
+
+const UNSEEN: u32 = u32::MAX;
+const DONE: u32 = u32::MAX - 1;
+
+/// The heap. Memory: 12·N bytes.
+#[derive(Debug)]
+pub struct IndexedHeap<const N: usize> {
+    /// Heap-ordered item ids; the first `len` are live.
+    items: [u32; N],
+    /// Key of each item id.
+    keys: [f32; N],
+    /// Position of each item id in `items`, or `UNSEEN` / `DONE`.
+    position: [u32; N],
+    len: usize,
+}
+
+impl<const N: usize> Default for IndexedHeap<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const N: usize> IndexedHeap<N> {
+    /// An empty heap (all items unseen).
+    pub const fn new() -> Self {
+        Self {
+            items: [0; N],
+            keys: [0.0; N],
+            position: [UNSEEN; N],
+            len: 0,
+        }
+    }
+
+    /// Empties the heap and marks the first `n` ids unseen. Work: `n`.
+    pub fn clear(&mut self, n: usize) {
+        for p in self.position.iter_mut().take(n) {
+            *p = UNSEEN;
+        }
+        self.len = 0;
+    }
+
+    /// Number of queued items.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether no item is queued.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The state of item `id` (ids out of range read as done, so they are never pushed).
+    pub fn state(&self, id: u32) -> ItemState {
+        match self.position.get(id as usize) {
+            Some(&UNSEEN) => ItemState::Unseen,
+            Some(&DONE) | None => ItemState::Done,
+            Some(_) => ItemState::Queued,
+        }
+    }
+
+    /// Inserts `id` with `key`, or lowers its key if it is queued with a larger one. Does nothing
+    /// for a done item, an id out of range, or a key that is not lower. Returns the number of
+    /// levels sifted (0 when nothing changed).
+    pub fn push_or_decrease(&mut self, id: u32, key: f32) -> u32 {
+        let i = id as usize;
+        if i >= N {
+            return 0;
+        }
+        let at = match self.state(id) {
+            ItemState::Done => return 0,
+            ItemState::Queued => {
+                if !(key < self.keys[i]) {
+                    return 0;
+                }
+                self.position[i] as usize
+            }
+            ItemState::Unseen => {
+                if self.len >= N {
+                    return 0; // cannot happen: each id is queued at most once
+                }
+                let at = self.len;
+                self.len += 1;
+                self.items[at] = id;
+                self.position[i] = at as u32;
+                at
+            }
+        };
+        self.keys[i] = key;
+        self.sift_up(at) + 1
+    }
+
+    /// Removes the item with the smallest key and marks it done. Returns it, its key and the
+    /// number of levels sifted.
+    pub fn pop(&mut self) -> Option<(u32, f32, u32)> {
+        if self.len == 0 {
+            return None;
+        }
+        let top = self.items[0];
+        self.len -= 1;
+        let last = self.items[self.len];
+        self.position[top as usize] = DONE;
+        let mut levels = 1;
+        if self.len > 0 {
+            self.items[0] = last;
+            self.position[last as usize] = 0;
+            levels += self.sift_down(0);
+        }
+        Some((top, self.keys[top as usize], levels))
+    }
+
+    fn key_at(&self, at: usize) -> f32 {
+        self.keys[self.items[at] as usize]
+    }
+
+    fn swap(&mut self, a: usize, b: usize) {
+        self.items.swap(a, b);
+        self.position[self.items[a] as usize] = a as u32;
+        self.position[self.items[b] as usize] = b as u32;
+    }
+
+    fn sift_up(&mut self, mut at: usize) -> u32 {
+        let mut levels = 0;
+        while at > 0 {
+            let parent = (at - 1) / 2;
+            if self.key_at(at) < self.key_at(parent) {
+                self.swap(at, parent);
+                at = parent;
+                levels += 1;
+            } else {
+                break;
+            }
+        }
+        levels
+    }
+
+    fn sift_down(&mut self, mut at: usize) -> u32 {
+        let mut levels = 0;
+        loop {
+            let (l, r) = (2 * at + 1, 2 * at + 2);
+            let mut smallest = at;
+            if l < self.len && self.key_at(l) < self.key_at(smallest) {
+                smallest = l;
+            }
+            if r < self.len && self.key_at(r) < self.key_at(smallest) {
+                smallest = r;
+            }
+            if smallest == at {
+                return levels;
+            }
+            self.swap(at, smallest);
+            at = smallest;
+            levels += 1;
+        }
+    }
+}
+
+/// `⌊log2 n⌋ + 1` for n ≥ 1 (1 for n = 0): the most levels one heap operation moves through.
+pub const fn heap_levels(n: u64) -> u64 {
+    if n == 0 {
+        1
+    } else {
+        64 - n.leading_zeros() as u64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pops_in_key_order_with_decrease_key() {
+        let mut h = IndexedHeap::<64>::new();
+        h.clear(64);
+        let mut x = 12345u32;
+        let mut keys = [0f32; 64];
+        for id in 0..64u32 {
+            x = x.wrapping_mul(1664525).wrapping_add(1013904223);
+            keys[id as usize] = (x >> 8) as f32;
+            h.push_or_decrease(id, keys[id as usize]);
+        }
+        for id in (0..64u32).step_by(3) {
+            keys[id as usize] *= 0.5;
+            h.push_or_decrease(id, keys[id as usize]);
+        }
+        let mut last = f32::NEG_INFINITY;
+        let mut n = 0;
+        while let Some((id, k, levels)) = h.pop() {
+            assert_eq!(k, keys[id as usize]);
+            assert!(k >= last);
+            assert!(levels as u64 <= heap_levels(64));
+            assert_eq!(h.state(id), ItemState::Done);
+            last = k;
+            n += 1;
+        }
+        assert_eq!(n, 64);
+    }
+}

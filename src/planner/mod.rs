@@ -1,0 +1,291 @@
+//! The onboard planner: fixed memory, pop-up pruning, endpoint connection, bounded search.
+//!
+//! `Planner<'n, V, E, P, R>` holds all mutable state in arrays sized by its const generics:
+//! `V` vertices, `E` edges, `P` pop-ups (at most 16) and `R` route primitives. Its size is
+//! `≈ 20·V + 2·E + 140·P + 24·R + 1.3 KiB` bytes; place it in a `static` so the linker
+//! rejects a build whose RAM does not suffice.
+
+mod connect;
+mod error;
+pub mod heap;
+mod popup;
+mod search;
+pub mod work;
+
+pub use error::{PlanError, PopupError, QueryField};
+pub use popup::{Popup, PopupSummary, MAX_POPUP_VERTICES};
+pub use work::{plan_work_bound, popup_work_bound, Work, WorkBoundInputs};
+
+use crate::geometry::{DubinsPath, Pose, Primitive, Vec2};
+use crate::network::{LoadError, Network};
+use heap::IndexedHeap;
+use heapless::Vec;
+
+/// The most start (and the most goal) candidates a query connects.
+pub const MAX_LINKS: usize = 16;
+
+/// How a query connects to the network.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PlannerConfig {
+    /// Nearest vertices the start is connected to (at most [`MAX_LINKS`]).
+    pub start_candidates: u8,
+    /// Nearest vertices connected to the goal (at most [`MAX_LINKS`]).
+    pub goal_candidates: u8,
+    /// Only vertices within this distance are candidates, metres.
+    pub connect_radius_m: f32,
+    /// Headings tried for a goal without one, evenly spaced (36: every 10°).
+    pub free_goal_headings: u16,
+}
+
+impl PlannerConfig {
+    /// 8 start and 8 goal candidates within 1 km, 36 free goal headings.
+    pub const DEFAULT: PlannerConfig = PlannerConfig {
+        start_candidates: 8,
+        goal_candidates: 8,
+        connect_radius_m: 1000.0,
+        free_goal_headings: 36,
+    };
+
+    fn start_links(&self) -> usize {
+        (self.start_candidates as usize).min(MAX_LINKS)
+    }
+
+    fn goal_links(&self) -> usize {
+        (self.goal_candidates as usize).min(MAX_LINKS)
+    }
+
+    fn headings(&self, goal: &Goal) -> u16 {
+        match goal.heading {
+            Some(_) => 1,
+            None => self.free_goal_headings.clamp(1, 360),
+        }
+    }
+}
+
+impl Default for PlannerConfig {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// The goal: a position and, optionally, the heading to arrive with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Goal {
+    /// Where to arrive.
+    pub position: Vec2,
+    /// Heading to arrive with (radians counter-clockwise from east); `None`: any, tried at
+    /// [`PlannerConfig::free_goal_headings`] evenly spaced headings.
+    pub heading: Option<f32>,
+}
+
+/// The search algorithm.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Search {
+    /// Dijkstra's algorithm.
+    Dijkstra,
+    /// A* with the straight-line distance to the goal as heuristic (admissible and consistent,
+    /// since no Dubins path is shorter than the chord it spans).
+    AStar,
+}
+
+/// One planning request.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Query {
+    /// The aircraft's current pose.
+    pub start: Pose,
+    /// Where to go.
+    pub goal: Goal,
+    /// Which search to run.
+    pub search: Search,
+}
+
+/// What a successful query produced (the primitives are in [`Planner::route`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RouteSummary {
+    /// Length of the route, metres (the sum of its primitives' lengths).
+    pub length: f32,
+    /// Number of primitives.
+    pub primitives: u32,
+    /// Network edges the route uses.
+    pub network_edges: u32,
+    /// The heading the route arrives with.
+    pub arrival_heading: f32,
+    /// Work the query counted.
+    pub work: Work,
+}
+
+/// A connection between the start or goal and a network vertex.
+#[derive(Clone, Copy, Debug)]
+struct Link {
+    vertex: u32,
+    path: DubinsPath,
+}
+
+/// The planner. See the module documentation for its memory.
+pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: usize> {
+    network: Network<'n>,
+    config: PlannerConfig,
+    /// Bit `p` set: pop-up slot `p` blocks the edge.
+    blocked_by: [u16; E],
+    popups: [Option<Popup>; P],
+    /// Best known cost to each vertex (valid once the vertex has been queued).
+    dist: [f32; V],
+    /// How each vertex was reached: an edge index, or `FROM_START + link`.
+    via: [u32; V],
+    heap: IndexedHeap<V>,
+    start_links: Vec<Link, MAX_LINKS>,
+    goal_links: Vec<Link, MAX_LINKS>,
+    route: Vec<Primitive, R>,
+    summary: Option<RouteSummary>,
+}
+
+/// `via` values at or above this mark a vertex reached straight from start link `via − FROM_START`.
+const FROM_START: u32 = u32::MAX - MAX_LINKS as u32;
+
+impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Default
+    for Planner<'n, V, E, P, R>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
+    /// Evaluated at compile time where the planner is built: at most 16 pop-ups (the width of
+    /// the per-edge blocking mask).
+    const CAPACITY_OK: () = assert!(P <= 16, "a planner supports at most 16 pop-ups");
+
+    /// A planner with an empty network. `const`, so it can initialise a `static`.
+    pub const fn new() -> Self {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::CAPACITY_OK;
+        Self {
+            network: Network::empty(),
+            config: PlannerConfig::DEFAULT,
+            blocked_by: [0; E],
+            popups: [const { None }; P],
+            dist: [0.0; V],
+            via: [0; V],
+            heap: IndexedHeap::new(),
+            start_links: Vec::new(),
+            goal_links: Vec::new(),
+            route: Vec::new(),
+            summary: None,
+        }
+    }
+
+    /// Validates `bytes` for this planner's capacities and makes it the network, clearing
+    /// pop-ups and the route. On error the planner keeps its previous network and state.
+    pub fn load(&mut self, bytes: &'n [u8]) -> Result<(), LoadError> {
+        let network = Network::from_bytes_with_capacity(bytes, V, E)?;
+        self.network = network;
+        self.blocked_by = [0; E];
+        self.popups = [const { None }; P];
+        self.route.clear();
+        self.summary = None;
+        Ok(())
+    }
+
+    /// The loaded network.
+    pub fn network(&self) -> &Network<'n> {
+        &self.network
+    }
+
+    /// The connection settings.
+    pub fn config(&self) -> &PlannerConfig {
+        &self.config
+    }
+
+    /// Replaces the connection settings (counts above [`MAX_LINKS`] are used as `MAX_LINKS`).
+    pub fn set_config(&mut self, config: PlannerConfig) {
+        self.config = config;
+    }
+
+    /// The last route found, as lines and arcs from the start pose to the goal.
+    pub fn route(&self) -> &[Primitive] {
+        &self.route
+    }
+
+    /// The summary of the last route found.
+    pub fn route_summary(&self) -> Option<&RouteSummary> {
+        self.summary.as_ref()
+    }
+
+    /// Whether edge `e` may be used (no active pop-up blocks it).
+    pub fn is_edge_enabled(&self, e: u32) -> bool {
+        self.blocked_by.get(e as usize).is_some_and(|m| *m == 0)
+    }
+
+    /// Number of edges no pop-up blocks. Work: |E|.
+    pub fn enabled_edge_count(&self) -> u32 {
+        let n = self.network.edge_count() as usize;
+        self.blocked_by.iter().take(n).filter(|m| **m == 0).count() as u32
+    }
+
+    /// The inputs of the work bounds for this network and configuration.
+    pub fn work_bound_inputs(&self, goal_has_heading: bool) -> WorkBoundInputs {
+        let header = self.network.header();
+        WorkBoundInputs {
+            vertices: header.vertex_count as u64,
+            edges: header.edge_count as u64,
+            obstacles: header.obstacle_count as u64,
+            obstacle_points: header.obstacle_point_count as u64,
+            popups: P as u64,
+            popup_vertices: MAX_POPUP_VERTICES as u64,
+            start_links: self.config.start_links() as u64,
+            goal_links: self.config.goal_links() as u64,
+            goal_headings: if goal_has_heading {
+                1
+            } else {
+                self.config.free_goal_headings.clamp(1, 360) as u64
+            },
+        }
+    }
+
+    /// The most work any query on the loaded network can count (with a free goal heading, the
+    /// larger case): [`plan_work_bound`].
+    pub fn worst_case_work(&self) -> u64 {
+        plan_work_bound(&self.work_bound_inputs(false))
+    }
+
+    /// The most work [`Planner::add_popup`] can count on the loaded network.
+    pub fn worst_case_popup_work(&self) -> u64 {
+        popup_work_bound(
+            self.network.header().grid_entry_count as u64,
+            MAX_POPUP_VERTICES as u64,
+        )
+    }
+}
+
+/// Counts work against a budget.
+struct Meter {
+    work: Work,
+    budget: u64,
+}
+
+impl Meter {
+    fn new(budget: u64) -> Self {
+        Self {
+            work: Work::default(),
+            budget,
+        }
+    }
+
+    /// Fails once the total exceeds the budget.
+    fn check(&self) -> Result<(), PlanError> {
+        let used = self.work.total();
+        if used > self.budget {
+            Err(PlanError::BudgetExhausted {
+                used,
+                budget: self.budget,
+            })
+        } else {
+            Ok(())
+        }
+    }
+}

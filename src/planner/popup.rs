@@ -1,0 +1,195 @@
+//! Pop-up obstacles: adding one disables exactly the edges whose geometry comes within the
+//! network's clearance of it, visiting only the edges the grid index lists for the cells it
+//! covers; removing it restores them.
+
+use super::{Planner, PopupError};
+use crate::geometry::predicates::{
+    conflicts_with_circle, conflicts_with_polygon, point_in_polygon, polygon_is_simple,
+};
+use crate::geometry::{Primitive, Vec2};
+use heapless::Vec;
+
+/// The most vertices a pop-up polygon may have.
+pub const MAX_POPUP_VERTICES: usize = 16;
+
+/// A pop-up obstacle in the network's local frame.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Popup {
+    /// A disc (a threat's lethal radius, a storm cell).
+    Circle {
+        /// Centre.
+        centre: Vec2,
+        /// Radius, metres.
+        radius: f32,
+    },
+    /// A simple polygon.
+    Polygon(Vec<Vec2, MAX_POPUP_VERTICES>),
+}
+
+/// What [`Planner::add_popup`] did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PopupSummary {
+    /// The pop-up's id, for [`Planner::remove_popup`].
+    pub id: u8,
+    /// Edges this pop-up blocks (including ones another pop-up blocks too).
+    pub edges_blocked: u32,
+    /// Grid entries visited.
+    pub entries_visited: u32,
+    /// Exact predicate evaluations.
+    pub predicate_tests: u32,
+}
+
+impl Popup {
+    /// Checks the pop-up's shape.
+    pub fn validate(&self) -> Result<(), PopupError> {
+        match self {
+            Popup::Circle { centre, radius } => {
+                if !centre.is_finite() || !radius.is_finite() {
+                    Err(PopupError::NonFinite)
+                } else if *radius <= 0.0 {
+                    Err(PopupError::NonPositiveRadius)
+                } else {
+                    Ok(())
+                }
+            }
+            Popup::Polygon(points) => {
+                if points.iter().any(|p| !p.is_finite()) {
+                    Err(PopupError::NonFinite)
+                } else if !polygon_is_simple(points.as_slice()) {
+                    Err(PopupError::NotSimple)
+                } else {
+                    Ok(())
+                }
+            }
+        }
+    }
+
+    /// Bounding box `(min, max)`.
+    pub fn bounding_box(&self) -> (Vec2, Vec2) {
+        match self {
+            Popup::Circle { centre, radius } => (
+                Vec2::new(centre.x - radius, centre.y - radius),
+                Vec2::new(centre.x + radius, centre.y + radius),
+            ),
+            Popup::Polygon(points) => {
+                let mut lo = Vec2::new(f32::INFINITY, f32::INFINITY);
+                let mut hi = Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY);
+                for p in points {
+                    lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
+                    hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+                }
+                (lo, hi)
+            }
+        }
+    }
+
+    /// Whether `prim` comes within `clearance` of the pop-up. Returns the verdict and the
+    /// number of exact predicate evaluations it took.
+    pub fn conflicts(&self, prim: &Primitive, clearance: f32) -> (bool, u32) {
+        match self {
+            Popup::Circle { centre, radius } => {
+                (conflicts_with_circle(prim, *centre, *radius, clearance), 1)
+            }
+            Popup::Polygon(points) => (
+                conflicts_with_polygon(prim, points.as_slice(), clearance),
+                points.len() as u32 + 1,
+            ),
+        }
+    }
+
+    /// Whether point `p` lies inside the pop-up (boundary included for a circle).
+    pub fn contains(&self, p: Vec2) -> bool {
+        match self {
+            Popup::Circle { centre, radius } => p.distance(*centre) <= *radius,
+            Popup::Polygon(points) => point_in_polygon(p, points.as_slice()),
+        }
+    }
+}
+
+impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
+    /// Adds a pop-up and disables every edge whose geometry comes within the network's
+    /// clearance of it (exact predicates on the edges the grid index lists for the cells the
+    /// pop-up's box, widened by the clearance, overlaps). Work: at most
+    /// [`Planner::worst_case_popup_work`].
+    pub fn add_popup(&mut self, popup: Popup) -> Result<PopupSummary, PopupError> {
+        popup.validate()?;
+        let slot = self
+            .popups
+            .iter()
+            .position(|p| p.is_none())
+            .ok_or(PopupError::NoFreeSlot { capacity: P as u8 })?;
+        let bit = 1u16 << slot;
+        let clearance = self.network.clearance();
+        let mut summary = PopupSummary {
+            id: slot as u8,
+            edges_blocked: 0,
+            entries_visited: 0,
+            predicate_tests: 0,
+        };
+        let (lo, hi) = popup.bounding_box();
+        let widen = Vec2::new(clearance, clearance);
+        if let Some(cells) = self.network.cells_overlapping(lo - widen, hi + widen) {
+            for y in cells.y0..=cells.y1 {
+                for x in cells.x0..=cells.x1 {
+                    for k in self.network.cell_entries(x, y) {
+                        summary.entries_visited += 1;
+                        let Some(e) = self.network.cell_entry(k) else {
+                            continue;
+                        };
+                        let Some(mask) = self.blocked_by.get(e as usize).copied() else {
+                            continue;
+                        };
+                        if mask & bit != 0 {
+                            continue; // already tested through another cell
+                        }
+                        let Some(path) = self.network.edge_path(e) else {
+                            continue;
+                        };
+                        let mut hit = false;
+                        for prim in path.primitives().into_iter().flatten() {
+                            let (conflict, tests) = popup.conflicts(&prim, clearance);
+                            summary.predicate_tests += tests;
+                            if conflict {
+                                hit = true;
+                                break;
+                            }
+                        }
+                        if hit {
+                            if let Some(m) = self.blocked_by.get_mut(e as usize) {
+                                *m |= bit;
+                            }
+                            summary.edges_blocked += 1;
+                        }
+                    }
+                }
+            }
+        }
+        if let Some(p) = self.popups.get_mut(slot) {
+            *p = Some(popup);
+        }
+        Ok(summary)
+    }
+
+    /// Removes pop-up `id` and re-enables the edges only it blocked. Work: |E| mask updates.
+    pub fn remove_popup(&mut self, id: u8) -> Result<(), PopupError> {
+        match self.popups.get_mut(id as usize) {
+            Some(p @ Some(_)) => *p = None,
+            _ => return Err(PopupError::UnknownId { id }),
+        }
+        let keep = !(1u16 << id);
+        for m in self.blocked_by.iter_mut() {
+            *m &= keep;
+        }
+        Ok(())
+    }
+
+    /// The active pop-ups with their ids.
+    pub fn popups(&self) -> impl Iterator<Item = (u8, &Popup)> {
+        self.popups
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| p.as_ref().map(|p| (i as u8, p)))
+    }
+}

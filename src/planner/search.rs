@@ -1,0 +1,244 @@
+//! The query: validate, connect, search (Dijkstra or A*), and write the route.
+
+use super::heap::ItemState;
+use super::{Link, Meter, PlanError, Planner, Query, QueryField, RouteSummary, Search, FROM_START};
+use crate::geometry::{DubinsPath, Primitive, Vec2};
+
+/// How the best route found so far reaches the goal.
+#[derive(Clone, Copy, Debug)]
+enum Arrival {
+    /// Straight from the start, by this path.
+    Direct(DubinsPath),
+    /// Through the network, leaving it at goal link `k`.
+    FromVertex { link: usize },
+}
+
+/// A* heuristic scale: the chord to the goal shrunk by 1e-4 so that f32 rounding of stored edge
+/// costs (relative error ~1e-7) cannot make it exceed a true remaining cost.
+const HEURISTIC_SCALE: f32 = 1.0 - 1e-4;
+
+impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
+    /// Plans from `query.start` to `query.goal` through the network, counting work against
+    /// `budget` (compare [`Planner::worst_case_work`]). On success the route replaces the
+    /// previous one; on any error the previous route is left as it was.
+    pub fn plan(&mut self, query: &Query, budget: u64) -> Result<RouteSummary, PlanError> {
+        let mut meter = Meter::new(budget);
+        if !query.start.is_finite() {
+            return Err(PlanError::NonFinite {
+                field: QueryField::Start,
+            });
+        }
+        if !query.goal.position.is_finite() || query.goal.heading.is_some_and(|h| !h.is_finite()) {
+            return Err(PlanError::NonFinite {
+                field: QueryField::Goal,
+            });
+        }
+        self.check_free(query.start.position, QueryField::Start, &mut meter)?;
+        self.check_free(query.goal.position, QueryField::Goal, &mut meter)?;
+
+        self.connect_start(&query.start, &mut meter)?;
+        self.connect_goal(&query.goal, &mut meter)?;
+        let direct =
+            if query.start.position.distance(query.goal.position) <= self.config.connect_radius_m {
+                self.best_clear_path_to_goal(&query.start, &query.goal, &mut meter)?
+            } else {
+                None
+            };
+        if self.start_links.is_empty() && direct.is_none() {
+            return Err(PlanError::StartUnconnected);
+        }
+        if self.goal_links.is_empty() && direct.is_none() {
+            return Err(PlanError::GoalUnconnected);
+        }
+        let arrival = self.search(query, direct, &mut meter)?;
+        self.write_route(arrival, &mut meter)
+    }
+
+    /// Dijkstra (or A*) from the start links; returns how the cheapest route arrives.
+    fn search(
+        &mut self,
+        query: &Query,
+        direct: Option<DubinsPath>,
+        meter: &mut Meter,
+    ) -> Result<Arrival, PlanError> {
+        let n = self.network.vertex_count() as usize;
+        self.heap.clear(n);
+        meter.work.vertex_scans += n as u64;
+        let goal = query.goal.position;
+        let heuristic = |p: Vec2| match query.search {
+            Search::Dijkstra => 0.0,
+            Search::AStar => p.distance(goal) * HEURISTIC_SCALE,
+        };
+        let mut best = direct.map(|p| (p.length(), Arrival::Direct(p)));
+
+        for (k, link) in self.start_links.iter().enumerate() {
+            let v = link.vertex as usize;
+            let cost = link.path.length();
+            let (Some(d), Some(via)) = (self.dist.get_mut(v), self.via.get_mut(v)) else {
+                return Err(PlanError::Internal);
+            };
+            if self.heap.state(link.vertex) == ItemState::Unseen || cost < *d {
+                *d = cost;
+                *via = FROM_START + k as u32;
+                let h = self
+                    .network
+                    .vertex(link.vertex)
+                    .map_or(0.0, |p| heuristic(p.position));
+                meter.work.heap_steps += self.heap.push_or_decrease(link.vertex, cost + h) as u64;
+            }
+        }
+        meter.check()?;
+
+        while let Some((u, key, levels)) = self.heap.pop() {
+            meter.work.heap_steps += levels as u64;
+            if best.is_some_and(|(b, _)| key >= b) {
+                break; // every remaining route costs at least `key`
+            }
+            let du = self
+                .dist
+                .get(u as usize)
+                .copied()
+                .ok_or(PlanError::Internal)?;
+            for (k, link) in self.goal_links.iter().enumerate() {
+                meter.work.relaxations += 1;
+                if link.vertex == u {
+                    let total = du + link.path.length();
+                    if best.is_none_or(|(b, _)| total < b) {
+                        best = Some((total, Arrival::FromVertex { link: k }));
+                    }
+                }
+            }
+            for e in self.network.out_edges(u) {
+                meter.work.relaxations += 1;
+                if !self.is_edge_enabled(e) {
+                    continue;
+                }
+                let Some((cost, t)) = self.network.edge_cost_target(e) else {
+                    return Err(PlanError::Internal);
+                };
+                let candidate = du + cost;
+                let state = self.heap.state(t);
+                let (Some(dt), Some(via)) =
+                    (self.dist.get_mut(t as usize), self.via.get_mut(t as usize))
+                else {
+                    return Err(PlanError::Internal);
+                };
+                if state == ItemState::Unseen || (state == ItemState::Queued && candidate < *dt) {
+                    *dt = candidate;
+                    *via = e;
+                    let h = self
+                        .network
+                        .vertex(t)
+                        .map_or(0.0, |p| heuristic(p.position));
+                    meter.work.heap_steps += self.heap.push_or_decrease(t, candidate + h) as u64;
+                }
+            }
+            meter.check()?;
+        }
+        best.map(|(_, a)| a).ok_or(PlanError::NoRoute)
+    }
+
+    /// Walks back from the goal link: calls `visit` with each path of the route, goal end first.
+    /// Returns the number of network edges on the route.
+    fn walk_back(
+        &self,
+        link: &Link,
+        meter: &mut Meter,
+        mut visit: impl FnMut(&DubinsPath),
+    ) -> Result<u32, PlanError> {
+        visit(&link.path);
+        let mut v = link.vertex;
+        let mut edges = 0u32;
+        // Predecessors form a tree over at most |V| vertices: more steps mean a broken invariant.
+        for _ in 0..=self.network.vertex_count() {
+            meter.work.vertex_scans += 1;
+            let via = self
+                .via
+                .get(v as usize)
+                .copied()
+                .ok_or(PlanError::Internal)?;
+            if via >= FROM_START {
+                let start = self
+                    .start_links
+                    .get((via - FROM_START) as usize)
+                    .ok_or(PlanError::Internal)?;
+                visit(&start.path);
+                return Ok(edges);
+            }
+            let path = self.network.edge_path(via).ok_or(PlanError::Internal)?;
+            visit(&path);
+            edges += 1;
+            v = path_source(&self.network, via)?;
+        }
+        Err(PlanError::Internal)
+    }
+
+    /// Replaces the route with the one `arrival` describes, if it fits in `R` primitives.
+    fn write_route(
+        &mut self,
+        arrival: Arrival,
+        meter: &mut Meter,
+    ) -> Result<RouteSummary, PlanError> {
+        let count = |p: &DubinsPath| p.primitives().iter().flatten().count() as u32;
+        let (needed, network_edges, arrival_path) = match arrival {
+            Arrival::Direct(p) => (count(&p), 0, p),
+            Arrival::FromVertex { link } => {
+                let link = *self.goal_links.get(link).ok_or(PlanError::Internal)?;
+                let mut needed = 0;
+                let edges = self.walk_back(&link, meter, |p| needed += count(p))?;
+                (needed, edges, link.path)
+            }
+        };
+        if needed as usize > R {
+            return Err(PlanError::RouteTooLong {
+                primitives: needed,
+                capacity: R as u32,
+            });
+        }
+        meter.check()?;
+        // The walk below repeats the one that just succeeded: the new route replaces the old one.
+        let mut route = core::mem::take(&mut self.route);
+        route.clear();
+        let mut push_reversed = |p: &DubinsPath| {
+            for prim in p.primitives().iter().rev().flatten() {
+                let _ = route.push(*prim);
+            }
+        };
+        let walked = match arrival {
+            Arrival::Direct(p) => {
+                push_reversed(&p);
+                Ok(0)
+            }
+            Arrival::FromVertex { link } => match self.goal_links.get(link).copied() {
+                Some(link) => self.walk_back(&link, meter, &mut push_reversed),
+                None => Err(PlanError::Internal),
+            },
+        };
+        if walked.is_err() {
+            // Unreachable: the same walk succeeded above. Fail closed rather than half-written.
+            route.clear();
+            self.route = route;
+            self.summary = None;
+            return Err(PlanError::Internal);
+        }
+        route.reverse();
+        let length = route.iter().map(Primitive::length).sum();
+        self.route = route;
+        let summary = RouteSummary {
+            length,
+            primitives: needed,
+            network_edges,
+            arrival_heading: arrival_path.end().heading,
+            work: meter.work,
+        };
+        self.summary = Some(summary);
+        Ok(summary)
+    }
+}
+
+fn path_source(network: &crate::network::Network<'_>, edge: u32) -> Result<u32, PlanError> {
+    network
+        .edge(edge)
+        .map(|e| e.source)
+        .ok_or(PlanError::Internal)
+}
