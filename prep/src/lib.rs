@@ -1,1 +1,3 @@
-pub fn placeholder() {}
+//! skyroute's ground tool: reads mission scenarios, builds preprocessed networks for the onboard
+//! core, and lets a person see and check them.
+pub mod roadmap;

@@ -3,6 +3,7 @@
 use super::format::*;
 use super::{crc32, Network};
 use crate::geometry::{DubinsPath, DubinsWord, Pose, Vec2};
+use std::vec;
 use std::vec::Vec;
 
 /// A directed edge to write.

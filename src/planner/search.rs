@@ -195,7 +195,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 capacity: R as u32,
             });
         }
+        // Charge the second walk (identical to the first) before it starts, so that the budget
+        // is settled before the old route is touched.
+        if let Arrival::FromVertex { .. } = arrival {
+            meter.work.vertex_scans += network_edges as u64 + 1;
+        }
         meter.check()?;
+        let mut replay = Meter::new(u64::MAX);
         // The walk below repeats the one that just succeeded: the new route replaces the old one.
         let mut route = core::mem::take(&mut self.route);
         route.clear();
@@ -210,7 +216,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 Ok(0)
             }
             Arrival::FromVertex { link } => match self.goal_links.get(link).copied() {
-                Some(link) => self.walk_back(&link, meter, &mut push_reversed),
+                Some(link) => self.walk_back(&link, &mut replay, &mut push_reversed),
                 None => Err(PlanError::Internal),
             },
         };

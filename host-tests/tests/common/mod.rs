@@ -1,0 +1,107 @@
+//! Shared fixtures for the host tests: seeded random numbers and small roadmap networks built
+//! with the ground tool's real builder.
+#![allow(dead_code)]
+
+use skyroute::network::write::{encode, NetworkSpec, ObstacleSpec};
+use skyroute::{Pose, Vec2};
+use skyroute_prep::roadmap::{build_roadmap, CollisionCheck, RoadmapInput, RoadmapParams};
+
+/// splitmix64: small, seeded, good enough for test cases.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f32 {
+        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
+    }
+    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.unit()
+    }
+    pub fn below(&mut self, n: u64) -> u64 {
+        self.next_u64() % n.max(1)
+    }
+}
+
+/// An axis-aligned rectangle as a polygon.
+pub fn rect(x0: f32, y0: f32, x1: f32, y1: f32) -> Vec<Vec2> {
+    vec![Vec2::new(x0, y0), Vec2::new(x1, y0), Vec2::new(x1, y1), Vec2::new(x0, y1)]
+}
+
+/// A test world: a square area with rectangular and circular obstacles.
+pub struct World {
+    pub size: f32,
+    pub obstacles: Vec<ObstacleSpec>,
+    pub spec: NetworkSpec,
+    pub bytes: Vec<u8>,
+}
+
+/// Builds a roadmap over a `size` × `size` area with `n_obstacles` random obstacles.
+pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize) -> World {
+    let mut rng = Rng(seed);
+    let mut obstacles = Vec::new();
+    for i in 0..n_obstacles {
+        let (x, y) = (rng.range(0.1 * size, 0.9 * size), rng.range(0.1 * size, 0.9 * size));
+        let s = rng.range(0.02 * size, 0.06 * size);
+        if i % 3 == 2 {
+            obstacles.push(ObstacleSpec::Circle { centre: Vec2::new(x, y), radius: s });
+        } else {
+            obstacles.push(ObstacleSpec::Polygon(rect(x - s, y - s * 0.7, x + s, y + s * 0.7)));
+        }
+    }
+    let input = RoadmapInput {
+        area_min: Vec2::new(0.0, 0.0),
+        area_max: Vec2::new(size, size),
+        obstacles: obstacles.clone(),
+        fixed_vertices: Vec::new(),
+    };
+    let params = RoadmapParams {
+        turn_radius_m: radius,
+        sample_spacing_m: spacing,
+        neighbour_radius_m: 3.0 * radius,
+        k_nearest_fallback: 4,
+        allow_ccc: true,
+        clearance_m: 5.0,
+        seed,
+        check: CollisionCheck::Exact,
+    };
+    let roadmap = build_roadmap(&input, &params, &|_, _| {});
+    let spec = NetworkSpec {
+        origin_lat_deg: 48.0,
+        origin_lon_deg: 11.6,
+        turn_radius_m: radius,
+        clearance_m: params.clearance_m,
+        vertices: roadmap.vertices,
+        edges: roadmap.edges,
+        obstacles: obstacles.clone(),
+        grid_cell_m: 2.0 * radius,
+    };
+    let bytes = encode(&spec).expect("test network encodes");
+    World { size, obstacles, spec, bytes }
+}
+
+/// A random pose in the world, outside every obstacle by `margin`.
+pub fn free_pose(rng: &mut Rng, w: &World, margin: f32) -> Pose {
+    loop {
+        let p = Vec2::new(rng.range(0.0, w.size), rng.range(0.0, w.size));
+        let clear = w.obstacles.iter().all(|o| match o {
+            ObstacleSpec::Polygon(poly) => {
+                !skyroute::geometry::predicates::point_in_polygon(p, poly.as_slice())
+                    && (0..poly.len()).all(|i| {
+                        let e = skyroute::Segment::new(poly[i], poly[(i + 1) % poly.len()]);
+                        skyroute::geometry::predicates::point_segment_distance(p, &e) > margin
+                    })
+            }
+            ObstacleSpec::Circle { centre, radius } => p.distance(*centre) > radius + margin,
+        });
+        if clear {
+            return Pose { position: p, heading: rng.range(-3.14159, 3.14159) };
+        }
+    }
+}

@@ -1,0 +1,310 @@
+//! Roadmap mode (after Niendorf, Schmitt and Adolf, "Multi-query path planning for an unmanned
+//! fixed-wing aircraft", 2013): quasi-random Hammersley poses with a minimum spacing, joined to
+//! their neighbours by Dubins paths that are checked exactly against every obstacle.
+//!
+//! Construction is parallel (rayon) and deterministic: each sample's out-edges are computed
+//! independently and collected in sample order, so the same input gives the same bytes on any
+//! number of threads.
+
+use rayon::prelude::*;
+use skyroute::geometry::predicates::{conflicts_with_circle, conflicts_with_polygon, point_in_polygon, primitive_point_distance, PolygonView};
+use skyroute::geometry::WordSet;
+use skyroute::network::write::{EdgeSpec, ObstacleSpec};
+use skyroute::{DubinsPath, Pose, Primitive, Vec2};
+
+/// How edges are checked against obstacles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CollisionCheck {
+    /// The core's exact predicates on every line and arc.
+    Exact,
+    /// The paper's discretisation: points every `arc_step_m` along each path, each tested with
+    /// the clearance enlarged by the chord error f = r(1 − cos(d / 2r)) of that step.
+    Discretised {
+        /// Step along the path, metres.
+        arc_step_m: f32,
+    },
+}
+
+/// The roadmap's parameters (the scenario's `planner` member).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RoadmapParams {
+    /// Turn radius, metres.
+    pub turn_radius_m: f32,
+    /// Minimum distance between samples, metres.
+    pub sample_spacing_m: f32,
+    /// Samples within this distance are connected, metres.
+    pub neighbour_radius_m: f32,
+    /// A sample with no collision-free edge in its neighbourhood tries this many nearest.
+    pub k_nearest_fallback: usize,
+    /// Whether CCC words are admissible.
+    pub allow_ccc: bool,
+    /// Clearance from obstacles, metres.
+    pub clearance_m: f32,
+    /// Seed of the Cranley–Patterson shift applied to the Hammersley points.
+    pub seed: u64,
+    /// How edges are checked.
+    pub check: CollisionCheck,
+}
+
+/// The area and obstacles, in the local frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RoadmapInput {
+    /// South-west corner of the sampled area.
+    pub area_min: Vec2,
+    /// North-east corner of the sampled area.
+    pub area_max: Vec2,
+    /// Static obstacles.
+    pub obstacles: Vec<ObstacleSpec>,
+    /// Poses that must be vertices too (first in the vertex list, in this order).
+    pub fixed_vertices: Vec<Pose>,
+}
+
+/// A built roadmap.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Roadmap {
+    /// Vertex poses.
+    pub vertices: Vec<Pose>,
+    /// Directed edges, grouped by source.
+    pub edges: Vec<EdgeSpec>,
+    /// Hammersley candidates generated.
+    pub candidates: usize,
+    /// Candidates dropped for lying within clearance of an obstacle.
+    pub dropped_in_obstacles: usize,
+    /// Candidates dropped for lying closer than the spacing to an earlier sample.
+    pub dropped_by_spacing: usize,
+    /// Candidate edges examined.
+    pub edges_examined: usize,
+    /// Vertices connected through the k-nearest fallback.
+    pub fallback_vertices: usize,
+}
+
+/// The radical inverse of `i` in base `b` (van der Corput).
+fn radical_inverse(mut i: u64, b: u64) -> f64 {
+    let (mut inv, mut f) = (0.0, 1.0 / b as f64);
+    while i > 0 {
+        inv += (i % b) as f64 * f;
+        i /= b;
+        f /= b as f64;
+    }
+    inv
+}
+
+/// splitmix64, for the seed's shift.
+fn splitmix(state: &mut u64) -> f64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// Whether `prim` comes within `clearance` of `obstacle` (exact).
+pub fn primitive_conflicts(prim: &Primitive, obstacle: &ObstacleSpec, clearance: f32) -> bool {
+    match obstacle {
+        ObstacleSpec::Polygon(points) => conflicts_with_polygon(prim, points.as_slice(), clearance),
+        ObstacleSpec::Circle { centre, radius } => conflicts_with_circle(prim, *centre, *radius, clearance),
+    }
+}
+
+fn point_conflicts(p: Vec2, obstacle: &ObstacleSpec, clearance: f32) -> bool {
+    let probe = Primitive::Line(skyroute::Segment::new(p, p));
+    match obstacle {
+        ObstacleSpec::Polygon(points) => {
+            point_in_polygon(p, points.as_slice())
+                || (0..points.vertex_count()).any(|i| {
+                    points.as_slice().edge(i).is_some_and(|e| skyroute::geometry::predicates::point_segment_distance(p, &e) <= clearance)
+                })
+        }
+        ObstacleSpec::Circle { centre, radius } => primitive_point_distance(&probe, *centre) <= radius + clearance,
+    }
+}
+
+/// Obstacles with their bounding boxes, for a cheap first test.
+struct ObstacleIndex<'a> {
+    items: Vec<(&'a ObstacleSpec, Vec2, Vec2)>,
+}
+
+impl<'a> ObstacleIndex<'a> {
+    fn new(obstacles: &'a [ObstacleSpec]) -> Self {
+        let items = obstacles
+            .iter()
+            .map(|o| {
+                let (lo, hi) = match o {
+                    ObstacleSpec::Polygon(p) => p.iter().fold(
+                        (Vec2::new(f32::INFINITY, f32::INFINITY), Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY)),
+                        |(lo, hi), q| (Vec2::new(lo.x.min(q.x), lo.y.min(q.y)), Vec2::new(hi.x.max(q.x), hi.y.max(q.y))),
+                    ),
+                    ObstacleSpec::Circle { centre, radius } => {
+                        (Vec2::new(centre.x - radius, centre.y - radius), Vec2::new(centre.x + radius, centre.y + radius))
+                    }
+                };
+                (o, lo, hi)
+            })
+            .collect();
+        Self { items }
+    }
+
+    /// Obstacles whose box comes within `margin` of the box `[lo, hi]`.
+    fn near(&self, lo: Vec2, hi: Vec2, margin: f32) -> impl Iterator<Item = &'a ObstacleSpec> + '_ {
+        self.items.iter().filter_map(move |(o, olo, ohi)| {
+            let apart = lo.x - margin > ohi.x || hi.x + margin < olo.x || lo.y - margin > ohi.y || hi.y + margin < olo.y;
+            (!apart).then_some(*o)
+        })
+    }
+
+    fn path_is_clear(&self, path: &DubinsPath, clearance: f32, check: CollisionCheck) -> bool {
+        match check {
+            CollisionCheck::Exact => path.primitives().into_iter().flatten().all(|prim| {
+                let (lo, hi) = prim.bounding_box();
+                self.near(lo, hi, clearance).all(|o| !primitive_conflicts(&prim, o, clearance))
+            }),
+            CollisionCheck::Discretised { arc_step_m } => {
+                // The chord between two samples d apart on an arc of radius r deviates from the
+                // arc by at most f = r(1 − cos(d/2r)) (Niendorf et al., eq. for the sagitta), so
+                // points tested against clearance + f cover the path between them.
+                let r = path.radius;
+                let f = r * (1.0 - (arc_step_m / (2.0 * r)).cos());
+                let margin = clearance + f;
+                let steps = (path.length() / arc_step_m).ceil().max(1.0) as usize;
+                (0..=steps).all(|i| {
+                    let p = path.sample(path.length() * i as f32 / steps as f32).position;
+                    self.near(p, p, margin).all(|o| !point_conflicts(p, o, margin))
+                })
+            }
+        }
+    }
+}
+
+/// Buckets of sample indices on a square grid, for neighbour queries.
+struct SampleGrid {
+    origin: Vec2,
+    cell: f32,
+    nx: usize,
+    ny: usize,
+    buckets: Vec<Vec<u32>>,
+}
+
+impl SampleGrid {
+    fn new(points: &[Vec2], lo: Vec2, hi: Vec2, cell: f32) -> Self {
+        let nx = (((hi.x - lo.x) / cell).ceil() as usize).max(1);
+        let ny = (((hi.y - lo.y) / cell).ceil() as usize).max(1);
+        let mut g = Self { origin: lo, cell, nx, ny, buckets: vec![Vec::new(); nx * ny] };
+        for (i, p) in points.iter().enumerate() {
+            let c = g.cell_of(*p);
+            g.buckets[c.1 * nx + c.0].push(i as u32);
+        }
+        g
+    }
+
+    fn cell_of(&self, p: Vec2) -> (usize, usize) {
+        let x = (((p.x - self.origin.x) / self.cell).floor().max(0.0) as usize).min(self.nx - 1);
+        let y = (((p.y - self.origin.y) / self.cell).floor().max(0.0) as usize).min(self.ny - 1);
+        (x, y)
+    }
+
+    /// Indices of points within `radius ≤ cell` of `p` (a superset: the 3×3 block of cells).
+    fn around(&self, p: Vec2) -> impl Iterator<Item = u32> + '_ {
+        let (cx, cy) = self.cell_of(p);
+        let xs = cx.saturating_sub(1)..=(cx + 1).min(self.nx - 1);
+        let ys = cy.saturating_sub(1)..=(cy + 1).min(self.ny - 1);
+        ys.flat_map(move |y| xs.clone().map(move |x| (x, y))).flat_map(move |(x, y)| self.buckets[y * self.nx + x].iter().copied())
+    }
+}
+
+/// Builds the roadmap. `progress` is called with (done, total) as sample rows finish.
+pub fn build_roadmap(input: &RoadmapInput, params: &RoadmapParams, progress: &(dyn Fn(usize, usize) + Sync)) -> Roadmap {
+    let obstacles = ObstacleIndex::new(&input.obstacles);
+    let (lo, hi) = (input.area_min, input.area_max);
+    let (w, h) = ((hi.x - lo.x) as f64, (hi.y - lo.y) as f64);
+    let spacing = params.sample_spacing_m as f64;
+    // Twice as many candidates as a square lattice of the spacing would hold; the spacing
+    // filter then thins them to a Poisson-disc-like set.
+    let candidates = ((2.0 * w * h / (spacing * spacing)).ceil() as u64).max(1);
+    let mut state = params.seed;
+    let shift = [splitmix(&mut state), splitmix(&mut state), splitmix(&mut state)];
+
+    let mut vertices: Vec<Pose> = input.fixed_vertices.clone();
+    let mut positions: Vec<Vec2> = vertices.iter().map(|p| p.position).collect();
+    let mut spacing_grid = SampleGrid::new(&[], lo, hi, params.sample_spacing_m);
+    for (i, p) in positions.iter().enumerate() {
+        let c = spacing_grid.cell_of(*p);
+        spacing_grid.buckets[c.1 * spacing_grid.nx + c.0].push(i as u32);
+    }
+    let (mut dropped_in_obstacles, mut dropped_by_spacing) = (0, 0);
+    for i in 0..candidates {
+        let u = ((i as f64 / candidates as f64) + shift[0]).fract();
+        let v = (radical_inverse(i, 2) + shift[1]).fract();
+        let a = (radical_inverse(i, 3) + shift[2]).fract();
+        let p = Vec2::new((lo.x as f64 + u * w) as f32, (lo.y as f64 + v * h) as f32);
+        if obstacles.near(p, p, params.clearance_m).any(|o| point_conflicts(p, o, params.clearance_m)) {
+            dropped_in_obstacles += 1;
+            continue;
+        }
+        if spacing_grid.around(p).any(|j| positions[j as usize].distance(p) < params.sample_spacing_m) {
+            dropped_by_spacing += 1;
+            continue;
+        }
+        let c = spacing_grid.cell_of(p);
+        spacing_grid.buckets[c.1 * spacing_grid.nx + c.0].push(positions.len() as u32);
+        positions.push(p);
+        vertices.push(Pose { position: p, heading: (a * std::f64::consts::TAU - std::f64::consts::PI) as f32 });
+    }
+
+    let words = if params.allow_ccc { WordSet::ALL } else { WordSet::CSC_ONLY };
+    let grid = SampleGrid::new(&positions, lo, hi, params.neighbour_radius_m.max(1.0));
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let total = vertices.len();
+    let connect = |s: usize, targets: &mut dyn Iterator<Item = u32>, examined: &mut usize| -> Vec<EdgeSpec> {
+        let mut out = Vec::new();
+        for t in targets {
+            let t = t as usize;
+            if t == s {
+                continue;
+            }
+            *examined += 1;
+            let Some(path) = DubinsPath::shortest_among(&vertices[s], &vertices[t], params.turn_radius_m, words) else { continue };
+            if obstacles.path_is_clear(&path, params.clearance_m, params.check) {
+                out.push(EdgeSpec { source: s as u32, target: t as u32, cost: path.length(), word: path.word, lengths: path.lengths });
+            }
+        }
+        out
+    };
+    let per_vertex: Vec<(Vec<EdgeSpec>, usize, bool)> = (0..total)
+        .into_par_iter()
+        .map(|s| {
+            let p = positions[s];
+            let mut examined = 0;
+            let mut near: Vec<u32> =
+                grid.around(p).filter(|&t| positions[t as usize].distance(p) <= params.neighbour_radius_m).collect();
+            near.sort_unstable();
+            let mut edges = connect(s, &mut near.into_iter(), &mut examined);
+            let mut fallback = false;
+            if edges.is_empty() && params.k_nearest_fallback > 0 {
+                let mut order: Vec<u32> = (0..total as u32).filter(|&t| t as usize != s).collect();
+                order.sort_by(|&a, &b| {
+                    positions[a as usize].distance(p).total_cmp(&positions[b as usize].distance(p)).then(a.cmp(&b))
+                });
+                order.truncate(params.k_nearest_fallback);
+                edges = connect(s, &mut order.into_iter(), &mut examined);
+                fallback = true;
+            }
+            let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            if n % 256 == 0 || n == total {
+                progress(n, total);
+            }
+            (edges, examined, fallback)
+        })
+        .collect();
+    let edges_examined = per_vertex.iter().map(|v| v.1).sum();
+    let fallback_vertices = per_vertex.iter().filter(|v| v.2).count();
+    let edges = per_vertex.into_iter().flat_map(|v| v.0).collect();
+    Roadmap {
+        vertices,
+        edges,
+        candidates: candidates as usize,
+        dropped_in_obstacles,
+        dropped_by_spacing,
+        edges_examined,
+        fallback_vertices,
+    }
+}
