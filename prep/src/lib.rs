@@ -1,3 +1,6 @@
 //! skyroute's ground tool: reads mission scenarios, builds preprocessed networks for the onboard
 //! core, and lets a person see and check them.
 pub mod roadmap;
+pub mod scenario;
+pub mod frame;
+pub mod build;
