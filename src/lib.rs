@@ -24,6 +24,8 @@
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
+// `!(a < b)` is deliberate throughout: it is true when either side is NaN, which must fail closed.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 #[cfg(feature = "std")]
 extern crate std;

@@ -135,7 +135,7 @@ impl DubinsPath {
                 continue;
             }
             if let Some(p) = Self::with_word(start, goal, radius, w) {
-                if best.map_or(true, |b| p.length() < b.length()) {
+                if best.is_none_or(|b| p.length() < b.length()) {
                     best = Some(p);
                 }
             }
@@ -190,21 +190,34 @@ impl DubinsPath {
 
     /// The path's primitives in order; pieces of zero length are `None`.
     pub fn primitives(&self) -> [Option<Primitive>; 3] {
+        self.pieces().map(|p| p.map(|(prim, _)| prim))
+    }
+
+    /// The primitives with the heading each one starts with.
+    fn pieces(&self) -> [Option<(Primitive, f32)>; 3] {
         let (k1, middle, k3) = self.word.letters();
         let mut pose = self.start;
         let mut out = [None; 3];
         let kinds = [Some(k1), middle, Some(k3)];
         for (i, kind) in kinds.iter().enumerate() {
             let len = self.lengths[i];
+            // A piece of zero length (or an arc whose turn angle rounds to zero) is skipped, not
+            // built: a zero-length right arc has sweep −0.0, which `Arc::turn` reads as a *left*
+            // turn, so its end heading came out flipped by π and every later piece was built on
+            // the wrong side (e.g. RSR/RSL/RLR with a zero first arc, LRL with a zero middle
+            // arc: the flown path ended far from the goal although `length()` was right).
+            let angle = len / self.radius;
+            if !(len > 0.0) || (kind.is_some() && !(angle > 0.0)) {
+                continue;
+            }
             let prim = match kind {
-                Some(turn) => {
-                    Primitive::Arc(Arc::from_pose(&pose, *turn, self.radius, len / self.radius))
-                }
+                Some(turn) => Primitive::Arc(Arc::from_pose(&pose, *turn, self.radius, angle)),
                 None => Primitive::Line(Segment::new(
                     pose.position,
                     pose.position + pose.direction() * len,
                 )),
             };
+            let heading = pose.heading;
             let end = prim.pose_at(len);
             // A straight keeps the heading exactly; an arc's end heading comes from its geometry.
             pose = match prim {
@@ -214,9 +227,7 @@ impl DubinsPath {
                 },
                 Primitive::Arc(_) => end,
             };
-            if len > 0.0 {
-                out[i] = Some(prim);
-            }
+            out[i] = Some((prim, heading));
         }
         out
     }
@@ -225,13 +236,23 @@ impl DubinsPath {
     pub fn sample(&self, s: f32) -> Pose {
         let mut rest = s.max(0.0);
         let mut last = self.start;
-        for prim in self.primitives().into_iter().flatten() {
+        for (prim, heading) in self.pieces().into_iter().flatten() {
+            // On a straight the heading is the one it was built with: `Primitive::pose_at`
+            // recomputes it from the rounded end points, which for a straight of a few mm at
+            // coordinates of hundreds of metres is off by up to radians (0 when they coincide).
+            let at = |s: f32| match prim {
+                Primitive::Line(seg) => Pose {
+                    position: seg.point_at(s),
+                    heading,
+                },
+                Primitive::Arc(a) => a.pose_at(s),
+            };
             let len = prim.length();
             if rest <= len {
-                return prim.pose_at(rest);
+                return at(rest);
             }
             rest -= len;
-            last = prim.pose_at(len);
+            last = at(len);
         }
         last
     }
@@ -300,7 +321,7 @@ fn ccc_angles(
         let middle = wrap_to_tau(-a * (h23 - h12));
         let last = wrap_to_tau(a * (g.heading - h23));
         let total = first + middle + last;
-        if best.map_or(true, |(x, y, z)| total < x + y + z) {
+        if best.is_none_or(|(x, y, z)| total < x + y + z) {
             best = Some((first, middle, last));
         }
     }

@@ -148,9 +148,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     ) -> Result<u32, PlanError> {
         visit(&link.path);
         let mut v = link.vertex;
-        let mut edges = 0u32;
         // Predecessors form a tree over at most |V| vertices: more steps mean a broken invariant.
-        for _ in 0..=self.network.vertex_count() {
+        for edges in 0..=self.network.vertex_count() {
             meter.work.vertex_scans += 1;
             let via = self
                 .via
@@ -167,7 +166,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
             let path = self.network.edge_path(via).ok_or(PlanError::Internal)?;
             visit(&path);
-            edges += 1;
             v = path_source(&self.network, via)?;
         }
         Err(PlanError::Internal)
