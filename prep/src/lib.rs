@@ -4,3 +4,5 @@ pub mod roadmap;
 pub mod scenario;
 pub mod frame;
 pub mod build;
+pub mod mission;
+pub mod route_json;

@@ -2,6 +2,8 @@
 
 use clap::{Parser, Subcommand};
 use skyroute_prep::build::{build, BuildOptions};
+use skyroute_prep::build::local;
+use skyroute_prep::mission::{plan_mission, LocalPopup};
 use skyroute_prep::scenario;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -37,6 +39,34 @@ enum Command {
         #[arg(long)]
         grid_cell: Option<f32>,
     },
+    /// Plan start → waypoints in order → goal through a network with the onboard core.
+    Plan {
+        /// The network image.
+        network: PathBuf,
+        /// The scenario whose start, waypoints and goal to visit.
+        #[arg(long)]
+        scenario: PathBuf,
+        /// A circular pop-up obstacle, `LON,LAT,RADIUS_M` (repeatable).
+        #[arg(long, value_parser = parse_popup)]
+        popup: Vec<(f64, f64, f64)>,
+        /// Weather for landmark networks (roadmap networks have none).
+        #[arg(long)]
+        weather: Option<String>,
+        /// Where to write the route (JSON).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
+}
+
+fn parse_popup(s: &str) -> Result<(f64, f64, f64), String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [lon, lat, r] if lon.abs() <= 180.0 && lat.abs() <= 90.0 && r > 0.0 && r.is_finite() => Ok((lon, lat, r)),
+        _ => Err(format!("expected LON,LAT,RADIUS_M with |lon| <= 180, |lat| <= 90, radius > 0, got {s:?}")),
+    }
 }
 
 fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
@@ -64,6 +94,38 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 r.edges_examined,
                 if discretised { "discretised" } else { "exact" },
                 built.bytes.len(),
+                t0.elapsed().as_secs_f64(),
+                output.display()
+            );
+            Ok(())
+        }
+        Command::Plan { network, scenario: scenario_path, popup, weather, output } => {
+            let t0 = Instant::now();
+            let bytes = std::fs::read(&network).map_err(|e| format!("{}: {e}", network.display()))?;
+            let net = skyroute::Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", network.display()))?;
+            if let Some(w) = weather {
+                return Err(format!("--weather {w}: {} is a roadmap network, which has no weather", network.display()).into());
+            }
+            let s = scenario::load(&scenario_path)?;
+            let (lat0, lon0) = net.origin_deg();
+            let frame = skyroute_prep::frame::LocalFrame::new(lat0, lon0);
+            let popups: Vec<LocalPopup> = popup
+                .iter()
+                .enumerate()
+                .map(|(i, &(lon, lat, r))| LocalPopup { name: format!("--popup #{}", i + 1), centre: local(&frame, lon, lat), radius: r as f32 })
+                .collect();
+            let m = plan_mission(&bytes, &s, &frame, &popups).map_err(|e| format!("{}: {e}", scenario_path.display()))?;
+            let json = skyroute_prep::route_json::mission_json(&m, &frame, &s.name);
+            std::fs::write(&output, serde_json::to_string_pretty(&json)?).map_err(|e| format!("{}: {e}", output.display()))?;
+            for l in &m.legs {
+                println!("  {} -> {}: {:.1} m, {} network edges, work {}", l.from, l.to, l.summary.length, l.summary.network_edges, l.summary.work.total());
+            }
+            println!(
+                "planned {}: {:.1} m over {} legs ({} core queries to choose headings), {:.2} s -> {}",
+                s.name,
+                m.length,
+                m.legs.len(),
+                m.queries,
                 t0.elapsed().as_secs_f64(),
                 output.display()
             );

@@ -1,0 +1,231 @@
+//! Planning a whole mission — start → waypoints in order → goal — with the onboard core, exactly
+//! as the aircraft would, on the host.
+//!
+//! A waypoint without a heading enters as `H` heading copies (36: every 10°) and the best are
+//! chosen jointly: every leg between consecutive copies is planned by the core, then a dynamic
+//! programme over the stages picks the cheapest chain (optimal over the copies, where planning
+//! leg by leg with the first-found heading would not be). A waypoint none of whose copies has a
+//! collision-free way out is reported, by name, as an inevitable-collision state.
+
+use crate::build::{local, local_heading};
+use crate::frame::LocalFrame;
+use crate::scenario::{Endpoint, Scenario};
+use rayon::prelude::*;
+use skyroute::planner::{Goal, PlanError, Query, RouteSummary, Search, Work};
+use skyroute::{Planner, Pose, Primitive, Vec2};
+use std::fmt;
+
+/// The planner used on the host: large enough for any network the ground tool builds.
+pub type HostPlanner<'n> = Planner<'n, 16384, 262144, 16, 4096>;
+
+/// Stack for threads that hold a [`HostPlanner`] (about 1 MiB) by value.
+pub const PLANNER_STACK: usize = 64 << 20;
+
+/// Headings tried for a waypoint without one.
+pub const FREE_HEADINGS: usize = 36;
+
+/// A planned leg.
+#[derive(Clone, Debug)]
+pub struct Leg {
+    /// Name of the endpoint it leaves.
+    pub from: String,
+    /// Name of the endpoint it reaches.
+    pub to: String,
+    /// The core's summary of the leg.
+    pub summary: RouteSummary,
+    /// The leg's lines and arcs.
+    pub primitives: Vec<Primitive>,
+}
+
+/// A planned mission.
+#[derive(Clone, Debug)]
+pub struct Mission {
+    /// Legs in order.
+    pub legs: Vec<Leg>,
+    /// Sum of the legs' lengths, metres.
+    pub length: f64,
+    /// Queries run by the core to choose the waypoint headings.
+    pub queries: usize,
+    /// Work summed over every query run.
+    pub work: Work,
+}
+
+/// Why a mission could not be planned.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MissionError {
+    /// The scenario has no start or no goal.
+    Missing(&'static str),
+    /// The core refused the network.
+    Load(skyroute::LoadError),
+    /// A pop-up could not be added.
+    Popup(String, skyroute::PopupError),
+    /// No copy of this waypoint (or the start) has a collision-free way on to the next stage.
+    InevitableCollision(String),
+    /// The stage named cannot be reached from the previous one.
+    Unreachable { from: String, to: String, error: PlanError },
+}
+
+impl fmt::Display for MissionError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MissionError::Missing(what) => write!(f, "the scenario has no {what}"),
+            MissionError::Load(e) => write!(f, "the network does not load: {e}"),
+            MissionError::Popup(name, e) => write!(f, "pop-up {name}: {e}"),
+            MissionError::InevitableCollision(name) => {
+                write!(f, "{name} is an inevitable-collision state: no heading has a collision-free way out")
+            }
+            MissionError::Unreachable { from, to, error } => write!(f, "no route from {from} to {to}: {error}"),
+        }
+    }
+}
+
+impl std::error::Error for MissionError {}
+
+/// A circular pop-up in the local frame, with a name for errors.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LocalPopup {
+    /// Name for messages.
+    pub name: String,
+    /// Centre.
+    pub centre: Vec2,
+    /// Radius, metres.
+    pub radius: f32,
+}
+
+/// One stage of the mission: its name and the poses (or the free-heading goal) to reach.
+struct Stage {
+    name: String,
+    position: Vec2,
+    /// `None`: the core picks among its own free goal headings (the final goal only).
+    headings: Vec<Option<f32>>,
+}
+
+fn stage(frame: &LocalFrame, e: &Endpoint, last: bool) -> Stage {
+    let headings = match e.heading_deg {
+        Some(c) => vec![Some(local_heading(frame, e.lon, e.lat, c))],
+        None if last => vec![None],
+        None => (0..FREE_HEADINGS).map(|k| Some((k as f32) * std::f32::consts::TAU / FREE_HEADINGS as f32)).collect(),
+    };
+    Stage { name: e.name.clone(), position: local(frame, e.lon, e.lat), headings }
+}
+
+/// Loads `bytes` into a fresh boxed planner with the pop-ups added.
+fn planner<'n>(bytes: &'n [u8], popups: &[LocalPopup]) -> Result<Box<HostPlanner<'n>>, MissionError> {
+    let mut p: Box<HostPlanner<'n>> = Box::new(Planner::new());
+    p.load(bytes).map_err(MissionError::Load)?;
+    for pop in popups {
+        p.add_popup(skyroute::Popup::Circle { centre: pop.centre, radius: pop.radius })
+            .map_err(|e| MissionError::Popup(pop.name.clone(), e))?;
+    }
+    Ok(p)
+}
+
+/// Plans start → waypoints → goal through the network `bytes` with the onboard core.
+/// Runs on a thread pool with stacks large enough for the host planner.
+pub fn plan_mission(bytes: &[u8], scenario: &Scenario, frame: &LocalFrame, popups: &[LocalPopup]) -> Result<Mission, MissionError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .stack_size(PLANNER_STACK)
+        .build()
+        .map_err(|_| MissionError::Missing("thread pool"))?;
+    pool.install(|| plan_mission_in_pool(bytes, scenario, frame, popups))
+}
+
+fn plan_mission_in_pool(bytes: &[u8], scenario: &Scenario, frame: &LocalFrame, popups: &[LocalPopup]) -> Result<Mission, MissionError> {
+    let start = scenario.start.as_ref().ok_or(MissionError::Missing("start"))?;
+    let goal = scenario.goal.as_ref().ok_or(MissionError::Missing("goal"))?;
+    let start_pose = Pose {
+        position: local(frame, start.lon, start.lat),
+        heading: local_heading(frame, start.lon, start.lat, start.heading_deg.unwrap_or(0.0)),
+    };
+    let mut stages = vec![Stage { name: start.name.clone(), position: start_pose.position, headings: vec![Some(start_pose.heading)] }];
+    stages.extend(scenario.waypoints.iter().map(|w| stage(frame, w, false)));
+    stages.push(stage(frame, goal, true));
+
+    let budget = u64::MAX;
+    let mut queries = 0;
+    let mut work = Work::default();
+    // best[i][k]: cheapest cost to stage i copy k, and the copy of stage i−1 it came from.
+    let mut best: Vec<Vec<Option<(f64, usize)>>> = vec![vec![Some((0.0, 0))]];
+    for i in 1..stages.len() {
+        let (prev, next) = (&stages[i - 1], &stages[i]);
+        let pairs: Vec<(usize, usize)> = (0..prev.headings.len())
+            .filter(|&a| best[i - 1][a].is_some())
+            .flat_map(|a| (0..next.headings.len()).map(move |b| (a, b)))
+            .collect();
+        let costs: Vec<(usize, usize, Result<RouteSummary, PlanError>)> = pairs
+            .par_iter()
+            .map_init(
+                || planner(bytes, popups),
+                |p, &(a, b)| {
+                    let Ok(p) = p else { return (a, b, Err(PlanError::Internal)) };
+                    let q = Query {
+                        start: Pose { position: prev.position, heading: prev.headings[a].unwrap_or(0.0) },
+                        goal: Goal { position: next.position, heading: next.headings[b] },
+                        search: Search::AStar,
+                    };
+                    (a, b, p.plan(&q, budget))
+                },
+            )
+            .collect();
+        // A failure to load or add pop-ups shows up identically in every pair: report it.
+        planner(bytes, popups)?;
+        queries += costs.len();
+        let mut stage_best: Vec<Option<(f64, usize)>> = vec![None; next.headings.len()];
+        let mut last_error = PlanError::NoRoute;
+        let mut way_out = vec![false; prev.headings.len()];
+        for (a, b, r) in costs {
+            match r {
+                Ok(s) => {
+                    add_work(&mut work, &s.work);
+                    way_out[a] = true;
+                    let total = best[i - 1][a].map_or(f64::INFINITY, |x| x.0) + s.length as f64;
+                    if stage_best[b].is_none_or(|x| total < x.0) {
+                        stage_best[b] = Some((total, a));
+                    }
+                }
+                Err(e) => last_error = e,
+            }
+        }
+        if !way_out.iter().any(|w| *w) {
+            if i >= 2 && prev.headings.len() > 1 {
+                return Err(MissionError::InevitableCollision(prev.name.clone()));
+            }
+            return Err(MissionError::Unreachable { from: prev.name.clone(), to: next.name.clone(), error: last_error });
+        }
+        best.push(stage_best);
+    }
+
+    // Walk back the chosen copies, then plan the chosen legs once more to keep their geometry.
+    let last = stages.len() - 1;
+    let mut k = (0..stages[last].headings.len())
+        .filter(|&b| best[last][b].is_some())
+        .min_by(|&x, &y| best[last][x].map(|v| v.0).unwrap_or(f64::INFINITY).total_cmp(&best[last][y].map(|v| v.0).unwrap_or(f64::INFINITY)))
+        .ok_or(MissionError::Unreachable { from: stages[last - 1].name.clone(), to: stages[last].name.clone(), error: PlanError::NoRoute })?;
+    let mut chosen = vec![0usize; stages.len()];
+    for i in (1..stages.len()).rev() {
+        chosen[i] = k;
+        k = best[i][k].map(|v| v.1).unwrap_or(0);
+    }
+    let mut p = planner(bytes, popups)?;
+    let mut legs = Vec::new();
+    let mut length = 0.0;
+    for i in 1..stages.len() {
+        let (prev, next) = (&stages[i - 1], &stages[i]);
+        let from = Pose { position: prev.position, heading: prev.headings[chosen[i - 1]].unwrap_or(0.0) };
+        let q = Query { start: from, goal: Goal { position: next.position, heading: next.headings[chosen[i]] }, search: Search::AStar };
+        let summary = p
+            .plan(&q, budget)
+            .map_err(|error| MissionError::Unreachable { from: prev.name.clone(), to: next.name.clone(), error })?;
+        length += summary.length as f64;
+        legs.push(Leg { from: prev.name.clone(), to: next.name.clone(), summary, primitives: p.route().to_vec() });
+    }
+    Ok(Mission { legs, length, queries, work })
+}
+
+fn add_work(total: &mut Work, w: &Work) {
+    total.vertex_scans += w.vertex_scans;
+    total.dubins_solves += w.dubins_solves;
+    total.collision_tests += w.collision_tests;
+    total.heap_steps += w.heap_steps;
+    total.relaxations += w.relaxations;
+}
