@@ -290,3 +290,39 @@ fn bad_queries_are_refused_and_keep_the_route() {
         Err(skyroute::PopupError::NoFreeSlot { capacity: 2 })
     );
 }
+
+#[test]
+fn post_processing_keeps_routes_valid_and_never_longer() {
+    let mut improved = 0;
+    for seed in 0..3u64 {
+        let w = world(60 + seed, 1500.0, 50.0, 40.0, 6);
+        let mut p = planner(&w.bytes);
+        let mut rng = Rng(200 + seed);
+        for i in 0..15 {
+            let start = free_pose(&mut rng, &w, 10.0);
+            let goal = free_pose(&mut rng, &w, 10.0);
+            let heading = if i % 2 == 0 { Some(goal.heading) } else { None };
+            let q = Query { start, goal: Goal { position: goal.position, heading }, search: Search::AStar };
+            let Ok(planned) = p.plan(&q, u64::MAX) else { continue };
+            let end = p.route().last().unwrap().pose_at(p.route().last().unwrap().length());
+            let cut = p.shortcut(u64::MAX).unwrap();
+            let smooth = p.smooth_headings(9, u64::MAX).unwrap();
+            assert!(cut.length_before <= planned.length + 1e-2);
+            assert!(cut.length_after <= cut.length_before + 1e-3);
+            assert!(smooth.length_after <= smooth.length_before + 1e-3);
+            let after: f32 = p.route().iter().map(Primitive::length).sum();
+            assert!((after - smooth.length_after).abs() < 1e-2);
+            check_continuous(p.route(), &Query { goal: Goal { position: end.position, heading: Some(end.heading) }, ..q });
+            for prim in p.route() {
+                for o in &w.obstacles {
+                    assert!(!skyroute_prep::roadmap::primitive_conflicts(prim, o, p.network().clearance()), "post-processed route hits an obstacle");
+                }
+            }
+            if smooth.length_after < planned.length - 1.0 {
+                improved += 1;
+            }
+        }
+    }
+    assert!(improved > 0, "post-processing never shortened a route");
+    println!("post-processing shortened {improved} routes by more than 1 m");
+}

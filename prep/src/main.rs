@@ -118,7 +118,15 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             let json = skyroute_prep::route_json::mission_json(&m, &frame, &s.name);
             std::fs::write(&output, serde_json::to_string_pretty(&json)?).map_err(|e| format!("{}: {e}", output.display()))?;
             for l in &m.legs {
-                println!("  {} -> {}: {:.1} m, {} network edges, work {}", l.from, l.to, l.summary.length, l.summary.network_edges, l.summary.work.total());
+                println!(
+                    "  {} -> {}: {:.1} m ({:.1} m before post-processing), {} network edges, work {}",
+                    l.from,
+                    l.to,
+                    l.summary.length,
+                    l.planned_length,
+                    l.summary.network_edges,
+                    l.summary.work.total()
+                );
             }
             println!(
                 "planned {}: {:.1} m over {} legs ({} core queries to choose headings), {:.2} s -> {}",

@@ -21,6 +21,9 @@ pub type HostPlanner<'n> = Planner<'n, 16384, 262144, 16, 4096>;
 /// Stack for threads that hold a [`HostPlanner`] (about 1 MiB) by value.
 pub const PLANNER_STACK: usize = 64 << 20;
 
+/// Headings tried per junction by the heading smoothing (±90° about the current one).
+pub const SMOOTHING_HEADINGS: u16 = 9;
+
 /// Headings tried for a waypoint without one.
 pub const FREE_HEADINGS: usize = 36;
 
@@ -31,8 +34,10 @@ pub struct Leg {
     pub from: String,
     /// Name of the endpoint it reaches.
     pub to: String,
-    /// The core's summary of the leg.
+    /// The core's summary of the leg (its length after post-processing).
     pub summary: RouteSummary,
+    /// The leg's length as planned, before shortcuts and heading smoothing, metres.
+    pub planned_length: f32,
     /// The leg's lines and arcs.
     pub primitives: Vec<Primitive>,
 }
@@ -213,11 +218,22 @@ fn plan_mission_in_pool(bytes: &[u8], scenario: &Scenario, frame: &LocalFrame, p
         let (prev, next) = (&stages[i - 1], &stages[i]);
         let from = Pose { position: prev.position, heading: prev.headings[chosen[i - 1]].unwrap_or(0.0) };
         let q = Query { start: from, goal: Goal { position: next.position, heading: next.headings[chosen[i]] }, search: Search::AStar };
-        let summary = p
+        let planned = p
             .plan(&q, budget)
             .map_err(|error| MissionError::Unreachable { from: prev.name.clone(), to: next.name.clone(), error })?;
+        // Post-processing (Niendorf et al. §V): both passes keep the route collision-free.
+        let unreachable = |error| MissionError::Unreachable { from: prev.name.clone(), to: next.name.clone(), error };
+        p.shortcut(budget).map_err(unreachable)?;
+        p.smooth_headings(SMOOTHING_HEADINGS, budget).map_err(unreachable)?;
+        let summary = *p.route_summary().ok_or(unreachable(PlanError::Internal))?;
         length += summary.length as f64;
-        legs.push(Leg { from: prev.name.clone(), to: next.name.clone(), summary, primitives: p.route().to_vec() });
+        legs.push(Leg {
+            from: prev.name.clone(),
+            to: next.name.clone(),
+            summary,
+            planned_length: planned.length,
+            primitives: p.route().to_vec(),
+        });
     }
     Ok(Mission { legs, length, queries, work })
 }

@@ -63,6 +63,7 @@ pub fn mission_json(m: &Mission, frame: &LocalFrame, scenario_name: &str) -> Val
             "from": l.from,
             "to": l.to,
             "length_m": l.summary.length,
+            "planned_length_m": l.planned_length,
             "network_edges": l.summary.network_edges,
             "arrival_heading_rad": l.summary.arrival_heading,
             "work": work_json(&l.summary.work),

@@ -10,10 +10,12 @@ mod error;
 pub mod heap;
 mod popup;
 mod search;
+mod smooth;
 pub mod work;
 
 pub use error::{PlanError, PopupError, QueryField};
 pub use popup::{Popup, PopupSummary, MAX_POPUP_VERTICES};
+pub use smooth::SmoothSummary;
 pub use work::{plan_work_bound, popup_work_bound, Work, WorkBoundInputs};
 
 use crate::geometry::{DubinsPath, Pose, Primitive, Vec2};
@@ -140,6 +142,9 @@ pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: 
     heap: IndexedHeap<V>,
     start_links: Vec<Link, MAX_LINKS>,
     goal_links: Vec<Link, MAX_LINKS>,
+    /// The route as a chain of Dubins paths, start to goal.
+    paths: Vec<DubinsPath, R>,
+    /// The same route as lines and arcs.
     route: Vec<Primitive, R>,
     summary: Option<RouteSummary>,
 }
@@ -174,6 +179,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             heap: IndexedHeap::new(),
             start_links: Vec::new(),
             goal_links: Vec::new(),
+            paths: Vec::new(),
             route: Vec::new(),
             summary: None,
         }
@@ -186,6 +192,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.network = network;
         self.blocked_by = [0; E];
         self.popups = [const { None }; P];
+        self.paths.clear();
         self.route.clear();
         self.summary = None;
         Ok(())
@@ -209,6 +216,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// The last route found, as lines and arcs from the start pose to the goal.
     pub fn route(&self) -> &[Primitive] {
         &self.route
+    }
+
+    /// The last route as the chain of Dubins paths it flies (start link, network edges, goal
+    /// link), each starting where the previous ends.
+    pub fn route_paths(&self) -> &[DubinsPath] {
+        &self.paths
     }
 
     /// The summary of the last route found.

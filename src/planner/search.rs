@@ -171,27 +171,24 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Err(PlanError::Internal)
     }
 
-    /// Replaces the route with the one `arrival` describes, if it fits in `R` primitives.
-    fn write_route(
-        &mut self,
-        arrival: Arrival,
-        meter: &mut Meter,
-    ) -> Result<RouteSummary, PlanError> {
+    /// Replaces the route with the one `arrival` describes, if it fits in `R` paths and `R`
+    /// primitives.
+    fn write_route(&mut self, arrival: Arrival, meter: &mut Meter) -> Result<RouteSummary, PlanError> {
         let count = |p: &DubinsPath| p.primitives().iter().flatten().count() as u32;
-        let (needed, network_edges, arrival_path) = match arrival {
-            Arrival::Direct(p) => (count(&p), 0, p),
+        let (needed, paths, network_edges) = match arrival {
+            Arrival::Direct(p) => (count(&p), 1, 0),
             Arrival::FromVertex { link } => {
                 let link = *self.goal_links.get(link).ok_or(PlanError::Internal)?;
-                let mut needed = 0;
-                let edges = self.walk_back(&link, meter, |p| needed += count(p))?;
-                (needed, edges, link.path)
+                let (mut needed, mut paths) = (0, 0);
+                let edges = self.walk_back(&link, meter, |p| {
+                    needed += count(p);
+                    paths += 1;
+                })?;
+                (needed, paths, edges)
             }
         };
-        if needed as usize > R {
-            return Err(PlanError::RouteTooLong {
-                primitives: needed,
-                capacity: R as u32,
-            });
+        if needed as usize > R || paths as usize > R {
+            return Err(PlanError::RouteTooLong { primitives: needed.max(paths), capacity: R as u32 });
         }
         // Charge the second walk (identical to the first) before it starts, so that the budget
         // is settled before the old route is touched.
@@ -199,44 +196,55 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             meter.work.vertex_scans += network_edges as u64 + 1;
         }
         meter.check()?;
-        let mut replay = Meter::new(u64::MAX);
         // The walk below repeats the one that just succeeded: the new route replaces the old one.
-        let mut route = core::mem::take(&mut self.route);
-        route.clear();
-        let mut push_reversed = |p: &DubinsPath| {
-            for prim in p.primitives().iter().rev().flatten() {
-                let _ = route.push(*prim);
-            }
-        };
+        let mut chain = core::mem::take(&mut self.paths);
+        chain.clear();
         let walked = match arrival {
-            Arrival::Direct(p) => {
-                push_reversed(&p);
-                Ok(0)
-            }
+            Arrival::Direct(p) => chain.push(p).map(|_| 0).map_err(|_| PlanError::Internal),
             Arrival::FromVertex { link } => match self.goal_links.get(link).copied() {
-                Some(link) => self.walk_back(&link, &mut replay, &mut push_reversed),
+                Some(link) => {
+                    let mut replay = Meter::new(u64::MAX);
+                    self.walk_back(&link, &mut replay, |p| {
+                        let _ = chain.push(*p);
+                    })
+                }
                 None => Err(PlanError::Internal),
             },
         };
+        chain.reverse();
+        self.paths = chain;
         if walked.is_err() {
             // Unreachable: the same walk succeeded above. Fail closed rather than half-written.
-            route.clear();
-            self.route = route;
-            self.summary = None;
+            self.clear_route();
             return Err(PlanError::Internal);
         }
-        route.reverse();
-        let length = route.iter().map(Primitive::length).sum();
-        self.route = route;
+        self.flatten_route();
         let summary = RouteSummary {
-            length,
-            primitives: needed,
+            length: self.route.iter().map(Primitive::length).sum(),
+            primitives: self.route.len() as u32,
             network_edges,
-            arrival_heading: arrival_path.end().heading,
+            arrival_heading: self.paths.last().map_or(0.0, |p| p.end().heading),
             work: meter.work,
         };
         self.summary = Some(summary);
         Ok(summary)
+    }
+
+    /// Rebuilds the primitives from the route's paths (which fit: each path has ≤ 3 primitives
+    /// and callers only shorten the chain or keep its primitive count within `R`).
+    pub(super) fn flatten_route(&mut self) {
+        self.route.clear();
+        for path in &self.paths {
+            for prim in path.primitives().into_iter().flatten() {
+                let _ = self.route.push(prim);
+            }
+        }
+    }
+
+    fn clear_route(&mut self) {
+        self.paths.clear();
+        self.route.clear();
+        self.summary = None;
     }
 }
 
