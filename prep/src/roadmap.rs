@@ -159,16 +159,20 @@ impl<'a> ObstacleIndex<'a> {
                 self.near(lo, hi, clearance).all(|o| !primitive_conflicts(&prim, o, clearance))
             }),
             CollisionCheck::Discretised { arc_step_m } => {
-                // The chord between two samples d apart on an arc of radius r deviates from the
-                // arc by at most f = r(1 − cos(d/2r)) (Niendorf et al., eq. for the sagitta), so
-                // points tested against clearance + f cover the path between them.
+                // The paper's method: the path is replaced by chords between points `d` apart
+                // along it, and each chord is tested with the clearance enlarged by the chord's
+                // largest deviation from an arc of radius r, f = r(1 − cos(d/2r)) (the sagitta).
+                // Any point of the path within the clearance of an obstacle then has a chord
+                // point within clearance + f, so this check accepts a subset of the exact one.
                 let r = path.radius;
                 let f = r * (1.0 - (arc_step_m / (2.0 * r)).cos());
                 let margin = clearance + f;
                 let steps = (path.length() / arc_step_m).ceil().max(1.0) as usize;
-                (0..=steps).all(|i| {
-                    let p = path.sample(path.length() * i as f32 / steps as f32).position;
-                    self.near(p, p, margin).all(|o| !point_conflicts(p, o, margin))
+                let point = |i: usize| path.sample(path.length() * i as f32 / steps as f32).position;
+                (0..steps).all(|i| {
+                    let chord = Primitive::Line(skyroute::Segment::new(point(i), point(i + 1)));
+                    let (lo, hi) = chord.bounding_box();
+                    self.near(lo, hi, margin).all(|o| !primitive_conflicts(&chord, o, margin))
                 })
             }
         }
@@ -289,7 +293,7 @@ pub fn build_roadmap(input: &RoadmapInput, params: &RoadmapParams, progress: &(d
                 fallback = true;
             }
             let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            if n % 256 == 0 || n == total {
+            if n.is_multiple_of(256) || n == total {
                 progress(n, total);
             }
             (edges, examined, fallback)
