@@ -1,0 +1,28 @@
+//! Puts `../memory.x` (the STM32F405's flash and RAM) on the linker's search path for
+//! cortex-m-rt's `link.x`, and checks that the generated fixture exists.
+
+use std::path::PathBuf;
+
+fn main() {
+    let manifest = PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("cargo sets it"));
+    let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets it"));
+    let memory = manifest.join("../memory.x");
+    std::fs::copy(&memory, out.join("memory.x"))
+        .unwrap_or_else(|e| panic!("copying {}: {e}", memory.display()));
+    println!("cargo:rustc-link-search={}", out.display());
+    println!("cargo:rerun-if-changed={}", memory.display());
+    println!("cargo:rerun-if-changed=build.rs");
+
+    for f in ["fixture/network.bin", "fixture/query.rs"] {
+        let path = manifest.join(f);
+        if !path.exists() {
+            panic!(
+                "{} is missing: generate the fixture first, e.g.\n  \
+                 cargo run --release -p host-tests --bin firmware_fixture -- --synthetic \
+                 firmware-example/fixture\n(from the repository root; scripts/test.sh does this)",
+                path.display()
+            );
+        }
+        println!("cargo:rerun-if-changed={}", path.display());
+    }
+}

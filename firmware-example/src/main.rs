@@ -1,0 +1,235 @@
+//! skyroute on a Cortex-M4F: the network image lies in flash, the planner in a `static`.
+//!
+//! Loads `fixture/network.bin`, adds the fixture's pop-up, then runs the [`autopilot`] route
+//! task for a few cycles, measuring each `plan` call with SysTick. Logs over defmt
+//! (semihosting); exits through semihosting with success only if the route's length matches
+//! the one the host computed (`fixture/query.rs`, written by host-tests' `firmware_fixture`).
+//!
+//! Run it with `scripts/run-firmware.sh` (or `cargo run --release` here).
+#![no_std]
+#![no_main]
+
+mod autopilot;
+mod clock;
+mod stack;
+
+use autopilot::{Cycle, Next, RouteTask};
+use clock::Clock;
+use cortex_m_rt::{entry, exception, ExceptionFrame};
+use cortex_m_semihosting::debug::{self, ExitStatus};
+use defmt_semihosting as _; // the defmt transport: semihosting writes to QEMU's stdout
+use skyroute::{Planner, Popup, Query, Search, Vec2};
+use static_cell::ConstStaticCell;
+
+/// The generated fixture: capacities, query, pop-up, expected route length, work budget.
+mod fixture {
+    include!("../fixture/query.rs");
+}
+use fixture::*;
+
+/// The network image, in flash (`.rodata`); the planner reads it where it lies.
+static NETWORK: &[u8] = include_bytes!("../fixture/network.bin");
+
+/// The planner's state, all of it (≈ 20·V + 2·E + 140·P + 24·R + 1.3 KiB). A network too large
+/// for the RAM fails at link time, not in flight. It lands in `.data`, not `.bss`: the value of
+/// `Planner::new()` is not all zero bytes (default config, empty-network header), so its initial
+/// image costs as much flash as the planner takes RAM.
+type FlightPlanner = Planner<'static, V_CAP, E_CAP, P_CAP, R_CAP>;
+static PLANNER: ConstStaticCell<FlightPlanner> = ConstStaticCell::new(Planner::new());
+
+/// Plan cycles to run, and their period.
+const CYCLES: u32 = 3;
+const PERIOD_MS: u32 = 20;
+/// Largest accepted relative difference between the target's and the host's route length.
+const TOLERANCE: f32 = 1e-4;
+
+#[entry]
+fn main() -> ! {
+    let ok = run();
+    exit(ok)
+}
+
+fn run() -> bool {
+    let Some(core) = cortex_m::Peripherals::take() else {
+        defmt::error!("core peripherals already taken");
+        return false;
+    };
+    let clock = Clock::start(core.SYST);
+    defmt::info!(
+        "skyroute firmware example: STM32F405 (Cortex-M4F), SysTick at {=u32} Hz",
+        clock::CORE_HZ
+    );
+
+    let planner = PLANNER.take();
+    defmt::info!(
+        "planner capacities V={=usize} E={=usize} P={=usize} R={=usize}: {=usize} B of RAM",
+        V_CAP,
+        E_CAP,
+        P_CAP,
+        R_CAP,
+        core::mem::size_of::<FlightPlanner>()
+    );
+
+    let t = clock.now();
+    if let Err(e) = planner.load(NETWORK) {
+        defmt::error!("load failed: {}", e);
+        return false;
+    }
+    let load_ticks = clock.now() - t;
+    let net = planner.network();
+    defmt::info!(
+        "network: {=u32} vertices, {=u32} edges, {=u32} obstacles, {=usize} B in flash, turn radius {=f32} m, clearance {=f32} m",
+        net.vertex_count(),
+        net.edge_count(),
+        net.obstacle_count(),
+        net.byte_len(),
+        net.turn_radius(),
+        net.clearance()
+    );
+    defmt::info!(
+        "load (validation) took {=u64} ticks = {=u64} us",
+        load_ticks,
+        Clock::ticks_to_us(load_ticks)
+    );
+
+    let (x, y, radius) = POPUP;
+    let t = clock.now();
+    let popup = planner.add_popup(Popup::Circle {
+        centre: Vec2::new(x, y),
+        radius,
+    });
+    let popup_ticks = clock.now() - t;
+    match popup {
+        Ok(s) => defmt::info!(
+            "pop-up ({=f32}, {=f32}) r={=f32} m: {} in {=u64} ticks, bound {=u64} work",
+            x,
+            y,
+            radius,
+            s,
+            popup_ticks,
+            planner.worst_case_popup_work()
+        ),
+        Err(e) => {
+            defmt::error!("add_popup failed: {}", e);
+            return false;
+        }
+    }
+
+    let bound = planner.worst_case_work();
+    defmt::info!("worst-case work bound {=u64}, budget {=u64}", bound, BUDGET);
+    if bound != BUDGET {
+        defmt::warn!("the host computed a different bound: fixture out of date?");
+    }
+
+    let query = Query {
+        start: START,
+        goal: GOAL,
+        search: Search::Dijkstra,
+    };
+    let mut verdict = false;
+    let mut task = RouteTask::new(planner, clock, clock, PERIOD_MS, BUDGET);
+    let cycles = task.run(
+        // Query source: an autopilot reads its navigation filter and mission here.
+        |_| query,
+        // Route sink: an autopilot hands the primitives to path following here.
+        |cycle: &Cycle<'_>| {
+            let summary = match cycle.outcome {
+                Ok(s) => s,
+                Err(e) => {
+                    defmt::error!("cycle {=u32}: plan failed: {}", cycle.index, e);
+                    verdict = false;
+                    return Next::Stop;
+                }
+            };
+            if cycle.index == 0 {
+                defmt::info!("query: {}", cycle.query);
+            }
+            defmt::info!(
+                "cycle {=u32}: route {=f32} m, {=u32} primitives (host {=u32}), {=u32} network edges, arrival heading {=f32} rad",
+                cycle.index,
+                summary.length,
+                summary.primitives,
+                EXPECTED_PRIMITIVES,
+                summary.network_edges,
+                summary.arrival_heading
+            );
+            defmt::info!(
+                "cycle {=u32}: work {=u64} (host {=u64}) of bound {=u64}: {}",
+                cycle.index,
+                summary.work.total(),
+                EXPECTED_WORK,
+                bound,
+                summary.work
+            );
+            defmt::info!(
+                "cycle {=u32}: plan took {=u64} SysTick ticks = {=u64} us at {=u32} Hz",
+                cycle.index,
+                cycle.plan_ticks,
+                Clock::ticks_to_us(cycle.plan_ticks),
+                clock::CORE_HZ
+            );
+            if cycle.index == 0 {
+                for (i, p) in cycle.route.iter().enumerate() {
+                    defmt::debug!("  primitive {=usize}: {}", i, p);
+                }
+            }
+            let error = (summary.length - EXPECTED_LENGTH).abs() / EXPECTED_LENGTH;
+            verdict = error < TOLERANCE && summary.primitives == cycle.route.len() as u32;
+            if !verdict {
+                defmt::error!(
+                    "route length {=f32} m, host expected {=f32} m (relative error {=f32})",
+                    summary.length,
+                    EXPECTED_LENGTH,
+                    error
+                );
+                return Next::Stop;
+            }
+            if cycle.index + 1 < CYCLES {
+                Next::Continue
+            } else {
+                Next::Stop
+            }
+        },
+    );
+    let (stack_used, stack_size) = stack::high_water();
+    defmt::info!(
+        "stack: peak {=usize} B of the {=usize} B left above .data/.bss",
+        stack_used,
+        stack_size
+    );
+    if verdict {
+        defmt::info!(
+            "PASS: {=u32} cycles, route length {=f32} m matches the host's {=f32} m",
+            cycles,
+            task.planner()
+                .route_summary()
+                .map_or(f32::NAN, |s| s.length),
+            EXPECTED_LENGTH
+        );
+    }
+    verdict
+}
+
+fn exit(ok: bool) -> ! {
+    let status: ExitStatus = if ok {
+        debug::EXIT_SUCCESS
+    } else {
+        debug::EXIT_FAILURE
+    };
+    loop {
+        debug::exit(status);
+        cortex_m::asm::bkpt();
+    }
+}
+
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    defmt::error!("panic: {}", defmt::Display2Format(info));
+    exit(false)
+}
+
+#[exception]
+unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
+    defmt::error!("hard fault at pc {=u32:#010x}", frame.pc());
+    exit(false)
+}

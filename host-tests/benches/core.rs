@@ -1,0 +1,127 @@
+//! Host timings of the onboard core: Dubins paths, the exact predicates, pop-up pruning and a
+//! planning query on the `niendorf-urban` roadmap. Run: `cargo bench -p host-tests --bench core`.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use skyroute::geometry::predicates::{arc_segment_distance, conflicts_with_polygon, segment_segment_distance};
+use skyroute::planner::{Goal, Popup, Query, Search};
+use skyroute::{Arc, DubinsPath, Planner, Pose, Primitive, Segment, Vec2};
+use std::path::Path;
+
+struct Rng(u64);
+impl Rng {
+    fn unit(&mut self) -> f32 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.unit()
+    }
+}
+
+fn geometry(c: &mut Criterion) {
+    let mut rng = Rng(0x1234_5678);
+    let poses: Vec<(Pose, Pose)> = (0..1024)
+        .map(|_| {
+            let a = Pose::new(rng.range(-500.0, 500.0), rng.range(-500.0, 500.0), rng.range(-3.14, 3.14));
+            let b = Pose::new(rng.range(-500.0, 500.0), rng.range(-500.0, 500.0), rng.range(-3.14, 3.14));
+            (a, b)
+        })
+        .collect();
+    let mut i = 0;
+    c.bench_function("dubins_shortest_six_words", |b| {
+        b.iter(|| {
+            i = (i + 1) % poses.len();
+            black_box(DubinsPath::shortest(&poses[i].0, &poses[i].1, 64.0))
+        })
+    });
+    let segs: Vec<Segment> = (0..1024)
+        .map(|_| Segment::new(Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0)), Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0))))
+        .collect();
+    let arcs: Vec<Arc> = (0..1024)
+        .map(|_| Arc {
+            centre: Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0)),
+            radius: rng.range(10.0, 80.0),
+            start_angle: rng.range(-3.14, 3.14),
+            sweep: rng.range(-6.0, 6.0),
+        })
+        .collect();
+    let mut j = 0;
+    c.bench_function("segment_segment_distance", |b| {
+        b.iter(|| {
+            j = (j + 1) % 1023;
+            black_box(segment_segment_distance(&segs[j], &segs[j + 1]))
+        })
+    });
+    c.bench_function("arc_segment_distance", |b| {
+        b.iter(|| {
+            j = (j + 1) % 1023;
+            black_box(arc_segment_distance(&arcs[j], &segs[j]))
+        })
+    });
+    let square = [Vec2::new(-20.0, -20.0), Vec2::new(20.0, -20.0), Vec2::new(20.0, 20.0), Vec2::new(-20.0, 20.0)];
+    c.bench_function("arc_vs_square_polygon_clearance", |b| {
+        b.iter(|| {
+            j = (j + 1) % 1023;
+            black_box(conflicts_with_polygon(&Primitive::Arc(arcs[j]), &square[..], 7.0))
+        })
+    });
+}
+
+fn niendorf(c: &mut Criterion) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/niendorf-urban.geojson");
+    let scenario = skyroute_prep::scenario::load(&path).expect("scenario");
+    let built = skyroute_prep::build::build(&scenario, &Default::default(), &|_, _| {}).expect("network");
+    let bytes: &'static [u8] = Box::leak(built.bytes.into_boxed_slice());
+    let mut planner: Box<Planner<'static, 8192, 262144, 8, 1024>> = Box::new(Planner::new());
+    planner.load(bytes).expect("loads");
+    let frame = &built.frame;
+    let start = scenario.start.as_ref().expect("start");
+    let goal = scenario.goal.as_ref().expect("goal");
+    let query = Query {
+        start: skyroute_prep::build::local_pose(frame, start.lon, start.lat, start.heading_deg),
+        goal: Goal {
+            position: skyroute_prep::build::local(frame, goal.lon, goal.lat),
+            heading: goal.heading_deg.map(|c| skyroute::geometry::heading_from_compass_deg(c as f32)),
+        },
+        search: Search::Dijkstra,
+    };
+    let at = |name: &str| {
+        let e = scenario.waypoints.iter().find(|w| w.name == name).expect("waypoint");
+        skyroute_prep::build::local(frame, e.lon, e.lat)
+    };
+    // W3 → W4 crosses the map (about 3.1 km): the longest leg of the mission.
+    let across = Query {
+        start: Pose { position: at("W3"), heading: 0.0 },
+        goal: Goal { position: at("W4"), heading: None },
+        search: Search::Dijkstra,
+    };
+    eprintln!(
+        "niendorf-urban network: {} vertices, {} edges, {} bytes",
+        planner.network().vertex_count(),
+        planner.network().edge_count(),
+        bytes.len()
+    );
+    let queries = [
+        ("plan_niendorf_start_to_goal_dijkstra", query),
+        ("plan_niendorf_w3_to_w4_free_heading_dijkstra", across),
+        ("plan_niendorf_w3_to_w4_free_heading_astar", Query { search: Search::AStar, ..across }),
+    ];
+    for (name, q) in queries {
+        let s = planner.plan(&q, u64::MAX).expect("route");
+        eprintln!("{name}: length {:.1} m, work {} (bound {})", s.length, s.work.total(), planner.worst_case_work());
+        c.bench_function(name, |b| b.iter(|| black_box(planner.plan(&q, u64::MAX))));
+    }
+    let centre = Vec2::new(0.0, 0.0);
+    c.bench_function("add_and_remove_popup_r150_niendorf", |b| {
+        b.iter(|| {
+            let s = planner.add_popup(Popup::Circle { centre, radius: 150.0 }).expect("popup");
+            planner.remove_popup(s.id).expect("remove");
+            black_box(s)
+        })
+    });
+}
+
+criterion_group!(benches, geometry, niendorf);
+criterion_main!(benches);

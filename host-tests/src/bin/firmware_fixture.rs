@@ -1,0 +1,510 @@
+//! Generates the fixture the `firmware-example` embeds: a network image and the query to plan
+//! on it, with the route length the host computes with the same core code.
+//!
+//! ```text
+//! firmware_fixture NETWORK.bin OUT_DIR [--start x,y,heading] [--goal x,y[,heading]] [--popup x,y,r]
+//! firmware_fixture --synthetic OUT_DIR [same options]
+//! ```
+//!
+//! Writes `OUT_DIR/network.bin` (a copy of the image) and `OUT_DIR/query.rs` (constants the
+//! firmware `include!`s). Headings are radians counter-clockwise from east. Defaults: start at
+//! vertex 0's pose, goal at the position of the vertex farthest from it with a free heading, a
+//! circular pop-up at their midpoint with a tenth of their distance as radius; when that has no
+//! route, the next farthest goal, then the next start vertex (see [`choose`]).
+//!
+//! `--synthetic` builds a small grid network in place of the ground tool's output (for
+//! development, and as the fallback while `skyroute build` does not exist).
+
+use skyroute::geometry::predicates::{
+    conflicts_with_polygon, point_in_polygon, point_segment_distance, PolygonView,
+};
+use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec};
+use skyroute::planner::{PopupSummary, RouteSummary};
+use skyroute::{DubinsPath, Goal, Network, Planner, Popup, Pose, Query, Search, Vec2};
+use std::f32::consts::{FRAC_PI_2, PI};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Pop-up slots of the firmware's planner (written to `query.rs` as `P_CAP`).
+const P_CAP: usize = 4;
+/// Route primitives the firmware's planner holds (written to `query.rs` as `R_CAP`).
+const R_CAP: usize = 128;
+/// The host planner's vertex and edge capacities. They only gate `load` (the search, its work
+/// count and the route do not depend on them), so the host uses generous ones and checks the
+/// firmware's capacities separately with `Network::from_bytes_with_capacity`.
+const HOST_V: usize = 1 << 16;
+const HOST_E: usize = 1 << 20;
+/// The firmware's RAM and flash (memory.x), for warnings.
+const RAM_BYTES: usize = 128 * 1024;
+const FLASH_BYTES: usize = 1024 * 1024;
+
+type HostPlanner<'n> = Planner<'n, HOST_V, HOST_E, P_CAP, R_CAP>;
+
+const USAGE: &str = "usage: firmware_fixture (NETWORK.bin | --synthetic) OUT_DIR \
+[--start x,y,heading_rad] [--goal x,y[,heading_rad]] [--popup x,y,radius]";
+
+#[derive(Debug, Default)]
+struct Args {
+    network: Option<PathBuf>,
+    out_dir: PathBuf,
+    start: Option<Pose>,
+    goal: Option<Goal>,
+    popup: Option<(f32, f32, f32)>,
+}
+
+fn floats(s: &str, what: &str, counts: &[usize]) -> Result<Vec<f32>, String> {
+    let v = s
+        .split(',')
+        .map(|x| x.trim().parse::<f32>())
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| format!("{what}: {e} in {s:?}"))?;
+    if !counts.contains(&v.len()) || v.iter().any(|x| !x.is_finite()) {
+        return Err(format!(
+            "{what}: expected {counts:?} finite numbers, got {s:?}"
+        ));
+    }
+    Ok(v)
+}
+
+fn parse_args() -> Result<Args, String> {
+    let mut args = Args::default();
+    let mut positional = Vec::new();
+    let mut synthetic = false;
+    let mut it = std::env::args().skip(1);
+    while let Some(a) = it.next() {
+        let mut value = |name: &str| it.next().ok_or(format!("{name} needs a value"));
+        match a.as_str() {
+            "--synthetic" => synthetic = true,
+            "--start" => {
+                let v = floats(&value("--start")?, "--start", &[3])?;
+                args.start = Some(Pose::new(v[0], v[1], v[2]));
+            }
+            "--goal" => {
+                let v = floats(&value("--goal")?, "--goal", &[2, 3])?;
+                args.goal = Some(Goal {
+                    position: Vec2::new(v[0], v[1]),
+                    heading: v.get(2).copied(),
+                });
+            }
+            "--popup" => {
+                let v = floats(&value("--popup")?, "--popup", &[3])?;
+                args.popup = Some((v[0], v[1], v[2]));
+            }
+            "-h" | "--help" => return Err(USAGE.into()),
+            s if s.starts_with("--") => return Err(format!("unknown option {s}\n{USAGE}")),
+            _ => positional.push(PathBuf::from(a)),
+        }
+    }
+    match (synthetic, positional.as_slice()) {
+        (true, [out]) => args.out_dir = out.clone(),
+        (false, [net, out]) => {
+            args.network = Some(net.clone());
+            args.out_dir = out.clone();
+        }
+        _ => return Err(USAGE.into()),
+    }
+    Ok(args)
+}
+
+/// A 10 × 10 grid of positions 150 m apart, four headings each (400 poses less those an
+/// obstacle removes), Dubins edges (turn radius 40 m) to the poses ahead within 400 m, and two
+/// square obstacles.
+fn synthetic_network() -> Result<Vec<u8>, String> {
+    const N: usize = 10;
+    const SPACING: f32 = 150.0;
+    const RADIUS: f32 = 40.0;
+    const CLEARANCE: f32 = 10.0;
+    const REACH: f32 = 400.0;
+    let square = |cx: f32, cy: f32, half: f32| {
+        vec![
+            Vec2::new(cx - half, cy - half),
+            Vec2::new(cx + half, cy - half),
+            Vec2::new(cx + half, cy + half),
+            Vec2::new(cx - half, cy + half),
+        ]
+    };
+    // One between grid points, one over grid point (7, 3) (its four poses are dropped).
+    let obstacles = [square(375.0, 975.0, 60.0), square(1050.0, 450.0, 100.0)];
+    let blocked = |p: Vec2| {
+        obstacles.iter().any(|poly| {
+            point_in_polygon(p, poly.as_slice())
+                || (0..poly.len()).any(|i| {
+                    poly.as_slice()
+                        .edge(i)
+                        .is_some_and(|e| point_segment_distance(p, &e) <= CLEARANCE)
+                })
+        })
+    };
+
+    let mut vertices = Vec::new();
+    for iy in 0..N {
+        for ix in 0..N {
+            let (x, y) = (ix as f32 * SPACING, iy as f32 * SPACING);
+            if blocked(Vec2::new(x, y)) {
+                continue;
+            }
+            for k in 0..4 {
+                vertices.push(Pose::new(x, y, k as f32 * FRAC_PI_2));
+            }
+        }
+    }
+    let mut edges = Vec::new();
+    for (i, a) in vertices.iter().enumerate() {
+        for (j, b) in vertices.iter().enumerate() {
+            let d = b.position - a.position;
+            let chord = d.norm();
+            // Ahead within ±60°, not reversing the heading.
+            if chord == 0.0 || chord > REACH || a.direction().dot(d) < 0.5 * chord {
+                continue;
+            }
+            if (a.heading - b.heading).abs() == PI {
+                continue;
+            }
+            let Some(path) = DubinsPath::shortest(a, b, RADIUS) else {
+                continue;
+            };
+            if path.length() > chord + PI * RADIUS {
+                continue; // a loop, not a useful edge
+            }
+            let clear = path.primitives().into_iter().flatten().all(|prim| {
+                obstacles
+                    .iter()
+                    .all(|poly| !conflicts_with_polygon(&prim, poly.as_slice(), CLEARANCE))
+            });
+            if clear {
+                edges.push(EdgeSpec {
+                    source: i as u32,
+                    target: j as u32,
+                    cost: path.length(),
+                    word: path.word,
+                    lengths: path.lengths,
+                });
+            }
+        }
+    }
+    let spec = NetworkSpec {
+        origin_lat_deg: 53.6373,
+        origin_lon_deg: 9.9510,
+        turn_radius_m: RADIUS,
+        clearance_m: CLEARANCE,
+        vertices,
+        edges,
+        obstacles: obstacles
+            .iter()
+            .map(|p| ObstacleSpec::Polygon(p.clone()))
+            .collect(),
+        grid_cell_m: 100.0,
+    };
+    encode(&spec).map_err(|e| format!("synthetic network: {e}"))
+}
+
+/// Start poses tried by default (vertices 0, 1, …), and goals per start (the farthest vertices).
+const DEFAULT_STARTS: u32 = 32;
+const DEFAULT_GOALS: usize = 16;
+
+/// The query the fixture settles on and what the host planned for it.
+struct Chosen {
+    start: Pose,
+    goal: Goal,
+    popup: (f32, f32, f32),
+    budget: u64,
+    /// Route length without the pop-up.
+    before: Option<f32>,
+    added: PopupSummary,
+    summary: RouteSummary,
+    /// Default (start, goal) pairs tried and rejected before this one.
+    rejected: usize,
+}
+
+/// Plans with the pop-up for the given start, goal and pop-up; for each one not given, tries
+/// defaults in a fixed order until a route exists: start at vertex 0's pose, then vertex 1's, …
+/// (a roadmap may have dead-end vertices); goal at the position of the vertex farthest from the
+/// start, then the next farthest, …, with a free heading; pop-up at their midpoint with a tenth
+/// of their distance as radius.
+fn choose(
+    bytes: &[u8],
+    start: Option<Pose>,
+    goal: Option<Goal>,
+    popup: Option<(f32, f32, f32)>,
+) -> Result<Chosen, String> {
+    let mut planner = HostPlanner::new();
+    planner.load(bytes).map_err(|e| format!("load: {e}"))?;
+    let budget = planner.worst_case_work();
+    let network = *planner.network();
+    let starts: Vec<Pose> = match start {
+        Some(s) => vec![s],
+        None => (0..network.vertex_count().min(DEFAULT_STARTS))
+            .filter_map(|v| network.vertex(v))
+            .collect(),
+    };
+    let mut rejected = 0;
+    let mut last_error = None;
+    for start in starts {
+        let goals: Vec<Goal> = match goal {
+            Some(g) => vec![g],
+            None => {
+                let mut far: Vec<Vec2> = (0..network.vertex_count())
+                    .filter_map(|v| network.vertex(v))
+                    .map(|p| p.position)
+                    .collect();
+                far.sort_by(|a, b| {
+                    let (da, db) = (a.distance(start.position), b.distance(start.position));
+                    db.total_cmp(&da)
+                });
+                far.dedup();
+                far.into_iter()
+                    .take(DEFAULT_GOALS)
+                    .map(|position| Goal {
+                        position,
+                        heading: None,
+                    })
+                    .collect()
+            }
+        };
+        for goal in goals {
+            let popup = popup.unwrap_or_else(|| {
+                let mid = (start.position + goal.position) * 0.5;
+                let r = (0.1 * start.position.distance(goal.position)).max(1.0);
+                (mid.x, mid.y, r)
+            });
+            let query = Query {
+                start,
+                goal,
+                search: Search::Dijkstra,
+            };
+            let before = planner.plan(&query, budget).ok().map(|s| s.length);
+            let added = planner
+                .add_popup(Popup::Circle {
+                    centre: Vec2::new(popup.0, popup.1),
+                    radius: popup.2,
+                })
+                .map_err(|e| format!("add_popup {popup:?}: {e}"))?;
+            let planned = planner.plan(&query, budget);
+            planner
+                .remove_popup(added.id)
+                .map_err(|e| format!("remove_popup: {e}"))?;
+            match planned {
+                Ok(summary) => {
+                    return Ok(Chosen {
+                        start,
+                        goal,
+                        popup,
+                        budget,
+                        before,
+                        added,
+                        summary,
+                        rejected,
+                    })
+                }
+                Err(e) => {
+                    rejected += 1;
+                    last_error = Some(format!("{start:?} → {goal:?} with pop-up {popup:?}: {e}"));
+                }
+            }
+        }
+    }
+    Err(format!(
+        "no route for any start/goal tried ({rejected}); last: {}",
+        last_error.unwrap_or_default()
+    ))
+}
+
+/// The firmware planner's size for capacities known only at run time, from the sizes of a few
+/// instances (they grow linearly in `V` and `E`). Exact up to alignment padding.
+fn planner_bytes(v: usize, e: usize) -> usize {
+    use std::mem::size_of;
+    const K: usize = 1024;
+    let base = size_of::<Planner<'_, 0, 0, P_CAP, R_CAP>>();
+    let per_vertex = size_of::<Planner<'_, K, 0, P_CAP, R_CAP>>() - base;
+    let per_edge = size_of::<Planner<'_, 0, K, P_CAP, R_CAP>>() - base;
+    base + (per_vertex * v).div_ceil(K) + (per_edge * e).div_ceil(K)
+}
+
+/// `n` rounded up a little: +1/16, to a multiple of `step`.
+fn capacity(n: u32, step: usize) -> usize {
+    let n = n as usize;
+    (n + n / 16 + 1).div_ceil(step) * step
+}
+
+/// An `f32` literal that reads back as exactly the same value.
+fn lit(x: f32) -> String {
+    format!("{x:?}_f32")
+}
+
+fn run(args: Args) -> Result<(), String> {
+    let bytes = match &args.network {
+        Some(path) => std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?,
+        None => synthetic_network()?,
+    };
+    let source = match &args.network {
+        Some(p) => p.display().to_string(),
+        None => "--synthetic".to_string(),
+    };
+    let network = Network::from_bytes(&bytes).map_err(|e| format!("{source}: {e}"))?;
+    let (nv, ne) = (network.vertex_count(), network.edge_count());
+    if nv == 0 {
+        return Err(format!("{source}: the network has no vertices"));
+    }
+    let (v_cap, e_cap) = (capacity(nv, 64), capacity(ne, 256));
+    // The very check the firmware's `Planner::load` makes.
+    Network::from_bytes_with_capacity(&bytes, v_cap, e_cap)
+        .map_err(|e| format!("{source}: does not load with V={v_cap} E={e_cap}: {e}"))?;
+    if nv as usize > HOST_V || ne as usize > HOST_E {
+        return Err(format!(
+            "{source}: {nv} vertices / {ne} edges exceed the host planner's {HOST_V} / {HOST_E} \
+             (and any STM32F405's RAM)"
+        ));
+    }
+
+    // Plan exactly as the firmware does, on a thread with room for the host planner's arrays.
+    let chosen = std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn({
+            let bytes = bytes.clone();
+            let (start, goal, popup) = (args.start, args.goal, args.popup);
+            move || choose(&bytes, start, goal, popup)
+        })
+        .map_err(|e| format!("spawning the planning thread: {e}"))?
+        .join()
+        .map_err(|_| "the planning thread panicked".to_string())??;
+    let Chosen {
+        start,
+        goal,
+        popup,
+        budget,
+        before,
+        added,
+        summary,
+        rejected,
+    } = chosen;
+
+    let ram = planner_bytes(v_cap, e_cap);
+    eprintln!(
+        "firmware_fixture: {source}: {nv} vertices, {ne} edges, {} obstacles, {} bytes",
+        network.obstacle_count(),
+        bytes.len()
+    );
+    eprintln!(
+        "firmware_fixture: start {start:?}\n  goal {goal:?}\n  popup {popup:?} blocks {} edges \
+         ({rejected} default start/goal pairs rejected first)",
+        added.edges_blocked
+    );
+    eprintln!(
+        "firmware_fixture: route {} m ({} without the pop-up), {} primitives, {} network edges, \
+         work {} of {budget}",
+        summary.length,
+        before.map_or("no route".to_string(), |l| format!("{l} m")),
+        summary.primitives,
+        summary.network_edges,
+        summary.work.total()
+    );
+    eprintln!("firmware_fixture: capacities V={v_cap} E={e_cap} P={P_CAP} R={R_CAP}: planner ≈ {ram} B of RAM");
+    if ram > RAM_BYTES * 3 / 4 {
+        eprintln!("firmware_fixture: warning: the planner needs ≈{ram} B, most of the 128 KiB RAM");
+    }
+    if bytes.len() > FLASH_BYTES * 7 / 8 {
+        eprintln!(
+            "firmware_fixture: warning: the {} B image leaves little of the 1 MiB flash",
+            bytes.len()
+        );
+    }
+
+    let mut q = String::new();
+    let w = &mut q;
+    let _ = writeln!(
+        w,
+        "// Generated by host-tests/src/bin/firmware_fixture.rs from {source}. Do not edit.\n"
+    );
+    let _ = writeln!(
+        w,
+        "/// Vertex capacity of the planner ({nv} in the network)."
+    );
+    let _ = writeln!(w, "pub const V_CAP: usize = {v_cap};");
+    let _ = writeln!(w, "/// Edge capacity of the planner ({ne} in the network).");
+    let _ = writeln!(w, "pub const E_CAP: usize = {e_cap};");
+    let _ = writeln!(w, "/// Pop-up slots of the planner.");
+    let _ = writeln!(w, "pub const P_CAP: usize = {P_CAP};");
+    let _ = writeln!(w, "/// Route primitives the planner holds.");
+    let _ = writeln!(w, "pub const R_CAP: usize = {R_CAP};");
+    let _ = writeln!(w, "/// The aircraft's pose when it plans.");
+    let _ = writeln!(
+        w,
+        "pub const START: skyroute::Pose = skyroute::Pose::new({}, {}, {});",
+        lit(start.position.x),
+        lit(start.position.y),
+        lit(start.heading)
+    );
+    let heading = goal
+        .heading
+        .map_or("None".to_string(), |h| format!("Some({})", lit(h)));
+    let _ = writeln!(w, "/// Where to go.");
+    let _ = writeln!(
+        w,
+        "pub const GOAL: skyroute::Goal = skyroute::Goal {{\n    position: skyroute::Vec2::new({}, {}),\n    heading: {heading},\n}};",
+        lit(goal.position.x),
+        lit(goal.position.y)
+    );
+    let _ = writeln!(
+        w,
+        "/// The pop-up disc: centre x, centre y, radius (metres)."
+    );
+    let _ = writeln!(
+        w,
+        "pub const POPUP: (f32, f32, f32) = ({}, {}, {});",
+        lit(popup.0),
+        lit(popup.1),
+        lit(popup.2)
+    );
+    let _ = writeln!(w, "/// Route length the host computed, metres.");
+    let _ = writeln!(
+        w,
+        "pub const EXPECTED_LENGTH: f32 = {};",
+        lit(summary.length)
+    );
+    let _ = writeln!(w, "/// Route primitives the host computed.");
+    let _ = writeln!(
+        w,
+        "pub const EXPECTED_PRIMITIVES: u32 = {};",
+        summary.primitives
+    );
+    let _ = writeln!(w, "/// Work the host counted.");
+    let _ = writeln!(
+        w,
+        "pub const EXPECTED_WORK: u64 = {};",
+        summary.work.total()
+    );
+    let _ = writeln!(
+        w,
+        "/// Work budget: the network's worst case (`Planner::worst_case_work`)."
+    );
+    let _ = writeln!(w, "pub const BUDGET: u64 = {budget};");
+
+    let out = &args.out_dir;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    write(&out.join("network.bin"), &bytes)?;
+    write(&out.join("query.rs"), q.as_bytes())?;
+    eprintln!(
+        "firmware_fixture: wrote {}/{{network.bin,query.rs}}",
+        out.display()
+    );
+    Ok(())
+}
+
+/// Writes a file only when its contents change (keeps the firmware build from redoing work).
+fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    if std::fs::read(path).is_ok_and(|old| old == bytes) {
+        return Ok(());
+    }
+    std::fs::write(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn main() -> ExitCode {
+    match parse_args().and_then(run) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("firmware_fixture: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,219 @@
+#!/usr/bin/env bash
+# The project's whole check, as CI runs it (.ci/run): installs what is missing, then
+#   format → clippy (host, thumbv7em, thumbv7em+defmt) → OMPL reference → tests →
+#   firmware fixture → firmware build → firmware clippy → firmware under QEMU → sizes.
+# Runnable from any directory. Stops at the first failing step; KEEP_GOING=1 runs every step
+# and fails at the end instead.
+#
+# Knobs (environment):
+#   SKYROUTE_BUILD_ARGS  arguments of the ground tool that builds the firmware's network
+#                        (default below); `--synthetic` is used while `skyroute build` is absent
+#   FIXTURE_SYNTHETIC=1  use the fixture tool's synthetic grid network even when the ground tool
+#                        can build the scenario
+#   FIXTURE_ARGS         extra options of the fixture tool, e.g. "--start x,y,h --goal x,y
+#                        --popup x,y,r" (local metres, radians CCW from east); defaults: see
+#                        host-tests/src/bin/firmware_fixture.rs
+#   FIRMWARE_TIMEOUT     seconds the firmware may run under QEMU (default 300)
+#   KEEP_GOING=1         run every step even after a failure
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$root"
+
+cargo_bin=${CARGO_HOME:-$HOME/.cargo}/bin
+export PATH="$cargo_bin:$PATH"
+
+# The network the firmware embeds: built by the ground tool from this scenario.
+scenario=scenarios/niendorf-urban.geojson
+network_src=target/fixture/network-src.bin
+SKYROUTE_BUILD_ARGS=${SKYROUTE_BUILD_ARGS:-"build $scenario -o $network_src"}
+fixture_dir=firmware-example/fixture
+firmware_elf=firmware-example/target/thumbv7em-none-eabihf/release/skyroute-firmware-example
+
+script_start=$SECONDS
+failed=()
+timings=()
+
+banner() {
+    printf '\n\033[1m==== %s ====\033[0m\n' "$*"
+}
+
+# step NAME COMMAND...: runs COMMAND under a banner, records its time, and stops the script on
+# failure (or, with KEEP_GOING=1, records the failure and goes on).
+step() {
+    local name=$1
+    shift
+    banner "$name"
+    local t0=$SECONDS status=0
+    # A subshell with -e of its own: inside `cmd || …` bash would ignore -e in functions.
+    set +e
+    (
+        set -e
+        "$@"
+    )
+    status=$?
+    set -e
+    timings+=("$(printf '%4ds  %s' $((SECONDS - t0)) "$name")")
+    if [[ $status -ne 0 ]]; then
+        echo "FAILED ($status): $name" >&2
+        failed+=("$name")
+        if [[ ${KEEP_GOING:-0} != 1 ]]; then
+            summary
+            exit "$status"
+        fi
+    fi
+}
+
+summary() {
+    banner "summary"
+    printf '%s\n' "${timings[@]}"
+    echo "total: $((SECONDS - script_start)) s"
+    if [[ ${#failed[@]} -gt 0 ]]; then
+        printf 'FAILED: %s\n' "${failed[@]}"
+    fi
+}
+
+as_root() {
+    if [[ $(id -u) -eq 0 ]]; then
+        "$@"
+    else
+        sudo "$@"
+    fi
+}
+
+install_missing() {
+    # (Lists are read whole before grepping: `… | grep -q` would break the writer's pipe.)
+    local targets components c
+    targets=$(rustup target list --installed)
+    if ! grep -qx thumbv7em-none-eabihf <<<"$targets"; then
+        rustup target add thumbv7em-none-eabihf
+    fi
+    components=$(rustup component list --installed)
+    for c in clippy rustfmt; do
+        if ! grep -q "^$c" <<<"$components"; then
+            rustup component add "$c"
+        fi
+    done
+    if ! command -v qemu-system-arm >/dev/null; then
+        as_root apt-get update
+        as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y qemu-system-arm
+    fi
+    if ! command -v defmt-print >/dev/null; then
+        cargo install defmt-print --locked
+    fi
+    # The OMPL cross-check needs OMPL's Python bindings (only when its script exists).
+    if [[ -f scripts/ompl_dubins_reference.py ]] && ! python3 -c 'import ompl' 2>/dev/null; then
+        python3 -m pip install ompl numpy
+    fi
+    local qemu_version
+    qemu_version=$(qemu-system-arm --version)
+    echo "rustc: $(rustc --version)"
+    echo "qemu:  ${qemu_version%%$'\n'*}"
+    echo "defmt-print: $(defmt-print --version)"
+}
+
+fmt_check() {
+    cargo fmt --all --check
+    (cd firmware-example && cargo fmt --check)
+}
+
+ompl_reference() {
+    if [[ -f scripts/ompl_dubins_reference.py ]]; then
+        python3 scripts/ompl_dubins_reference.py
+    else
+        echo "scripts/ompl_dubins_reference.py does not exist yet: skipped"
+    fi
+}
+
+# Builds the network with the ground tool when it has a `build` command and the scenario exists;
+# otherwise the fixture tool makes a synthetic grid network. Then writes the firmware's fixture.
+fixture() {
+    local help
+    local extra=()
+    # shellcheck disable=SC2206 # FIXTURE_ARGS is meant to split
+    extra=(${FIXTURE_ARGS:-})
+    if [[ ${FIXTURE_SYNTHETIC:-0} != 1 ]] &&
+        help=$(cargo run --release -q -p skyroute-prep --bin skyroute -- build --help 2>&1) &&
+        grep -qi 'usage' <<<"$help" && [[ -f $scenario ]]; then
+        echo "network: skyroute $SKYROUTE_BUILD_ARGS"
+        mkdir -p "$(dirname "$network_src")"
+        rm -f "$network_src"
+        # shellcheck disable=SC2086 # the arguments are meant to split
+        cargo run --release -q -p skyroute-prep --bin skyroute -- $SKYROUTE_BUILD_ARGS
+        if [[ ! -f $network_src ]]; then
+            echo "skyroute build did not write $network_src" >&2
+            return 1
+        fi
+        cargo run --release -q -p host-tests --bin firmware_fixture -- \
+            "$network_src" "$fixture_dir" ${extra[@]+"${extra[@]}"}
+    else
+        echo "network: synthetic (FIXTURE_SYNTHETIC=1, no \`skyroute build\` yet, or no $scenario)"
+        cargo run --release -q -p host-tests --bin firmware_fixture -- \
+            --synthetic "$fixture_dir" ${extra[@]+"${extra[@]}"}
+    fi
+}
+
+firmware_build() {
+    (cd firmware-example && cargo build --release)
+}
+
+firmware_clippy() {
+    (cd firmware-example && cargo clippy --release -- -D warnings)
+}
+
+firmware_run() {
+    FIRMWARE_TIMEOUT=${FIRMWARE_TIMEOUT:-300} bash scripts/run-firmware.sh "$firmware_elf"
+}
+
+# Flash: everything loaded into flash (vector table, code, read-only data with the network, and
+# the initial image of .data); RAM: .data + .bss + .uninit (the stack takes the rest of the
+# 128 KiB from the top down). Read from the ELF's section headers.
+firmware_size() {
+    python3 - "$firmware_elf" <<'EOF'
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+assert data[:4] == b"\x7fELF" and data[4] == 1, "expected a 32-bit ELF"
+shoff, = struct.unpack_from("<I", data, 0x20)
+shentsize, shnum, shstrndx = struct.unpack_from("<HHH", data, 0x2E)
+def sh(i):
+    return struct.unpack_from("<IIIIIIIIII", data, shoff + i * shentsize)
+strtab_off = sh(shstrndx)[4]
+def name(off):
+    return data[strtab_off + off:data.index(b"\0", strtab_off + off)].decode()
+SHF_ALLOC, SHT_NOBITS = 0x2, 8
+flash = ram = 0
+rows = []
+for i in range(shnum):
+    n, typ, flags, addr, off, size = sh(i)[:6]
+    if not flags & SHF_ALLOC or size == 0:
+        continue
+    in_ram = 0x20000000 <= addr < 0x20020000
+    if in_ram:
+        ram += size
+    if typ != SHT_NOBITS:
+        flash += size  # code/rodata in place, .data's initial image after them
+    rows.append((name(n), addr, size))
+for n, a, s in rows:
+    print(f"  {n:<16} 0x{a:08x} {s:>9} B")
+print(f"flash: {flash} B of 1048576 ({100 * flash / 1048576:.1f} %)")
+print(f"RAM:   {ram} B of 131072 ({100 * ram / 131072:.1f} %) static; the stack has the rest")
+EOF
+}
+
+step "install missing tools" install_missing
+step "cargo fmt --check" fmt_check
+step "clippy (host, all targets)" cargo clippy --workspace --all-targets -- -D warnings
+step "clippy (skyroute, thumbv7em-none-eabihf)" \
+    cargo clippy -p skyroute --target thumbv7em-none-eabihf -- -D warnings
+step "clippy (skyroute, thumbv7em-none-eabihf, defmt)" \
+    cargo clippy -p skyroute --target thumbv7em-none-eabihf --features defmt -- -D warnings
+step "OMPL Dubins reference" ompl_reference
+step "cargo test --workspace" cargo test --workspace
+step "firmware fixture" fixture
+step "firmware build (release)" firmware_build
+step "firmware clippy" firmware_clippy
+step "firmware under QEMU (netduinoplus2)" firmware_run
+step "firmware size" firmware_size
+
+summary
+[[ ${#failed[@]} -eq 0 ]]
