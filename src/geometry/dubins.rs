@@ -161,8 +161,13 @@ impl DubinsPath {
         };
         let (k1, middle, k3) = word.letters();
         let c1 = k1.centre(&s, r);
-        let c3 = k3.centre(&g, r);
-        let v = c3 - c1;
+        // v = c3 − c1, formed as g + r·(k3·n3 − k1·n1) (n: the unit left normals): subtracting
+        // the two r-sized centres lost the precision of a short v (≈ 1e-7·r absolute), which
+        // for nearly coincident poses made the tangent direction, and so a loop, a coin toss
+        // (a goal 0.3 mm straight ahead at r = 115 m got LSL/RSR loops of 2πr). With equal
+        // headings the normals now cancel exactly and v is the goal offset itself.
+        let v = g.position
+            + (g.direction().perp() * k3.sign() - s.direction().perp() * k1.sign()) * r;
         let d = v.norm();
         let angles = match middle {
             None => csc_angles(&s, &g, k1, k3, v, d, r)?,
@@ -276,10 +281,15 @@ fn csc_angles(
     let (a, b) = (k1.sign(), k3.sign());
     let offset = (a - b) * r; // 0 for LSL/RSR, ±2r for LSR/RSL
     let l_sq = d * d - offset * offset;
-    let straight = if l_sq >= 0.0 {
+    // Touching circles within a band of ±1e-5·offset² either side of l² = 0. Above zero as well
+    // as below: the rounding error of l² (≈ 1e-6·r²) is amplified by the square root into a
+    // straight of up to ~1e-3·r pointing up to ~5e-4 rad off, so an end arc that should be
+    // empty became a spurious full loop (identical poses got LSR/RSL = 4πr).
+    let touch = 1e-5 * offset * offset; // 0 for LSL/RSR, whose l² = d² ≥ 0
+    let straight = if l_sq > touch {
         libm::sqrtf(l_sq)
-    } else if l_sq > -1e-5 * offset * offset {
-        0.0 // touching circles: a rounding error below zero
+    } else if l_sq >= -touch {
+        0.0 // touching circles (or d = 0 for LSL/RSR)
     } else {
         return None; // overlapping circles: no inner tangent
     };
@@ -309,7 +319,10 @@ fn ccc_angles(
     }
     let a = k1.sign();
     let gamma = libm::acosf((d / (4.0 * r)).clamp(-1.0, 1.0));
-    let psi = if d > 0.0 { v.angle() } else { s.heading };
+    // Coincident end circles (same rule as for CSC): the direction of a v that is only rounding
+    // noise is arbitrary and put the middle circle anywhere, so the same pose (headings equal to
+    // 1e-8 rad) got RLR/LRL = 2πr; the start heading gives the empty path.
+    let psi = if d > 1e-6 * r { v.angle() } else { s.heading };
     let mut best: Option<(f32, f32, f32)> = None;
     for branch in [gamma, -gamma] {
         let c2 = c1 + Vec2::from_angle(psi + branch) * (2.0 * r);

@@ -6,6 +6,7 @@
 
 mod dubins;
 pub mod predicates;
+pub mod trig;
 
 pub use dubins::{DubinsPath, DubinsWord, WordSet};
 
@@ -36,7 +37,7 @@ impl Vec2 {
 
     /// The unit vector at angle `a` (radians counter-clockwise from east).
     pub fn from_angle(a: f32) -> Self {
-        let (s, c) = libm::sincosf(a);
+        let (s, c) = trig::sin_cos(a);
         Self { x: c, y: s }
     }
 
@@ -50,9 +51,11 @@ impl Vec2 {
         self.x * o.y - self.y * o.x
     }
 
-    /// Euclidean length.
+    /// Euclidean length. (`sqrt(x² + y²)` in f32: `libm::hypotf` guards against overflow by
+    /// working in f64, which a Cortex-M4F emulates; the planner's coordinates are far below
+    /// the 1.8·10¹⁹ m where the square would overflow.)
     pub fn norm(self) -> f32 {
-        libm::hypotf(self.x, self.y)
+        libm::sqrtf(self.dot(self))
     }
 
     /// Squared length.

@@ -22,7 +22,9 @@ use serde::de::DeserializeOwned;
 /// A validated network image, borrowed from where it lies (for example a static slice in flash).
 #[derive(Clone, Copy, Debug)]
 pub struct Network<'a> {
-    bytes: &'a [u8],
+    /// The image; `None` for [`Network::empty`] (a null niche, so an empty network is all-zero
+    /// bytes where a `&[]` would hold a dangling non-null pointer).
+    bytes: Option<&'a [u8]>,
     header: Header,
     layout: Layout,
 }
@@ -133,18 +135,20 @@ pub struct CellRange {
 }
 
 impl<'a> Network<'a> {
-    /// A network with nothing in it: no vertices, edges, obstacles or grid cells.
+    /// A network with nothing in it: no vertices, edges, obstacles or grid cells. Every byte of
+    /// it is zero (so a planner holding it in a `static` lands in `.bss`); its turn radius and
+    /// grid cell are 0, which the accessors treat as "no path" and "no cell".
     pub const fn empty() -> Self {
         Network {
-            bytes: &[],
+            bytes: None,
             header: Header {
-                magic: MAGIC,
-                version: FORMAT_VERSION,
-                mode: MODE_ROADMAP,
+                magic: [0; 4],
+                version: 0,
+                mode: 0,
                 flags: 0,
                 origin_lat_deg: 0.0,
                 origin_lon_deg: 0.0,
-                turn_radius_m: 1.0,
+                turn_radius_m: 0.0,
                 clearance_m: 0.0,
                 vertex_count: 0,
                 edge_count: 0,
@@ -152,7 +156,7 @@ impl<'a> Network<'a> {
                 obstacle_point_count: 0,
                 grid_origin_x: 0.0,
                 grid_origin_y: 0.0,
-                grid_cell_m: 1.0,
+                grid_cell_m: 0.0,
                 grid_nx: 0,
                 grid_ny: 0,
                 grid_entry_count: 0,
@@ -248,7 +252,7 @@ impl<'a> Network<'a> {
             });
         }
         let net = Network {
-            bytes,
+            bytes: Some(bytes),
             header,
             layout,
         };
@@ -491,7 +495,7 @@ impl<'a> Network<'a> {
     /// Decodes record `i` of the section at `base` whose records are `size` bytes long.
     fn record<T: DeserializeOwned>(&self, base: usize, size: usize, i: usize) -> Option<T> {
         let start = base.checked_add(i.checked_mul(size)?)?;
-        postcard::from_bytes(self.bytes.get(start..start.checked_add(size)?)?).ok()
+        postcard::from_bytes(self.bytes?.get(start..start.checked_add(size)?)?).ok()
     }
 
     /// Offset `i` of an offset table (0 if unreadable, which validation rules out).
@@ -507,7 +511,7 @@ impl<'a> Network<'a> {
 
     /// The image's length in bytes.
     pub fn byte_len(&self) -> usize {
-        self.bytes.len()
+        self.bytes.map_or(0, <[u8]>::len)
     }
 
     /// Number of vertices.

@@ -53,7 +53,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         meter: &mut Meter,
     ) -> Result<Candidates, PlanError> {
         let mut best = Candidates::new();
-        let radius = self.config.connect_radius_m;
+        let radius = self.config().connect_radius_m;
         for v in 0..self.network.vertex_count() {
             meter.work.vertex_scans += 1;
             let Some(pose) = self.network.vertex(v) else {
@@ -126,7 +126,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     pub(super) fn goal_pose(&self, goal: &Goal, k: u16) -> Pose {
         let heading = match goal.heading {
             Some(h) => h,
-            None => k as f32 * TAU / self.config.headings(goal) as f32,
+            None => k as f32 * TAU / self.config().headings(goal) as f32,
         };
         Pose {
             position: goal.position,
@@ -141,7 +141,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
         self.start_links.clear();
-        let candidates = self.nearest_vertices(start.position, self.config.start_links(), meter)?;
+        let candidates = self.nearest_vertices(start.position, self.config().start_links(), meter)?;
         for &(_, v) in &candidates {
             let Some(target) = self.network.vertex(v) else {
                 return Err(PlanError::Internal);
@@ -163,7 +163,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// path to the goal over the goal headings tried.
     pub(super) fn connect_goal(&mut self, goal: &Goal, meter: &mut Meter) -> Result<(), PlanError> {
         self.goal_links.clear();
-        let candidates = self.nearest_vertices(goal.position, self.config.goal_links(), meter)?;
+        let candidates = self.nearest_vertices(goal.position, self.config().goal_links(), meter)?;
         for &(_, v) in &candidates {
             let Some(from) = self.network.vertex(v) else {
                 return Err(PlanError::Internal);
@@ -183,7 +183,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         meter: &mut Meter,
     ) -> Result<Option<DubinsPath>, PlanError> {
         let mut best: Option<DubinsPath> = None;
-        for k in 0..self.config.headings(goal) {
+        for k in 0..self.config().headings(goal) {
             let target = self.goal_pose(goal, k);
             meter.work.dubins_solves += 1;
             let Some(path) = DubinsPath::shortest(from, &target, self.network.turn_radius()) else {

@@ -15,8 +15,10 @@ pub enum ItemState {
     Done,
 }
 
-const UNSEEN: u32 = u32::MAX;
-const DONE: u32 = u32::MAX - 1;
+/// `position` values: 0 unseen, `DONE` popped, otherwise the item's heap index + 1. Zero for
+/// "unseen" keeps a new heap all-zero, so a planner in a `static` lands in `.bss`, not in flash.
+const UNSEEN: u32 = 0;
+const DONE: u32 = u32::MAX;
 
 /// The heap. Memory: 12·N bytes.
 #[derive(Debug)]
@@ -25,7 +27,7 @@ pub struct IndexedHeap<const N: usize> {
     items: [u32; N],
     /// Key of each item id.
     keys: [f32; N],
-    /// Position of each item id in `items`, or `UNSEEN` / `DONE`.
+    /// Position + 1 of each item id in `items`, or `UNSEEN` / `DONE`.
     position: [u32; N],
     len: usize,
 }
@@ -88,7 +90,7 @@ impl<const N: usize> IndexedHeap<N> {
                 if !(key < self.keys[i]) {
                     return 0;
                 }
-                self.position[i] as usize
+                self.position[i] as usize - 1
             }
             ItemState::Unseen => {
                 if self.len >= N {
@@ -97,7 +99,7 @@ impl<const N: usize> IndexedHeap<N> {
                 let at = self.len;
                 self.len += 1;
                 self.items[at] = id;
-                self.position[i] = at as u32;
+                self.position[i] = at as u32 + 1;
                 at
             }
         };
@@ -118,7 +120,7 @@ impl<const N: usize> IndexedHeap<N> {
         let mut levels = 1;
         if self.len > 0 {
             self.items[0] = last;
-            self.position[last as usize] = 0;
+            self.position[last as usize] = 1;
             levels += self.sift_down(0);
         }
         Some((top, self.keys[top as usize], levels))
@@ -130,8 +132,8 @@ impl<const N: usize> IndexedHeap<N> {
 
     fn swap(&mut self, a: usize, b: usize) {
         self.items.swap(a, b);
-        self.position[self.items[a] as usize] = a as u32;
-        self.position[self.items[b] as usize] = b as u32;
+        self.position[self.items[a] as usize] = a as u32 + 1;
+        self.position[self.items[b] as usize] = b as u32 + 1;
     }
 
     fn sift_up(&mut self, mut at: usize) -> u32 {

@@ -2,8 +2,9 @@
 //!
 //! `Planner<'n, V, E, P, R>` holds all mutable state in arrays sized by its const generics:
 //! `V` vertices, `E` edges, `P` pop-ups (at most 16) and `R` route primitives. Its size is
-//! `≈ 20·V + 2·E + 140·P + 24·R + 1.3 KiB` bytes; place it in a `static` so the linker
-//! rejects a build whose RAM does not suffice.
+//! about `20·V + 2·E + 140·P + 56·R + 1.5 KiB` bytes (`core::mem::size_of` gives the exact
+//! figure); place it in a `static` so the linker rejects a build whose RAM does not suffice.
+//! A new planner is all-zero, so such a `static` lands in `.bss` and costs no flash.
 
 mod connect;
 mod error;
@@ -131,10 +132,14 @@ struct Link {
 /// The planner. See the module documentation for its memory.
 pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: usize> {
     network: Network<'n>,
-    config: PlannerConfig,
+    /// `None` until [`Planner::set_config`]: [`PlannerConfig::DEFAULT`]. (An `Option` keeps a
+    /// new planner all-zero, so that a `static` one lands in `.bss` instead of also costing its
+    /// size in flash for `.data`.)
+    config: Option<PlannerConfig>,
     /// Bit `p` set: pop-up slot `p` blocks the edge.
     blocked_by: [u16; E],
-    popups: [Option<Popup>; P],
+    /// Active pop-ups with their ids (distinct, below `P`).
+    popups: Vec<(u8, Popup), P>,
     /// Best known cost to each vertex (valid once the vertex has been queued).
     dist: [f32; V],
     /// How each vertex was reached: an edge index, or `FROM_START + link`.
@@ -171,9 +176,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let () = Self::CAPACITY_OK;
         Self {
             network: Network::empty(),
-            config: PlannerConfig::DEFAULT,
+            config: None,
             blocked_by: [0; E],
-            popups: [const { None }; P],
+            popups: Vec::new(),
             dist: [0.0; V],
             via: [0; V],
             heap: IndexedHeap::new(),
@@ -191,7 +196,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let network = Network::from_bytes_with_capacity(bytes, V, E)?;
         self.network = network;
         self.blocked_by = [0; E];
-        self.popups = [const { None }; P];
+        self.popups.clear();
         self.paths.clear();
         self.route.clear();
         self.summary = None;
@@ -204,13 +209,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// The connection settings.
-    pub fn config(&self) -> &PlannerConfig {
-        &self.config
+    pub fn config(&self) -> PlannerConfig {
+        self.config.unwrap_or(PlannerConfig::DEFAULT)
     }
 
     /// Replaces the connection settings (counts above [`MAX_LINKS`] are used as `MAX_LINKS`).
     pub fn set_config(&mut self, config: PlannerConfig) {
-        self.config = config;
+        self.config = Some(config);
     }
 
     /// The last route found, as lines and arcs from the start pose to the goal.
@@ -250,12 +255,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             obstacle_points: header.obstacle_point_count as u64,
             popups: P as u64,
             popup_vertices: MAX_POPUP_VERTICES as u64,
-            start_links: self.config.start_links() as u64,
-            goal_links: self.config.goal_links() as u64,
+            start_links: self.config().start_links() as u64,
+            goal_links: self.config().goal_links() as u64,
             goal_headings: if goal_has_heading {
                 1
             } else {
-                self.config.free_goal_headings.clamp(1, 360) as u64
+                self.config().free_goal_headings.clamp(1, 360) as u64
             },
         }
     }

@@ -115,10 +115,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// [`Planner::worst_case_popup_work`].
     pub fn add_popup(&mut self, popup: Popup) -> Result<PopupSummary, PopupError> {
         popup.validate()?;
-        let slot = self
-            .popups
-            .iter()
-            .position(|p| p.is_none())
+        // The smallest id no active pop-up has.
+        let slot = (0..P)
+            .find(|id| self.popups.iter().all(|(used, _)| *used as usize != *id))
             .ok_or(PopupError::NoFreeSlot { capacity: P as u8 })?;
         let bit = 1u16 << slot;
         let clearance = self.network.clearance();
@@ -166,18 +165,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 }
             }
         }
-        if let Some(p) = self.popups.get_mut(slot) {
-            *p = Some(popup);
-        }
+        // Cannot fail: a free id below P means fewer than P pop-ups are active.
+        let _ = self.popups.push((slot as u8, popup));
         Ok(summary)
     }
 
     /// Removes pop-up `id` and re-enables the edges only it blocked. Work: |E| mask updates.
     pub fn remove_popup(&mut self, id: u8) -> Result<(), PopupError> {
-        match self.popups.get_mut(id as usize) {
-            Some(p @ Some(_)) => *p = None,
-            _ => return Err(PopupError::UnknownId { id }),
-        }
+        let at = self.popups.iter().position(|(used, _)| *used == id).ok_or(PopupError::UnknownId { id })?;
+        self.popups.swap_remove(at);
         let keep = !(1u16 << id);
         for m in self.blocked_by.iter_mut() {
             *m &= keep;
@@ -187,9 +183,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// The active pop-ups with their ids.
     pub fn popups(&self) -> impl Iterator<Item = (u8, &Popup)> {
-        self.popups
-            .iter()
-            .enumerate()
-            .filter_map(|(i, p)| p.as_ref().map(|p| (i as u8, p)))
+        self.popups.iter().map(|(id, p)| (*id, p))
     }
 }

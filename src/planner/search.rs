@@ -39,7 +39,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.connect_start(&query.start, &mut meter)?;
         self.connect_goal(&query.goal, &mut meter)?;
         let direct =
-            if query.start.position.distance(query.goal.position) <= self.config.connect_radius_m {
+            if query.start.position.distance(query.goal.position) <= self.config().connect_radius_m {
                 self.best_clear_path_to_goal(&query.start, &query.goal, &mut meter)?
             } else {
                 None
