@@ -6,3 +6,5 @@ pub mod frame;
 pub mod build;
 pub mod mission;
 pub mod route_json;
+pub mod export;
+pub mod render;

@@ -56,6 +56,53 @@ enum Command {
         #[arg(short, long)]
         output: PathBuf,
     },
+    /// Write a network image as JSON (vertices, edges with their lines and arcs, obstacles) in
+    /// its local frame, for other tools.
+    Export {
+        /// The network image.
+        network: PathBuf,
+        /// Where to write the JSON.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Indent the JSON (several times larger).
+        #[arg(long)]
+        pretty: bool,
+    },
+    /// Draw a network, and optionally a route, a scenario's endpoints and pop-ups, as SVG or PNG.
+    ///
+    /// Grid north up, equal scale on both axes, with a scale bar. Obstacles grey with their
+    /// clearance band, network edges thin and light, the route bold with one colour per leg and
+    /// arrowheads in the direction of flight, start/waypoints/goal labelled, pop-ups red. The
+    /// panel lists the legs and the route's closest approach to obstacles and pop-ups.
+    Render {
+        /// The network image.
+        network: PathBuf,
+        /// A route written by `skyroute plan` on this network.
+        #[arg(long)]
+        route: Option<PathBuf>,
+        /// The scenario: draws its start, waypoints, goal and `popup` features.
+        #[arg(long)]
+        scenario: Option<PathBuf>,
+        /// A circular pop-up obstacle to draw, `LON,LAT,RADIUS_M` (repeatable).
+        #[arg(long, value_parser = parse_popup)]
+        popup: Vec<(f64, f64, f64)>,
+        /// Where to write the picture: PNG when the name ends in `.png`, SVG otherwise.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Also write a PNG of the same picture here (with an SVG `--output`).
+        #[arg(long)]
+        png: Option<PathBuf>,
+        /// Width of the map in pixels (a 400-pixel legend panel is added to its right).
+        #[arg(long, default_value_t = 1200.0)]
+        width: f64,
+        /// Leave out the network's edges and vertices.
+        #[arg(long)]
+        no_edges: bool,
+        /// Draw only this part of the network's local frame, `MIN_X,MIN_Y,MAX_X,MAX_Y` metres east
+        /// and north of its origin (default: everything).
+        #[arg(long, value_parser = parse_area)]
+        area: Option<(f64, f64, f64, f64)>,
+    },
 }
 
 fn parse_popup(s: &str) -> Result<(f64, f64, f64), String> {
@@ -66,6 +113,17 @@ fn parse_popup(s: &str) -> Result<(f64, f64, f64), String> {
     match v[..] {
         [lon, lat, r] if lon.abs() <= 180.0 && lat.abs() <= 90.0 && r > 0.0 && r.is_finite() => Ok((lon, lat, r)),
         _ => Err(format!("expected LON,LAT,RADIUS_M with |lon| <= 180, |lat| <= 90, radius > 0, got {s:?}")),
+    }
+}
+
+fn parse_area(s: &str) -> Result<(f64, f64, f64, f64), String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [x0, y0, x1, y1] if v.iter().all(|x| x.is_finite()) && x0 < x1 && y0 < y1 => Ok((x0, y0, x1, y1)),
+        _ => Err(format!("expected MIN_X,MIN_Y,MAX_X,MAX_Y with MIN < MAX, got {s:?}")),
     }
 }
 
@@ -137,6 +195,38 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 t0.elapsed().as_secs_f64(),
                 output.display()
             );
+            Ok(())
+        }
+        Command::Export { network, output, pretty } => {
+            let t0 = Instant::now();
+            let (v, e, o) = skyroute_prep::export::export_file(&network, &output, pretty)?;
+            println!(
+                "exported {}: {v} vertices, {e} edges, {o} obstacles, {:.2} s -> {}",
+                network.display(),
+                t0.elapsed().as_secs_f64(),
+                output.display()
+            );
+            Ok(())
+        }
+        Command::Render { network, route, scenario: scenario_path, popup, output, png, width, no_edges, area } => {
+            let t0 = Instant::now();
+            if !(width.is_finite() && (200.0..=20000.0).contains(&width)) {
+                return Err(format!("--width {width}: expected 200 to 20000 pixels").into());
+            }
+            let request = skyroute_prep::render::RenderRequest {
+                network,
+                route,
+                scenario: scenario_path,
+                popups: popup,
+                output,
+                png,
+                map_width_px: width,
+                no_edges,
+                area,
+            };
+            let written = skyroute_prep::render::render(&request)?;
+            let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+            println!("rendered {}, {:.2} s -> {}", request.network.display(), t0.elapsed().as_secs_f64(), names.join(", "));
             Ok(())
         }
     }

@@ -1,0 +1,307 @@
+//! The `skyroute` binary end to end: build → plan → export → render on niendorf-urban, `--help`
+//! on every command, and the one-line errors for a truncated network and a self-intersecting
+//! no-fly polygon.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn skyroute(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_skyroute"))
+        .args(args)
+        .output()
+        .expect("run skyroute")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn ok(o: Output, what: &str) -> Output {
+    assert!(
+        o.status.success(),
+        "{what} failed: {}\n{}",
+        stdout(&o),
+        stderr(&o)
+    );
+    o
+}
+
+/// A fresh directory under the system's temporary directory, removed when dropped.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> Self {
+        let p = std::env::temp_dir().join(format!("skyroute-cli-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&p);
+        std::fs::create_dir_all(&p).unwrap();
+        TempDir(p)
+    }
+    fn file(&self, name: &str) -> String {
+        self.0.join(name).display().to_string()
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn niendorf() -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenarios/niendorf-urban.geojson")
+        .display()
+        .to_string()
+}
+
+/// The single line of a failure's stderr.
+fn one_line_error(o: &Output) -> String {
+    assert!(
+        !o.status.success(),
+        "expected a failure, got success: {}",
+        stdout(o)
+    );
+    let e = stderr(o);
+    let lines: Vec<&str> = e.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert_eq!(lines.len(), 1, "expected one line of error, got {e:?}");
+    assert!(lines[0].starts_with("skyroute: "), "{e:?}");
+    lines[0].to_string()
+}
+
+#[test]
+fn build_plan_export_render_end_to_end() {
+    let dir = TempDir::new("e2e");
+    let (net, route, json) = (
+        dir.file("n.bin"),
+        dir.file("route.json"),
+        dir.file("n.json"),
+    );
+    let (svg, png, png2) = (dir.file("n.svg"), dir.file("n.png"), dir.file("also.png"));
+    let scenario = niendorf();
+
+    let o = ok(skyroute(&["build", &scenario, "-o", &net]), "build");
+    assert!(stdout(&o).contains(" edges"), "{}", stdout(&o));
+    ok(
+        skyroute(&["plan", &net, "--scenario", &scenario, "-o", &route]),
+        "plan",
+    );
+    let o = ok(skyroute(&["export", &net, "-o", &json]), "export");
+    assert!(stdout(&o).contains("exported"), "{}", stdout(&o));
+
+    // The export: the documented members, and as many vertices/edges as the image holds.
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let bytes = std::fs::read(&net).unwrap();
+    let n = skyroute::Network::from_bytes(&bytes).unwrap();
+    assert_eq!(
+        v["vertices"].as_array().unwrap().len(),
+        n.vertex_count() as usize
+    );
+    assert_eq!(
+        v["edges"].as_array().unwrap().len(),
+        n.edge_count() as usize
+    );
+    assert_eq!(v["obstacles"].as_array().unwrap().len(), 60);
+    assert_eq!(v["clearance_m"].as_f64(), Some(7.0));
+    for k in ["origin_lat_deg", "origin_lon_deg", "method"] {
+        assert!(!v["frame"][k].is_null(), "frame.{k}");
+    }
+    let v0 = &v["vertices"][0];
+    for k in [
+        "id",
+        "x",
+        "y",
+        "heading_rad",
+        "heading_compass_deg",
+        "lon",
+        "lat",
+    ] {
+        assert!(!v0[k].is_null(), "vertices[0].{k}");
+    }
+    let e0 = &v["edges"][0];
+    for k in ["id", "from", "to", "cost", "word", "primitives"] {
+        assert!(!e0[k].is_null(), "edges[0].{k}");
+    }
+    assert_eq!(v["obstacles"][0]["kind"], "polygon");
+
+    // Render: SVG with a PNG beside it, and a PNG chosen by the output's name.
+    let o = ok(
+        skyroute(&[
+            "render",
+            &net,
+            "--route",
+            &route,
+            "--scenario",
+            &scenario,
+            "--popup",
+            "11.63,48.095,60",
+            "-o",
+            &svg,
+            "--png",
+            &png2,
+        ]),
+        "render svg",
+    );
+    assert!(stdout(&o).contains("rendered"), "{}", stdout(&o));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.starts_with("<svg"), "{}", &text[..100.min(text.len())]);
+    for label in [
+        "P (start)",
+        "W1",
+        "W2",
+        "W3",
+        "W4",
+        "Q (goal)",
+        "--popup #1",
+        "route:",
+    ] {
+        assert!(text.contains(label), "the SVG lacks {label:?}");
+    }
+    ok(
+        skyroute(&[
+            "render",
+            &net,
+            "--route",
+            &route,
+            "--scenario",
+            &scenario,
+            "-o",
+            &png,
+        ]),
+        "render png",
+    );
+    for p in [&png, &png2] {
+        let b = std::fs::read(p).unwrap();
+        assert_eq!(&b[..8], b"\x89PNG\r\n\x1a\n", "{p} is not a PNG");
+        assert!(b.len() > 10_000, "{p}: {} bytes", b.len());
+    }
+    // Network only, no route or scenario.
+    ok(
+        skyroute(&["render", &net, "--no-edges", "-o", &dir.file("plain.svg")]),
+        "render plain",
+    );
+}
+
+#[test]
+fn help_works_on_every_command() {
+    for args in [
+        &["--help"][..],
+        &["help"],
+        &["build", "--help"],
+        &["plan", "--help"],
+        &["export", "--help"],
+        &["render", "--help"],
+        &["help", "render"],
+    ] {
+        let o = ok(skyroute(args), &args.join(" "));
+        assert!(stdout(&o).contains("Usage:"), "{args:?}: {}", stdout(&o));
+    }
+    let o = skyroute(&["--help"]);
+    for c in ["build", "plan", "export", "render"] {
+        assert!(stdout(&o).contains(c), "--help does not list {c}");
+    }
+    let o = skyroute(&["render", "--help"]);
+    for flag in [
+        "--route",
+        "--scenario",
+        "--popup",
+        "--output",
+        "--png",
+        ".png",
+    ] {
+        assert!(
+            stdout(&o).contains(flag),
+            "render --help does not mention {flag}"
+        );
+    }
+}
+
+#[test]
+fn truncated_network_gives_one_line_naming_the_file() {
+    let dir = TempDir::new("truncated");
+    let (net, cut) = (dir.file("n.bin"), dir.file("cut.bin"));
+    let scenario = niendorf();
+    ok(skyroute(&["build", &scenario, "-o", &net]), "build");
+    let bytes = std::fs::read(&net).unwrap();
+    std::fs::write(&cut, &bytes[..bytes.len() / 3]).unwrap();
+    let out = dir.file("x.out");
+    for args in [
+        vec!["export", &cut, "-o", &out],
+        vec!["render", &cut, "-o", &out],
+        vec!["plan", &cut, "--scenario", &scenario, "-o", &out],
+    ] {
+        let line = one_line_error(&skyroute(&args));
+        assert!(line.contains(&cut), "{args:?}: {line}");
+        assert!(line.contains("truncated"), "{args:?}: {line}");
+        assert!(!Path::new(&out).exists(), "{args:?} wrote {out}");
+    }
+    // Not a network at all, and a missing file.
+    std::fs::write(&cut, b"hello").unwrap();
+    let line = one_line_error(&skyroute(&["export", &cut, "-o", &out]));
+    assert!(line.contains(&cut), "{line}");
+    let missing = dir.file("missing.bin");
+    let line = one_line_error(&skyroute(&["export", &missing, "-o", &out]));
+    assert!(line.contains(&missing), "{line}");
+}
+
+#[test]
+fn self_intersecting_polygon_names_file_feature_and_field() {
+    let dir = TempDir::new("bowtie");
+    let scenario = dir.file("bowtie.geojson");
+    // A bow tie: edges 0 and 2 cross.
+    std::fs::write(
+        &scenario,
+        r#"{
+  "type": "FeatureCollection",
+  "name": "bowtie",
+  "vehicle": {"v_nominal_mps": 25.0, "v_min_mps": 20.0, "v_max_mps": 30.0, "a_lat_max_mps2": 9.81,
+              "a_long_min_mps2": -3.0, "a_long_max_mps2": 3.0, "wingspan_m": 3.0},
+  "planner": {"mode": "roadmap", "sample_spacing_m": 50.0, "neighbour_radius_m": 190.0, "clearance_m": 5.0},
+  "features": [
+    {"type": "Feature", "properties": {"kind": "start", "name": "S", "heading_deg": 90},
+     "geometry": {"type": "Point", "coordinates": [11.600, 48.100]}},
+    {"type": "Feature", "properties": {"kind": "no_fly", "name": "Bowtie"},
+     "geometry": {"type": "Polygon", "coordinates": [[[11.61, 48.10], [11.62, 48.11], [11.62, 48.10], [11.61, 48.11], [11.61, 48.10]]]}},
+    {"type": "Feature", "properties": {"kind": "goal", "name": "G"},
+     "geometry": {"type": "Point", "coordinates": [11.630, 48.100]}}
+  ]
+}"#,
+    )
+    .unwrap();
+    let out = dir.file("n.bin");
+    let line = one_line_error(&skyroute(&["build", &scenario, "-o", &out]));
+    for part in [
+        scenario.as_str(),
+        "feature 1 (Bowtie)",
+        "geometry.coordinates",
+        "self-intersecting",
+    ] {
+        assert!(line.contains(part), "{line:?} lacks {part:?}");
+    }
+    assert!(!Path::new(&out).exists());
+
+    // The same through render --scenario (a network to draw on is needed first).
+    let net = dir.file("good.bin");
+    ok(skyroute(&["build", &niendorf(), "-o", &net]), "build");
+    let svg = dir.file("x.svg");
+    let line = one_line_error(&skyroute(&[
+        "render",
+        &net,
+        "--scenario",
+        &scenario,
+        "-o",
+        &svg,
+    ]));
+    for part in [
+        scenario.as_str(),
+        "feature 1 (Bowtie)",
+        "geometry.coordinates",
+    ] {
+        assert!(line.contains(part), "{line:?} lacks {part:?}");
+    }
+    assert!(!Path::new(&svg).exists());
+}
