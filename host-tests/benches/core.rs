@@ -2,9 +2,12 @@
 //! planning query on the `niendorf-urban` roadmap. Run: `cargo bench -p host-tests --bench core`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use skyroute::geometry::predicates::{arc_segment_distance, conflicts_with_polygon, segment_segment_distance};
+use skyroute::geometry::predicates::{
+    arc_segment_distance, conflicts_with_polygon, segment_segment_distance,
+};
 use skyroute::planner::{Goal, Popup, Query, Search};
 use skyroute::{Arc, DubinsPath, Planner, Pose, Primitive, Segment, Vec2};
+use std::f32::consts::PI;
 use std::path::Path;
 
 struct Rng(u64);
@@ -24,8 +27,16 @@ fn geometry(c: &mut Criterion) {
     let mut rng = Rng(0x1234_5678);
     let poses: Vec<(Pose, Pose)> = (0..1024)
         .map(|_| {
-            let a = Pose::new(rng.range(-500.0, 500.0), rng.range(-500.0, 500.0), rng.range(-3.14, 3.14));
-            let b = Pose::new(rng.range(-500.0, 500.0), rng.range(-500.0, 500.0), rng.range(-3.14, 3.14));
+            let a = Pose::new(
+                rng.range(-500.0, 500.0),
+                rng.range(-500.0, 500.0),
+                rng.range(-PI, PI),
+            );
+            let b = Pose::new(
+                rng.range(-500.0, 500.0),
+                rng.range(-500.0, 500.0),
+                rng.range(-PI, PI),
+            );
             (a, b)
         })
         .collect();
@@ -37,13 +48,18 @@ fn geometry(c: &mut Criterion) {
         })
     });
     let segs: Vec<Segment> = (0..1024)
-        .map(|_| Segment::new(Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0)), Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0))))
+        .map(|_| {
+            Segment::new(
+                Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0)),
+                Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0)),
+            )
+        })
         .collect();
     let arcs: Vec<Arc> = (0..1024)
         .map(|_| Arc {
             centre: Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0)),
             radius: rng.range(10.0, 80.0),
-            start_angle: rng.range(-3.14, 3.14),
+            start_angle: rng.range(-PI, PI),
             sweep: rng.range(-6.0, 6.0),
         })
         .collect();
@@ -60,11 +76,20 @@ fn geometry(c: &mut Criterion) {
             black_box(arc_segment_distance(&arcs[j], &segs[j]))
         })
     });
-    let square = [Vec2::new(-20.0, -20.0), Vec2::new(20.0, -20.0), Vec2::new(20.0, 20.0), Vec2::new(-20.0, 20.0)];
+    let square = [
+        Vec2::new(-20.0, -20.0),
+        Vec2::new(20.0, -20.0),
+        Vec2::new(20.0, 20.0),
+        Vec2::new(-20.0, 20.0),
+    ];
     c.bench_function("arc_vs_square_polygon_clearance", |b| {
         b.iter(|| {
             j = (j + 1) % 1023;
-            black_box(conflicts_with_polygon(&Primitive::Arc(arcs[j]), &square[..], 7.0))
+            black_box(conflicts_with_polygon(
+                &Primitive::Arc(arcs[j]),
+                &square[..],
+                7.0,
+            ))
         })
     });
 }
@@ -72,7 +97,8 @@ fn geometry(c: &mut Criterion) {
 fn niendorf(c: &mut Criterion) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/niendorf-urban.geojson");
     let scenario = skyroute_prep::scenario::load(&path).expect("scenario");
-    let built = skyroute_prep::build::build(&scenario, &Default::default(), &|_, _| {}).expect("network");
+    let built =
+        skyroute_prep::build::build(&scenario, &Default::default(), &|_, _| {}).expect("network");
     let bytes: &'static [u8] = Box::leak(built.bytes.into_boxed_slice());
     let mut planner: Box<Planner<'static, 8192, 262144, 8, 1024>> = Box::new(Planner::new());
     planner.load(bytes).expect("loads");
@@ -83,18 +109,30 @@ fn niendorf(c: &mut Criterion) {
         start: skyroute_prep::build::local_pose(frame, start.lon, start.lat, start.heading_deg),
         goal: Goal {
             position: skyroute_prep::build::local(frame, goal.lon, goal.lat),
-            heading: goal.heading_deg.map(|c| skyroute::geometry::heading_from_compass_deg(c as f32)),
+            heading: goal
+                .heading_deg
+                .map(|c| skyroute::geometry::heading_from_compass_deg(c as f32)),
         },
         search: Search::Dijkstra,
     };
     let at = |name: &str| {
-        let e = scenario.waypoints.iter().find(|w| w.name == name).expect("waypoint");
+        let e = scenario
+            .waypoints
+            .iter()
+            .find(|w| w.name == name)
+            .expect("waypoint");
         skyroute_prep::build::local(frame, e.lon, e.lat)
     };
     // W3 → W4 crosses the map (about 3.1 km): the longest leg of the mission.
     let across = Query {
-        start: Pose { position: at("W3"), heading: 0.0 },
-        goal: Goal { position: at("W4"), heading: None },
+        start: Pose {
+            position: at("W3"),
+            heading: 0.0,
+        },
+        goal: Goal {
+            position: at("W4"),
+            heading: None,
+        },
         search: Search::Dijkstra,
     };
     eprintln!(
@@ -106,17 +144,33 @@ fn niendorf(c: &mut Criterion) {
     let queries = [
         ("plan_niendorf_start_to_goal_dijkstra", query),
         ("plan_niendorf_w3_to_w4_free_heading_dijkstra", across),
-        ("plan_niendorf_w3_to_w4_free_heading_astar", Query { search: Search::AStar, ..across }),
+        (
+            "plan_niendorf_w3_to_w4_free_heading_astar",
+            Query {
+                search: Search::AStar,
+                ..across
+            },
+        ),
     ];
     for (name, q) in queries {
         let s = planner.plan(&q, u64::MAX).expect("route");
-        eprintln!("{name}: length {:.1} m, work {} (bound {})", s.length, s.work.total(), planner.worst_case_work());
+        eprintln!(
+            "{name}: length {:.1} m, work {} (bound {})",
+            s.length,
+            s.work.total(),
+            planner.worst_case_work()
+        );
         c.bench_function(name, |b| b.iter(|| black_box(planner.plan(&q, u64::MAX))));
     }
     let centre = Vec2::new(0.0, 0.0);
     c.bench_function("add_and_remove_popup_r150_niendorf", |b| {
         b.iter(|| {
-            let s = planner.add_popup(Popup::Circle { centre, radius: 150.0 }).expect("popup");
+            let s = planner
+                .add_popup(Popup::Circle {
+                    centre,
+                    radius: 150.0,
+                })
+                .expect("popup");
             planner.remove_popup(s.id).expect("remove");
             black_box(s)
         })

@@ -4,7 +4,7 @@
 mod common;
 
 use common::{world, Rng};
-use skyroute::network::format::{EdgeRecord, Header, VertexRecord, U32Record};
+use skyroute::network::format::{EdgeRecord, Header, U32Record, VertexRecord};
 use skyroute::network::{crc32, LoadError, Section};
 use skyroute::planner::{Goal, Popup, Query, Search};
 use skyroute::{Network, Planner, Vec2};
@@ -55,7 +55,10 @@ fn each_damage_has_its_own_error() {
     let n_v = w.spec.vertices.len();
 
     // Truncated: every cut inside the header and a sample of cuts in the body.
-    for cut in (0..good.len()).step_by(97).chain([0, 10, Header::SIZE - 1, good.len() - 1]) {
+    for cut in (0..good.len())
+        .step_by(97)
+        .chain([0, 10, Header::SIZE - 1, good.len() - 1])
+    {
         match Network::from_bytes(&good[..cut]) {
             Err(LoadError::Truncated { needed, available }) => {
                 assert_eq!(available, cut);
@@ -68,46 +71,87 @@ fn each_damage_has_its_own_error() {
     // Trailing bytes.
     let mut longer = good.clone();
     longer.extend_from_slice(&[0, 0, 0]);
-    assert_eq!(Network::from_bytes(&longer).unwrap_err(), LoadError::TrailingBytes { extra: 3 });
+    assert_eq!(
+        Network::from_bytes(&longer).unwrap_err(),
+        LoadError::TrailingBytes { extra: 3 }
+    );
 
     // Bad magic.
     let mut b = good.clone();
     b[0] = b'X';
-    assert!(matches!(Network::from_bytes(&b), Err(LoadError::BadMagic { found }) if found == *b"XKYR"));
+    assert!(
+        matches!(Network::from_bytes(&b), Err(LoadError::BadMagic { found }) if found == *b"XKYR")
+    );
 
     // Wrong version.
     let mut b = good.clone();
     b[4] = 7;
-    assert_eq!(Network::from_bytes(&b).unwrap_err(), LoadError::UnsupportedVersion { found: 7, supported: 1 });
+    assert_eq!(
+        Network::from_bytes(&b).unwrap_err(),
+        LoadError::UnsupportedVersion {
+            found: 7,
+            supported: 1
+        }
+    );
 
     // A bit flipped in the body.
     let mut b = good.clone();
     let at = Header::SIZE + (good.len() - Header::SIZE) / 2;
     b[at] ^= 0x10;
-    assert!(matches!(Network::from_bytes(&b), Err(LoadError::ChecksumMismatch { .. })));
+    assert!(matches!(
+        Network::from_bytes(&b),
+        Err(LoadError::ChecksumMismatch { .. })
+    ));
 
     // Over capacity, refused before the body is read.
     let err = Network::from_bytes_with_capacity(good, n_v - 1, usize::MAX).unwrap_err();
-    assert_eq!(err, LoadError::TooManyVertices { count: n_v as u32, capacity: n_v - 1 });
+    assert_eq!(
+        err,
+        LoadError::TooManyVertices {
+            count: n_v as u32,
+            capacity: n_v - 1
+        }
+    );
     let n_e = w.spec.edges.len();
     let err = Network::from_bytes_with_capacity(good, usize::MAX, 10).unwrap_err();
-    assert_eq!(err, LoadError::TooManyEdges { count: n_e as u32, capacity: 10 });
+    assert_eq!(
+        err,
+        LoadError::TooManyEdges {
+            count: n_e as u32,
+            capacity: 10
+        }
+    );
     let mut small: Planner<'_, 16, 16, 1, 8> = Planner::new();
-    assert!(matches!(small.load(good), Err(LoadError::TooManyVertices { .. })));
+    assert!(matches!(
+        small.load(good),
+        Err(LoadError::TooManyVertices { .. })
+    ));
 
     // NaN in a vertex (CRC rewritten so the field check is reached).
     let mut b = good.clone();
     let v3 = vertices_at(good) + 3 * VertexRecord::SIZE;
     b[v3..v3 + 4].copy_from_slice(&f32::NAN.to_le_bytes());
     fix_crc(&mut b);
-    assert_eq!(Network::from_bytes(&b).unwrap_err(), LoadError::NonFinite { section: Section::Vertices, index: 3 });
+    assert_eq!(
+        Network::from_bytes(&b).unwrap_err(),
+        LoadError::NonFinite {
+            section: Section::Vertices,
+            index: 3
+        }
+    );
 
     // NaN heading.
     let mut b = good.clone();
     let h5 = vertices_at(good) + 5 * VertexRecord::SIZE + 8;
     b[h5..h5 + 4].copy_from_slice(&f32::INFINITY.to_le_bytes());
     fix_crc(&mut b);
-    assert_eq!(Network::from_bytes(&b).unwrap_err(), LoadError::NonFinite { section: Section::Vertices, index: 5 });
+    assert_eq!(
+        Network::from_bytes(&b).unwrap_err(),
+        LoadError::NonFinite {
+            section: Section::Vertices,
+            index: 5
+        }
+    );
 
     // An edge target out of range.
     let mut b = good.clone();
@@ -116,7 +160,12 @@ fn each_damage_has_its_own_error() {
     fix_crc(&mut b);
     assert_eq!(
         Network::from_bytes(&b).unwrap_err(),
-        LoadError::IndexOutOfRange { section: Section::Edges, index: 2, value: n_v as u32 + 9, limit: n_v as u32 }
+        LoadError::IndexOutOfRange {
+            section: Section::Edges,
+            index: 2,
+            value: n_v as u32 + 9,
+            limit: n_v as u32
+        }
     );
 
     // A NaN edge cost.
@@ -124,27 +173,42 @@ fn each_damage_has_its_own_error() {
     let c4 = edges_at(n_v) + 4 * EdgeRecord::SIZE + 8;
     b[c4..c4 + 4].copy_from_slice(&f32::NAN.to_le_bytes());
     fix_crc(&mut b);
-    assert_eq!(Network::from_bytes(&b).unwrap_err(), LoadError::NonFinite { section: Section::Edges, index: 4 });
+    assert_eq!(
+        Network::from_bytes(&b).unwrap_err(),
+        LoadError::NonFinite {
+            section: Section::Edges,
+            index: 4
+        }
+    );
 
     // An unknown geometry kind.
     let mut b = good.clone();
     let g1 = edges_at(n_v) + EdgeRecord::SIZE + 12;
     b[g1] = 42;
     fix_crc(&mut b);
-    assert_eq!(Network::from_bytes(&b).unwrap_err(), LoadError::UnknownGeometry { edge: 1, code: 42 });
+    assert_eq!(
+        Network::from_bytes(&b).unwrap_err(),
+        LoadError::UnknownGeometry { edge: 1, code: 42 }
+    );
 
     // Body length that disagrees with the counts.
     let mut b = good.clone();
     let len_at = Header::SIZE - 8;
     let declared = u32::from_le_bytes(b[len_at..len_at + 4].try_into().unwrap()) + 1;
     b[len_at..len_at + 4].copy_from_slice(&declared.to_le_bytes());
-    assert!(matches!(Network::from_bytes(&b), Err(LoadError::BodyLengthMismatch { .. })));
+    assert!(matches!(
+        Network::from_bytes(&b),
+        Err(LoadError::BodyLengthMismatch { .. })
+    ));
 
     // A NaN turn radius in the header.
     let mut b = good.clone();
     let r_at = 4 + 2 + 1 + 1 + 8 + 8;
     b[r_at..r_at + 4].copy_from_slice(&f32::NAN.to_le_bytes());
-    assert!(matches!(Network::from_bytes(&b), Err(LoadError::InvalidParameter { .. })));
+    assert!(matches!(
+        Network::from_bytes(&b),
+        Err(LoadError::InvalidParameter { .. })
+    ));
 }
 
 /// Loads `bytes` and, when they are accepted, exercises a planner on them.
@@ -152,7 +216,10 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
     let mut planner: Box<TestPlanner<'_>> = Box::new(Planner::new());
     planner.load(bytes)?;
     let net = *planner.network();
-    let _ = planner.add_popup(Popup::Circle { centre: Vec2::new(rng.range(0.0, 600.0), rng.range(0.0, 600.0)), radius: 50.0 });
+    let _ = planner.add_popup(Popup::Circle {
+        centre: Vec2::new(rng.range(0.0, 600.0), rng.range(0.0, 600.0)),
+        radius: 50.0,
+    });
     for v in 0..net.vertex_count().min(8) {
         let _ = net.vertex(v);
         for e in net.out_edges(v) {
@@ -161,7 +228,10 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
     }
     let q = Query {
         start: skyroute::Pose::new(rng.range(0.0, 600.0), rng.range(0.0, 600.0), 0.3),
-        goal: Goal { position: Vec2::new(rng.range(0.0, 600.0), rng.range(0.0, 600.0)), heading: None },
+        goal: Goal {
+            position: Vec2::new(rng.range(0.0, 600.0), rng.range(0.0, 600.0)),
+            heading: None,
+        },
         search: Search::Dijkstra,
     };
     let _ = planner.plan(&q, planner.worst_case_work());

@@ -27,8 +27,11 @@ fn bellman_ford(p: &TestPlanner<'_>, w: &World, q: &Query) -> Option<f32> {
     let r = net.turn_radius();
     let clear = |path: &DubinsPath| {
         path.primitives().into_iter().flatten().all(|prim| {
-            w.obstacles.iter().all(|o| !skyroute_prep::roadmap::primitive_conflicts(&prim, o, net.clearance()))
-                && p.popups().all(|(_, pop)| !pop.conflicts(&prim, net.clearance()).0)
+            w.obstacles
+                .iter()
+                .all(|o| !skyroute_prep::roadmap::primitive_conflicts(&prim, o, net.clearance()))
+                && p.popups()
+                    .all(|(_, pop)| !pop.conflicts(&prim, net.clearance()).0)
         })
     };
     let nearest = |at: Vec2, k: usize| {
@@ -42,19 +45,32 @@ fn bellman_ford(p: &TestPlanner<'_>, w: &World, q: &Query) -> Option<f32> {
     };
     let headings: Vec<f32> = match q.goal.heading {
         Some(h) => vec![h],
-        None => (0..cfg.free_goal_headings).map(|k| k as f32 * std::f32::consts::TAU / cfg.free_goal_headings as f32).collect(),
+        None => (0..cfg.free_goal_headings)
+            .map(|k| k as f32 * std::f32::consts::TAU / cfg.free_goal_headings as f32)
+            .collect(),
     };
     let to_goal = |from: &Pose| {
         headings
             .iter()
-            .filter_map(|h| DubinsPath::shortest(from, &Pose { position: q.goal.position, heading: *h }, r))
+            .filter_map(|h| {
+                DubinsPath::shortest(
+                    from,
+                    &Pose {
+                        position: q.goal.position,
+                        heading: *h,
+                    },
+                    r,
+                )
+            })
             .filter(|path| clear(path))
             .map(|path| path.length())
             .fold(None, |m: Option<f32>, l| Some(m.map_or(l, |m| m.min(l))))
     };
     let mut dist = vec![f64::INFINITY; n];
     for (_, v) in nearest(q.start.position, cfg.start_candidates as usize) {
-        if let Some(path) = DubinsPath::shortest(&q.start, &net.vertex(v).unwrap(), r).filter(|p| clear(p)) {
+        if let Some(path) =
+            DubinsPath::shortest(&q.start, &net.vertex(v).unwrap(), r).filter(|p| clear(p))
+        {
             dist[v as usize] = dist[v as usize].min(path.length() as f64);
         }
     }
@@ -93,18 +109,29 @@ fn bellman_ford(p: &TestPlanner<'_>, w: &World, q: &Query) -> Option<f32> {
 
 fn check_continuous(route: &[Primitive], q: &Query) {
     let first = route.first().expect("non-empty route");
-    assert!(first.start().distance(q.start.position) < 1e-2, "route starts at the start");
+    assert!(
+        first.start().distance(q.start.position) < 1e-2,
+        "route starts at the start"
+    );
     let head = first.pose_at(0.0).heading;
     assert!(skyroute::geometry::wrap_to_pi(head - q.start.heading).abs() < 1e-3);
     for pair in route.windows(2) {
         let (a, b) = (pair[0].pose_at(pair[0].length()), pair[1].pose_at(0.0));
         assert!(a.position.distance(b.position) < 2e-2, "gap {a:?} → {b:?}");
-        assert!(skyroute::geometry::wrap_to_pi(a.heading - b.heading).abs() < 2e-3, "kink {a:?} → {b:?}");
+        assert!(
+            skyroute::geometry::wrap_to_pi(a.heading - b.heading).abs() < 2e-3,
+            "kink {a:?} → {b:?}"
+        );
     }
     let last = route.last().unwrap();
-    assert!(last.end().distance(q.goal.position) < 1e-2, "route ends at the goal");
+    assert!(
+        last.end().distance(q.goal.position) < 1e-2,
+        "route ends at the goal"
+    );
     if let Some(h) = q.goal.heading {
-        assert!(skyroute::geometry::wrap_to_pi(last.pose_at(last.length()).heading - h).abs() < 2e-3);
+        assert!(
+            skyroute::geometry::wrap_to_pi(last.pose_at(last.length()).heading - h).abs() < 2e-3
+        );
     }
 }
 
@@ -114,30 +141,72 @@ fn dijkstra_and_astar_match_bellman_ford() {
     for seed in 0..6u64 {
         let w = world(10 + seed, 1200.0, 55.0, 35.0, 6);
         let mut p = planner(&w.bytes);
-        p.set_config(PlannerConfig { connect_radius_m: 300.0, ..PlannerConfig::DEFAULT });
+        p.set_config(PlannerConfig {
+            connect_radius_m: 300.0,
+            ..PlannerConfig::DEFAULT
+        });
         let mut rng = Rng(seed);
         for i in 0..12 {
             if i == 6 {
                 let c = free_pose(&mut rng, &w, 10.0).position;
-                p.add_popup(Popup::Circle { centre: c, radius: 80.0 }).unwrap();
+                p.add_popup(Popup::Circle {
+                    centre: c,
+                    radius: 80.0,
+                })
+                .unwrap();
             }
             let start = free_pose(&mut rng, &w, 10.0);
             let goal = free_pose(&mut rng, &w, 10.0);
             let heading = if i % 2 == 0 { None } else { Some(goal.heading) };
-            let q = Query { start, goal: Goal { position: goal.position, heading }, search: Search::Dijkstra };
+            let q = Query {
+                start,
+                goal: Goal {
+                    position: goal.position,
+                    heading,
+                },
+                search: Search::Dijkstra,
+            };
             let reference = bellman_ford(&p, &w, &q);
             let budget = p.worst_case_work();
             match (p.plan(&q, budget), reference) {
                 (Ok(s), Some(r)) => {
-                    assert!((s.length - r).abs() <= 1e-3 * r.max(1.0), "seed {seed} query {i}: {} vs Bellman–Ford {r}", s.length);
+                    assert!(
+                        (s.length - r).abs() <= 1e-3 * r.max(1.0),
+                        "seed {seed} query {i}: {} vs Bellman–Ford {r}",
+                        s.length
+                    );
                     check_continuous(p.route(), &q);
-                    let astar = p.plan(&Query { search: Search::AStar, ..q }, budget).unwrap();
-                    assert!((astar.length - r).abs() <= 1e-3 * r.max(1.0), "A* {} vs {r}", astar.length);
-                    assert!(astar.work.relaxations <= s.work.relaxations, "A* should not relax more than Dijkstra");
+                    let astar = p
+                        .plan(
+                            &Query {
+                                search: Search::AStar,
+                                ..q
+                            },
+                            budget,
+                        )
+                        .unwrap();
+                    assert!(
+                        (astar.length - r).abs() <= 1e-3 * r.max(1.0),
+                        "A* {} vs {r}",
+                        astar.length
+                    );
+                    assert!(
+                        astar.work.relaxations <= s.work.relaxations,
+                        "A* should not relax more than Dijkstra"
+                    );
                     compared += 1;
                 }
-                (Err(PlanError::NoRoute | PlanError::StartUnconnected | PlanError::GoalUnconnected), None) => {}
-                (got, want) => panic!("seed {seed} query {i}: planner {got:?}, Bellman–Ford {want:?}"),
+                (
+                    Err(
+                        PlanError::NoRoute
+                        | PlanError::StartUnconnected
+                        | PlanError::GoalUnconnected,
+                    ),
+                    None,
+                ) => {}
+                (got, want) => {
+                    panic!("seed {seed} query {i}: planner {got:?}, Bellman–Ford {want:?}")
+                }
             }
         }
     }
@@ -150,10 +219,17 @@ fn scan_blocked(p: &TestPlanner<'_>, popup: &Popup) -> Vec<u32> {
     let c = net.clearance();
     (0..net.edge_count())
         .filter(|&e| {
-            net.edge_path(e).unwrap().primitives().into_iter().flatten().any(|prim| match popup {
-                Popup::Circle { centre, radius } => conflicts_with_circle(&prim, *centre, *radius, c),
-                Popup::Polygon(pts) => conflicts_with_polygon(&prim, pts.as_slice(), c),
-            })
+            net.edge_path(e)
+                .unwrap()
+                .primitives()
+                .into_iter()
+                .flatten()
+                .any(|prim| match popup {
+                    Popup::Circle { centre, radius } => {
+                        conflicts_with_circle(&prim, *centre, *radius, c)
+                    }
+                    Popup::Polygon(pts) => conflicts_with_polygon(&prim, pts.as_slice(), c),
+                })
         })
         .collect()
 }
@@ -169,10 +245,17 @@ fn popup_pruning_matches_a_scan_of_every_edge() {
     for k in 0..10 {
         let c = Vec2::new(rng.range(-100.0, 1600.0), rng.range(-100.0, 1600.0));
         let popup = if k % 2 == 0 {
-            Popup::Circle { centre: c, radius: rng.range(5.0, 200.0) }
+            Popup::Circle {
+                centre: c,
+                radius: rng.range(5.0, 200.0),
+            }
         } else {
             let s = rng.range(20.0, 150.0);
-            let pts = [Vec2::new(c.x - s, c.y - s), Vec2::new(c.x + s, c.y - 0.5 * s), Vec2::new(c.x + 0.3 * s, c.y + s)];
+            let pts = [
+                Vec2::new(c.x - s, c.y - s),
+                Vec2::new(c.x + s, c.y - 0.5 * s),
+                Vec2::new(c.x + 0.3 * s, c.y + s),
+            ];
             Popup::Polygon(heapless::Vec::from_slice(&pts).unwrap())
         };
         let expected = scan_blocked(&p, &popup);
@@ -196,7 +279,10 @@ fn popup_pruning_matches_a_scan_of_every_edge() {
         p.remove_popup(*id).unwrap();
     }
     assert_eq!(p.enabled_edge_count(), total);
-    assert!(matches!(p.remove_popup(ids[0]), Err(skyroute::PopupError::UnknownId { .. })));
+    assert!(matches!(
+        p.remove_popup(ids[0]),
+        Err(skyroute::PopupError::UnknownId { .. })
+    ));
 }
 
 #[test]
@@ -208,7 +294,12 @@ fn counted_work_never_exceeds_the_documented_bound() {
         let mut rng = Rng(100 + seed);
         for k in 0..3 {
             let c = free_pose(&mut rng, &w, 10.0).position;
-            let summary = p.add_popup(Popup::Circle { centre: c, radius: 30.0 + 20.0 * k as f32 }).unwrap();
+            let summary = p
+                .add_popup(Popup::Circle {
+                    centre: c,
+                    radius: 30.0 + 20.0 * k as f32,
+                })
+                .unwrap();
             assert!((summary.entries_visited as u64) <= p.worst_case_popup_work());
         }
         let bound = p.worst_case_work();
@@ -216,8 +307,19 @@ fn counted_work_never_exceeds_the_documented_bound() {
             let start = free_pose(&mut rng, &w, 10.0);
             let goal = free_pose(&mut rng, &w, 10.0);
             let heading = if i % 3 == 0 { Some(goal.heading) } else { None };
-            let search = if i % 2 == 0 { Search::Dijkstra } else { Search::AStar };
-            let q = Query { start, goal: Goal { position: goal.position, heading }, search };
+            let search = if i % 2 == 0 {
+                Search::Dijkstra
+            } else {
+                Search::AStar
+            };
+            let q = Query {
+                start,
+                goal: Goal {
+                    position: goal.position,
+                    heading,
+                },
+                search,
+            };
             if let Ok(s) = p.plan(&q, u64::MAX) {
                 let used = s.work.total();
                 assert!(used <= bound, "work {used} exceeds bound {bound}");
@@ -225,7 +327,9 @@ fn counted_work_never_exceeds_the_documented_bound() {
                 // One unit less budget than the query needs: refused, and the route is kept.
                 let before: Vec<Primitive> = p.route().to_vec();
                 let err = p.plan(&q, used - 1).unwrap_err();
-                assert!(matches!(err, PlanError::BudgetExhausted { budget, .. } if budget == used - 1));
+                assert!(
+                    matches!(err, PlanError::BudgetExhausted { budget, .. } if budget == used - 1)
+                );
                 assert_eq!(p.route(), &before[..]);
             }
         }
@@ -240,53 +344,151 @@ fn bad_queries_are_refused_and_keep_the_route() {
     let mut rng = Rng(8);
     let (s, g) = loop {
         let (s, g) = (free_pose(&mut rng, &w, 10.0), free_pose(&mut rng, &w, 10.0));
-        let q = Query { start: s, goal: Goal { position: g.position, heading: None }, search: Search::Dijkstra };
+        let q = Query {
+            start: s,
+            goal: Goal {
+                position: g.position,
+                heading: None,
+            },
+            search: Search::Dijkstra,
+        };
         if p.plan(&q, u64::MAX).is_ok() {
             break (s, g);
         }
     };
     let kept: Vec<Primitive> = p.route().to_vec();
-    let base = Query { start: s, goal: Goal { position: g.position, heading: None }, search: Search::Dijkstra };
-    let nan_heading = Query { start: Pose { heading: f32::NAN, ..s }, ..base };
-    assert_eq!(p.plan(&nan_heading, u64::MAX), Err(PlanError::NonFinite { field: QueryField::Start }));
-    let nan_goal = Query { goal: Goal { position: g.position, heading: Some(f32::INFINITY) }, ..base };
-    assert_eq!(p.plan(&nan_goal, u64::MAX), Err(PlanError::NonFinite { field: QueryField::Goal }));
+    let base = Query {
+        start: s,
+        goal: Goal {
+            position: g.position,
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    };
+    let nan_heading = Query {
+        start: Pose {
+            heading: f32::NAN,
+            ..s
+        },
+        ..base
+    };
+    assert_eq!(
+        p.plan(&nan_heading, u64::MAX),
+        Err(PlanError::NonFinite {
+            field: QueryField::Start
+        })
+    );
+    let nan_goal = Query {
+        goal: Goal {
+            position: g.position,
+            heading: Some(f32::INFINITY),
+        },
+        ..base
+    };
+    assert_eq!(
+        p.plan(&nan_goal, u64::MAX),
+        Err(PlanError::NonFinite {
+            field: QueryField::Goal
+        })
+    );
     // A start inside the first obstacle.
     let inside = match &w.obstacles[0] {
         skyroute::network::write::ObstacleSpec::Polygon(pts) => (pts[0] + pts[2]) * 0.5,
         skyroute::network::write::ObstacleSpec::Circle { centre, .. } => *centre,
     };
-    let q = Query { start: Pose { position: inside, ..s }, ..base };
-    assert_eq!(p.plan(&q, u64::MAX), Err(PlanError::InsideObstacle { field: QueryField::Start, obstacle: 0 }));
+    let q = Query {
+        start: Pose {
+            position: inside,
+            ..s
+        },
+        ..base
+    };
+    assert_eq!(
+        p.plan(&q, u64::MAX),
+        Err(PlanError::InsideObstacle {
+            field: QueryField::Start,
+            obstacle: 0
+        })
+    );
     // A goal inside a pop-up.
-    let id = p.add_popup(Popup::Circle { centre: g.position, radius: 20.0 }).unwrap().id;
-    assert_eq!(p.plan(&base, u64::MAX), Err(PlanError::InsidePopup { field: QueryField::Goal, popup: id }));
+    let id = p
+        .add_popup(Popup::Circle {
+            centre: g.position,
+            radius: 20.0,
+        })
+        .unwrap()
+        .id;
+    assert_eq!(
+        p.plan(&base, u64::MAX),
+        Err(PlanError::InsidePopup {
+            field: QueryField::Goal,
+            popup: id
+        })
+    );
     p.remove_popup(id).unwrap();
     // Invalid pop-ups.
-    assert_eq!(p.add_popup(Popup::Circle { centre: Vec2::new(f32::NAN, 0.0), radius: 1.0 }), Err(skyroute::PopupError::NonFinite));
-    assert_eq!(p.add_popup(Popup::Circle { centre: Vec2::new(0.0, 0.0), radius: 0.0 }), Err(skyroute::PopupError::NonPositiveRadius));
-    let bowtie = [Vec2::new(0.0, 0.0), Vec2::new(10.0, 10.0), Vec2::new(10.0, 0.0), Vec2::new(0.0, 10.0)];
+    assert_eq!(
+        p.add_popup(Popup::Circle {
+            centre: Vec2::new(f32::NAN, 0.0),
+            radius: 1.0
+        }),
+        Err(skyroute::PopupError::NonFinite)
+    );
+    assert_eq!(
+        p.add_popup(Popup::Circle {
+            centre: Vec2::new(0.0, 0.0),
+            radius: 0.0
+        }),
+        Err(skyroute::PopupError::NonPositiveRadius)
+    );
+    let bowtie = [
+        Vec2::new(0.0, 0.0),
+        Vec2::new(10.0, 10.0),
+        Vec2::new(10.0, 0.0),
+        Vec2::new(0.0, 10.0),
+    ];
     assert_eq!(
         p.add_popup(Popup::Polygon(heapless::Vec::from_slice(&bowtie).unwrap())),
         Err(skyroute::PopupError::NotSimple)
     );
-    assert_eq!(p.route(), &kept[..], "failed queries keep the previous route");
+    assert_eq!(
+        p.route(),
+        &kept[..],
+        "failed queries keep the previous route"
+    );
 
     // A route longer than the route capacity.
     let mut tiny: Box<Planner<'_, 4096, 65536, 2, 2>> = Box::new(Planner::new());
     tiny.load(&w.bytes).unwrap();
-    let far = Query { start: s, goal: Goal { position: g.position, heading: None }, search: Search::Dijkstra };
+    let far = Query {
+        start: s,
+        goal: Goal {
+            position: g.position,
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    };
     match tiny.plan(&far, u64::MAX) {
-        Err(PlanError::RouteTooLong { capacity: 2, primitives }) => assert!(primitives > 2),
+        Err(PlanError::RouteTooLong {
+            capacity: 2,
+            primitives,
+        }) => assert!(primitives > 2),
         Ok(s) => assert!(s.primitives <= 2),
         other => panic!("{other:?}"),
     }
     // Full pop-up slots.
     for k in 0..2 {
-        tiny.add_popup(Popup::Circle { centre: Vec2::new(-500.0 - 10.0 * k as f32, 0.0), radius: 1.0 }).unwrap();
+        tiny.add_popup(Popup::Circle {
+            centre: Vec2::new(-500.0 - 10.0 * k as f32, 0.0),
+            radius: 1.0,
+        })
+        .unwrap();
     }
     assert_eq!(
-        tiny.add_popup(Popup::Circle { centre: Vec2::new(-600.0, 0.0), radius: 1.0 }),
+        tiny.add_popup(Popup::Circle {
+            centre: Vec2::new(-600.0, 0.0),
+            radius: 1.0
+        }),
         Err(skyroute::PopupError::NoFreeSlot { capacity: 2 })
     );
 }
@@ -302,9 +504,22 @@ fn post_processing_keeps_routes_valid_and_never_longer() {
             let start = free_pose(&mut rng, &w, 10.0);
             let goal = free_pose(&mut rng, &w, 10.0);
             let heading = if i % 2 == 0 { Some(goal.heading) } else { None };
-            let q = Query { start, goal: Goal { position: goal.position, heading }, search: Search::AStar };
-            let Ok(planned) = p.plan(&q, u64::MAX) else { continue };
-            let end = p.route().last().unwrap().pose_at(p.route().last().unwrap().length());
+            let q = Query {
+                start,
+                goal: Goal {
+                    position: goal.position,
+                    heading,
+                },
+                search: Search::AStar,
+            };
+            let Ok(planned) = p.plan(&q, u64::MAX) else {
+                continue;
+            };
+            let end = p
+                .route()
+                .last()
+                .unwrap()
+                .pose_at(p.route().last().unwrap().length());
             let cut = p.shortcut(u64::MAX).unwrap();
             let smooth = p.smooth_headings(9, u64::MAX).unwrap();
             assert!(cut.length_before <= planned.length + 1e-2);
@@ -312,10 +527,26 @@ fn post_processing_keeps_routes_valid_and_never_longer() {
             assert!(smooth.length_after <= smooth.length_before + 1e-3);
             let after: f32 = p.route().iter().map(Primitive::length).sum();
             assert!((after - smooth.length_after).abs() < 1e-2);
-            check_continuous(p.route(), &Query { goal: Goal { position: end.position, heading: Some(end.heading) }, ..q });
+            check_continuous(
+                p.route(),
+                &Query {
+                    goal: Goal {
+                        position: end.position,
+                        heading: Some(end.heading),
+                    },
+                    ..q
+                },
+            );
             for prim in p.route() {
                 for o in &w.obstacles {
-                    assert!(!skyroute_prep::roadmap::primitive_conflicts(prim, o, p.network().clearance()), "post-processed route hits an obstacle");
+                    assert!(
+                        !skyroute_prep::roadmap::primitive_conflicts(
+                            prim,
+                            o,
+                            p.network().clearance()
+                        ),
+                        "post-processed route hits an obstacle"
+                    );
                 }
             }
             if smooth.length_after < planned.length - 1.0 {

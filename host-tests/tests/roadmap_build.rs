@@ -9,12 +9,17 @@ use skyroute_prep::scenario;
 use std::path::PathBuf;
 
 fn scenario_path(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenarios").join(name)
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenarios")
+        .join(name)
 }
 
 fn build_with_threads(threads: usize, options: &BuildOptions) -> Built {
     let s = scenario::load(&scenario_path("niendorf-urban.geojson")).unwrap();
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
     pool.install(|| build(&s, options, &|_, _| {})).unwrap()
 }
 
@@ -35,18 +40,27 @@ fn samples_keep_spacing_and_clearance_and_ccc_can_be_excluded() {
     let v = &built.roadmap.vertices;
     for (i, a) in v.iter().enumerate() {
         for b in &v[i + 1..] {
-            assert!(a.position.distance(b.position) >= spacing - 1e-3, "samples closer than the spacing");
+            assert!(
+                a.position.distance(b.position) >= spacing - 1e-3,
+                "samples closer than the spacing"
+            );
         }
         for o in &built.obstacles {
             if let ObstacleSpec::Polygon(p) = o {
-                let inside = skyroute::geometry::predicates::point_in_polygon(a.position, p.as_slice());
-                let near = (0..p.len()).any(|k| point_segment_distance(a.position, &Segment::new(p[k], p[(k + 1) % p.len()])) <= clearance);
+                let inside =
+                    skyroute::geometry::predicates::point_in_polygon(a.position, p.as_slice());
+                let near = (0..p.len()).any(|k| {
+                    point_segment_distance(a.position, &Segment::new(p[k], p[(k + 1) % p.len()]))
+                        <= clearance
+                });
                 assert!(!inside && !near, "sample within clearance of a building");
             }
         }
     }
     let net = Network::from_bytes(&built.bytes).unwrap();
-    let ccc = (0..net.edge_count()).filter(|&e| net.edge(e).unwrap().word.is_ccc()).count();
+    let ccc = (0..net.edge_count())
+        .filter(|&e| net.edge(e).unwrap().word.is_ccc())
+        .count();
     assert!(ccc > 0, "with allow_ccc the roadmap uses some CCC words");
 
     let mut no_ccc = s.clone();
@@ -59,9 +73,21 @@ fn samples_keep_spacing_and_clearance_and_ccc_can_be_excluded() {
 #[test]
 fn exact_and_discretised_checks_are_both_reported() {
     let exact = build_with_threads(2, &BuildOptions::default());
-    let discretised = build_with_threads(2, &BuildOptions { discretised: true, ..Default::default() });
+    let discretised = build_with_threads(
+        2,
+        &BuildOptions {
+            discretised: true,
+            ..Default::default()
+        },
+    );
     let (e, d) = (exact.roadmap.edges.len(), discretised.roadmap.edges.len());
-    let pairs = |b: &Built| b.roadmap.edges.iter().map(|x| (x.source, x.target)).collect::<std::collections::BTreeSet<_>>();
+    let pairs = |b: &Built| {
+        b.roadmap
+            .edges
+            .iter()
+            .map(|x| (x.source, x.target))
+            .collect::<std::collections::BTreeSet<_>>()
+    };
     let (pe, pd) = (pairs(&exact), pairs(&discretised));
     let unsafe_accepted = pd.difference(&pe).count();
     let safe_rejected = pe.difference(&pd).count();
@@ -70,6 +96,12 @@ fn exact_and_discretised_checks_are_both_reported() {
          discretised accepts {unsafe_accepted} edges that violate the clearance and rejects {safe_rejected} that keep it"
     );
     assert_eq!(exact.roadmap.vertices, discretised.roadmap.vertices);
-    assert_eq!(unsafe_accepted, 0, "the chord check with the sagitta margin is conservative");
-    assert!(d < e, "the exact check should accept edges the discretised one loses");
+    assert_eq!(
+        unsafe_accepted, 0,
+        "the chord check with the sagitta margin is conservative"
+    );
+    assert!(
+        d < e,
+        "the exact check should accept edges the discretised one loses"
+    );
 }

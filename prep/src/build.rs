@@ -36,8 +36,13 @@ pub enum BuildError {
 impl fmt::Display for BuildError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            BuildError::Missing(file, field) => write!(f, "{file}: {field}: required for this mode"),
-            BuildError::UnsupportedMode(file, mode) => write!(f, "{file}: planner.mode: {mode:?} networks are not built yet"),
+            BuildError::Missing(file, field) => {
+                write!(f, "{file}: {field}: required for this mode")
+            }
+            BuildError::UnsupportedMode(file, mode) => write!(
+                f,
+                "{file}: planner.mode: {mode:?} networks are not built yet"
+            ),
             BuildError::Encode(file, e) => write!(f, "{file}: {e}"),
         }
     }
@@ -63,9 +68,19 @@ pub fn local_obstacles(s: &Scenario, frame: &LocalFrame) -> Vec<ObstacleSpec> {
     let mut out: Vec<ObstacleSpec> = s
         .no_fly
         .iter()
-        .map(|z| ObstacleSpec::Polygon(z.ring.iter().map(|&(lon, lat)| local(frame, lon, lat)).collect()))
+        .map(|z| {
+            ObstacleSpec::Polygon(
+                z.ring
+                    .iter()
+                    .map(|&(lon, lat)| local(frame, lon, lat))
+                    .collect(),
+            )
+        })
         .collect();
-    out.extend(s.threats.iter().map(|t| ObstacleSpec::Circle { centre: local(frame, t.lon, t.lat), radius: t.radius_m as f32 }));
+    out.extend(s.threats.iter().map(|t| ObstacleSpec::Circle {
+        centre: local(frame, t.lon, t.lat),
+        radius: t.radius_m as f32,
+    }));
     out
 }
 
@@ -78,45 +93,78 @@ pub fn local(frame: &LocalFrame, lon: f64, lat: f64) -> Vec2 {
 /// A compass heading at `(lon, lat)` as the core's local heading (radians counter-clockwise
 /// from the frame's `x` axis), corrected for the projection's meridian convergence.
 pub fn local_heading(frame: &LocalFrame, lon: f64, lat: f64, compass_deg: f64) -> f32 {
-    skyroute::geometry::heading_from_compass_deg(frame.heading_to_local(lon, lat, compass_deg) as f32)
+    skyroute::geometry::heading_from_compass_deg(
+        frame.heading_to_local(lon, lat, compass_deg) as f32
+    )
 }
 
 /// A scenario endpoint as a pose (heading 0 where the endpoint has none).
 pub fn local_pose(frame: &LocalFrame, lon: f64, lat: f64, compass_deg: Option<f64>) -> Pose {
-    Pose { position: local(frame, lon, lat), heading: compass_deg.map_or(0.0, |c| local_heading(frame, lon, lat, c)) }
+    Pose {
+        position: local(frame, lon, lat),
+        heading: compass_deg.map_or(0.0, |c| local_heading(frame, lon, lat, c)),
+    }
 }
 
 /// Builds the scenario's network.
-pub fn build(s: &Scenario, options: &BuildOptions, progress: &(dyn Fn(usize, usize) + Sync)) -> Result<Built, BuildError> {
+pub fn build(
+    s: &Scenario,
+    options: &BuildOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Built, BuildError> {
     let file = s.path.display().to_string();
     if s.planner.mode != Mode::Roadmap {
         return Err(BuildError::UnsupportedMode(file, s.planner.mode));
     }
     let p = &s.planner;
-    let need = |v: Option<f64>, field: &'static str| v.ok_or_else(|| BuildError::Missing(file.clone(), field));
+    let need = |v: Option<f64>, field: &'static str| {
+        v.ok_or_else(|| BuildError::Missing(file.clone(), field))
+    };
     let turn_radius = s.vehicle.turn_radius_m() as f32;
     let params = RoadmapParams {
         turn_radius_m: turn_radius,
-        sample_spacing_m: options.sample_spacing_m.map_or_else(|| need(p.sample_spacing_m, "planner.sample_spacing_m").map(|v| v as f32), Ok)?,
-        neighbour_radius_m: options
-            .neighbour_radius_m
-            .map_or_else(|| need(p.neighbour_radius_m, "planner.neighbour_radius_m").map(|v| v as f32), Ok)?,
+        sample_spacing_m: options.sample_spacing_m.map_or_else(
+            || need(p.sample_spacing_m, "planner.sample_spacing_m").map(|v| v as f32),
+            Ok,
+        )?,
+        neighbour_radius_m: options.neighbour_radius_m.map_or_else(
+            || need(p.neighbour_radius_m, "planner.neighbour_radius_m").map(|v| v as f32),
+            Ok,
+        )?,
         k_nearest_fallback: p.k_nearest_fallback.unwrap_or(8) as usize,
         allow_ccc: p.allow_ccc.unwrap_or(true),
         clearance_m: p.clearance_m.unwrap_or(0.0) as f32,
         seed: p.seed.unwrap_or(1),
         check: if options.discretised {
-            CollisionCheck::Discretised { arc_step_m: need(p.arc_step_m, "planner.arc_step_m")? as f32 }
+            CollisionCheck::Discretised {
+                arc_step_m: need(p.arc_step_m, "planner.arc_step_m")? as f32,
+            }
         } else {
             CollisionCheck::Exact
         },
     };
     let frame = s.local_frame();
     let obstacles = local_obstacles(s, &frame);
-    let pts: Vec<Vec2> = s.positions().map(|(lon, lat)| local(&frame, lon, lat)).collect();
-    let lo = pts.iter().fold(Vec2::new(f32::INFINITY, f32::INFINITY), |a, p| Vec2::new(a.x.min(p.x), a.y.min(p.y)));
-    let hi = pts.iter().fold(Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY), |a, p| Vec2::new(a.x.max(p.x), a.y.max(p.y)));
-    let input = RoadmapInput { area_min: lo, area_max: hi, obstacles: obstacles.clone(), fixed_vertices: Vec::new() };
+    let pts: Vec<Vec2> = s
+        .positions()
+        .map(|(lon, lat)| local(&frame, lon, lat))
+        .collect();
+    let lo = pts
+        .iter()
+        .fold(Vec2::new(f32::INFINITY, f32::INFINITY), |a, p| {
+            Vec2::new(a.x.min(p.x), a.y.min(p.y))
+        });
+    let hi = pts
+        .iter()
+        .fold(Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY), |a, p| {
+            Vec2::new(a.x.max(p.x), a.y.max(p.y))
+        });
+    let input = RoadmapInput {
+        area_min: lo,
+        area_max: hi,
+        obstacles: obstacles.clone(),
+        fixed_vertices: Vec::new(),
+    };
     let roadmap = build_roadmap(&input, &params, progress);
     let (origin_lat, origin_lon) = frame.origin();
     let spec = NetworkSpec {
@@ -130,5 +178,10 @@ pub fn build(s: &Scenario, options: &BuildOptions, progress: &(dyn Fn(usize, usi
         grid_cell_m: options.grid_cell_m.unwrap_or(2.0 * turn_radius),
     };
     let bytes = encode(&spec).map_err(|e| BuildError::Encode(file, e))?;
-    Ok(Built { bytes, frame, roadmap, obstacles })
+    Ok(Built {
+        bytes,
+        frame,
+        roadmap,
+        obstacles,
+    })
 }

@@ -1,8 +1,8 @@
 //! `skyroute`: the ground tool's command line.
 
 use clap::{Parser, Subcommand};
-use skyroute_prep::build::{build, BuildOptions};
 use skyroute_prep::build::local;
+use skyroute_prep::build::{build, BuildOptions};
 use skyroute_prep::mission::{plan_mission, LocalPopup};
 use skyroute_prep::scenario;
 use std::path::PathBuf;
@@ -111,8 +111,12 @@ fn parse_popup(s: &str) -> Result<(f64, f64, f64), String> {
         .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
         .collect::<Result<_, _>>()?;
     match v[..] {
-        [lon, lat, r] if lon.abs() <= 180.0 && lat.abs() <= 90.0 && r > 0.0 && r.is_finite() => Ok((lon, lat, r)),
-        _ => Err(format!("expected LON,LAT,RADIUS_M with |lon| <= 180, |lat| <= 90, radius > 0, got {s:?}")),
+        [lon, lat, r] if lon.abs() <= 180.0 && lat.abs() <= 90.0 && r > 0.0 && r.is_finite() => {
+            Ok((lon, lat, r))
+        }
+        _ => Err(format!(
+            "expected LON,LAT,RADIUS_M with |lon| <= 180, |lat| <= 90, radius > 0, got {s:?}"
+        )),
     }
 }
 
@@ -122,17 +126,33 @@ fn parse_area(s: &str) -> Result<(f64, f64, f64, f64), String> {
         .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
         .collect::<Result<_, _>>()?;
     match v[..] {
-        [x0, y0, x1, y1] if v.iter().all(|x| x.is_finite()) && x0 < x1 && y0 < y1 => Ok((x0, y0, x1, y1)),
-        _ => Err(format!("expected MIN_X,MIN_Y,MAX_X,MAX_Y with MIN < MAX, got {s:?}")),
+        [x0, y0, x1, y1] if v.iter().all(|x| x.is_finite()) && x0 < x1 && y0 < y1 => {
+            Ok((x0, y0, x1, y1))
+        }
+        _ => Err(format!(
+            "expected MIN_X,MIN_Y,MAX_X,MAX_Y with MIN < MAX, got {s:?}"
+        )),
     }
 }
 
 fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
     match cli.command {
-        Command::Build { scenario: path, output, sample_spacing, neighbour_radius, discretised, grid_cell } => {
+        Command::Build {
+            scenario: path,
+            output,
+            sample_spacing,
+            neighbour_radius,
+            discretised,
+            grid_cell,
+        } => {
             let t0 = Instant::now();
             let s = scenario::load(&path)?;
-            let options = BuildOptions { sample_spacing_m: sample_spacing, neighbour_radius_m: neighbour_radius, discretised, grid_cell_m: grid_cell };
+            let options = BuildOptions {
+                sample_spacing_m: sample_spacing,
+                neighbour_radius_m: neighbour_radius,
+                discretised,
+                grid_cell_m: grid_cell,
+            };
             let progress = |done: usize, total: usize| {
                 if total >= 1024 {
                     eprint!("\rconnecting samples: {done}/{total}");
@@ -142,7 +162,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
                 }
             };
             let built = build(&s, &options, &progress)?;
-            std::fs::write(&output, &built.bytes).map_err(|e| format!("{}: {e}", output.display()))?;
+            std::fs::write(&output, &built.bytes)
+                .map_err(|e| format!("{}: {e}", output.display()))?;
             let r = &built.roadmap;
             println!(
                 "built {}: {} vertices, {} edges ({} examined, {} check), {} bytes, {:.2} s -> {}",
@@ -157,12 +178,24 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             );
             Ok(())
         }
-        Command::Plan { network, scenario: scenario_path, popup, weather, output } => {
+        Command::Plan {
+            network,
+            scenario: scenario_path,
+            popup,
+            weather,
+            output,
+        } => {
             let t0 = Instant::now();
-            let bytes = std::fs::read(&network).map_err(|e| format!("{}: {e}", network.display()))?;
-            let net = skyroute::Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", network.display()))?;
+            let bytes =
+                std::fs::read(&network).map_err(|e| format!("{}: {e}", network.display()))?;
+            let net = skyroute::Network::from_bytes(&bytes)
+                .map_err(|e| format!("{}: {e}", network.display()))?;
             if let Some(w) = weather {
-                return Err(format!("--weather {w}: {} is a roadmap network, which has no weather", network.display()).into());
+                return Err(format!(
+                    "--weather {w}: {} is a roadmap network, which has no weather",
+                    network.display()
+                )
+                .into());
             }
             let s = scenario::load(&scenario_path)?;
             let (lat0, lon0) = net.origin_deg();
@@ -170,11 +203,17 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             let popups: Vec<LocalPopup> = popup
                 .iter()
                 .enumerate()
-                .map(|(i, &(lon, lat, r))| LocalPopup { name: format!("--popup #{}", i + 1), centre: local(&frame, lon, lat), radius: r as f32 })
+                .map(|(i, &(lon, lat, r))| LocalPopup {
+                    name: format!("--popup #{}", i + 1),
+                    centre: local(&frame, lon, lat),
+                    radius: r as f32,
+                })
                 .collect();
-            let m = plan_mission(&bytes, &s, &frame, &popups).map_err(|e| format!("{}: {e}", scenario_path.display()))?;
+            let m = plan_mission(&bytes, &s, &frame, &popups)
+                .map_err(|e| format!("{}: {e}", scenario_path.display()))?;
             let json = skyroute_prep::route_json::mission_json(&m, &frame, &s.name);
-            std::fs::write(&output, serde_json::to_string_pretty(&json)?).map_err(|e| format!("{}: {e}", output.display()))?;
+            std::fs::write(&output, serde_json::to_string_pretty(&json)?)
+                .map_err(|e| format!("{}: {e}", output.display()))?;
             for l in &m.legs {
                 println!(
                     "  {} -> {}: {:.1} m ({:.1} m before post-processing), {} network edges, work {}",
@@ -197,7 +236,11 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             );
             Ok(())
         }
-        Command::Export { network, output, pretty } => {
+        Command::Export {
+            network,
+            output,
+            pretty,
+        } => {
             let t0 = Instant::now();
             let (v, e, o) = skyroute_prep::export::export_file(&network, &output, pretty)?;
             println!(
@@ -208,7 +251,17 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             );
             Ok(())
         }
-        Command::Render { network, route, scenario: scenario_path, popup, output, png, width, no_edges, area } => {
+        Command::Render {
+            network,
+            route,
+            scenario: scenario_path,
+            popup,
+            output,
+            png,
+            width,
+            no_edges,
+            area,
+        } => {
             let t0 = Instant::now();
             if !(width.is_finite() && (200.0..=20000.0).contains(&width)) {
                 return Err(format!("--width {width}: expected 200 to 20000 pixels").into());
@@ -226,7 +279,12 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             };
             let written = skyroute_prep::render::render(&request)?;
             let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
-            println!("rendered {}, {:.2} s -> {}", request.network.display(), t0.elapsed().as_secs_f64(), names.join(", "));
+            println!(
+                "rendered {}, {:.2} s -> {}",
+                request.network.display(),
+                t0.elapsed().as_secs_f64(),
+                names.join(", ")
+            );
             Ok(())
         }
     }

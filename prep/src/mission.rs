@@ -67,7 +67,11 @@ pub enum MissionError {
     /// No copy of this waypoint (or the start) has a collision-free way on to the next stage.
     InevitableCollision(String),
     /// The stage named cannot be reached from the previous one.
-    Unreachable { from: String, to: String, error: PlanError },
+    Unreachable {
+        from: String,
+        to: String,
+        error: PlanError,
+    },
 }
 
 impl fmt::Display for MissionError {
@@ -79,7 +83,9 @@ impl fmt::Display for MissionError {
             MissionError::InevitableCollision(name) => {
                 write!(f, "{name} is an inevitable-collision state: no heading has a collision-free way out")
             }
-            MissionError::Unreachable { from, to, error } => write!(f, "no route from {from} to {to}: {error}"),
+            MissionError::Unreachable { from, to, error } => {
+                write!(f, "no route from {from} to {to}: {error}")
+            }
         }
     }
 }
@@ -109,25 +115,42 @@ fn stage(frame: &LocalFrame, e: &Endpoint, last: bool) -> Stage {
     let headings = match e.heading_deg {
         Some(c) => vec![Some(local_heading(frame, e.lon, e.lat, c))],
         None if last => vec![None],
-        None => (0..FREE_HEADINGS).map(|k| Some((k as f32) * std::f32::consts::TAU / FREE_HEADINGS as f32)).collect(),
+        None => (0..FREE_HEADINGS)
+            .map(|k| Some((k as f32) * std::f32::consts::TAU / FREE_HEADINGS as f32))
+            .collect(),
     };
-    Stage { name: e.name.clone(), position: local(frame, e.lon, e.lat), headings }
+    Stage {
+        name: e.name.clone(),
+        position: local(frame, e.lon, e.lat),
+        headings,
+    }
 }
 
 /// Loads `bytes` into a fresh boxed planner with the pop-ups added.
-fn planner<'n>(bytes: &'n [u8], popups: &[LocalPopup]) -> Result<Box<HostPlanner<'n>>, MissionError> {
+fn planner<'n>(
+    bytes: &'n [u8],
+    popups: &[LocalPopup],
+) -> Result<Box<HostPlanner<'n>>, MissionError> {
     let mut p: Box<HostPlanner<'n>> = Box::new(Planner::new());
     p.load(bytes).map_err(MissionError::Load)?;
     for pop in popups {
-        p.add_popup(skyroute::Popup::Circle { centre: pop.centre, radius: pop.radius })
-            .map_err(|e| MissionError::Popup(pop.name.clone(), e))?;
+        p.add_popup(skyroute::Popup::Circle {
+            centre: pop.centre,
+            radius: pop.radius,
+        })
+        .map_err(|e| MissionError::Popup(pop.name.clone(), e))?;
     }
     Ok(p)
 }
 
 /// Plans start → waypoints → goal through the network `bytes` with the onboard core.
 /// Runs on a thread pool with stacks large enough for the host planner.
-pub fn plan_mission(bytes: &[u8], scenario: &Scenario, frame: &LocalFrame, popups: &[LocalPopup]) -> Result<Mission, MissionError> {
+pub fn plan_mission(
+    bytes: &[u8],
+    scenario: &Scenario,
+    frame: &LocalFrame,
+    popups: &[LocalPopup],
+) -> Result<Mission, MissionError> {
     let pool = rayon::ThreadPoolBuilder::new()
         .stack_size(PLANNER_STACK)
         .build()
@@ -135,14 +158,34 @@ pub fn plan_mission(bytes: &[u8], scenario: &Scenario, frame: &LocalFrame, popup
     pool.install(|| plan_mission_in_pool(bytes, scenario, frame, popups))
 }
 
-fn plan_mission_in_pool(bytes: &[u8], scenario: &Scenario, frame: &LocalFrame, popups: &[LocalPopup]) -> Result<Mission, MissionError> {
-    let start = scenario.start.as_ref().ok_or(MissionError::Missing("start"))?;
-    let goal = scenario.goal.as_ref().ok_or(MissionError::Missing("goal"))?;
+fn plan_mission_in_pool(
+    bytes: &[u8],
+    scenario: &Scenario,
+    frame: &LocalFrame,
+    popups: &[LocalPopup],
+) -> Result<Mission, MissionError> {
+    let start = scenario
+        .start
+        .as_ref()
+        .ok_or(MissionError::Missing("start"))?;
+    let goal = scenario
+        .goal
+        .as_ref()
+        .ok_or(MissionError::Missing("goal"))?;
     let start_pose = Pose {
         position: local(frame, start.lon, start.lat),
-        heading: local_heading(frame, start.lon, start.lat, start.heading_deg.unwrap_or(0.0)),
+        heading: local_heading(
+            frame,
+            start.lon,
+            start.lat,
+            start.heading_deg.unwrap_or(0.0),
+        ),
     };
-    let mut stages = vec![Stage { name: start.name.clone(), position: start_pose.position, headings: vec![Some(start_pose.heading)] }];
+    let mut stages = vec![Stage {
+        name: start.name.clone(),
+        position: start_pose.position,
+        headings: vec![Some(start_pose.heading)],
+    }];
     stages.extend(scenario.waypoints.iter().map(|w| stage(frame, w, false)));
     stages.push(stage(frame, goal, true));
 
@@ -162,10 +205,18 @@ fn plan_mission_in_pool(bytes: &[u8], scenario: &Scenario, frame: &LocalFrame, p
             .map_init(
                 || planner(bytes, popups),
                 |p, &(a, b)| {
-                    let Ok(p) = p else { return (a, b, Err(PlanError::Internal)) };
+                    let Ok(p) = p else {
+                        return (a, b, Err(PlanError::Internal));
+                    };
                     let q = Query {
-                        start: Pose { position: prev.position, heading: prev.headings[a].unwrap_or(0.0) },
-                        goal: Goal { position: next.position, heading: next.headings[b] },
+                        start: Pose {
+                            position: prev.position,
+                            heading: prev.headings[a].unwrap_or(0.0),
+                        },
+                        goal: Goal {
+                            position: next.position,
+                            heading: next.headings[b],
+                        },
                         search: Search::AStar,
                     };
                     (a, b, p.plan(&q, budget))
@@ -195,7 +246,11 @@ fn plan_mission_in_pool(bytes: &[u8], scenario: &Scenario, frame: &LocalFrame, p
             if i >= 2 && prev.headings.len() > 1 {
                 return Err(MissionError::InevitableCollision(prev.name.clone()));
             }
-            return Err(MissionError::Unreachable { from: prev.name.clone(), to: next.name.clone(), error: last_error });
+            return Err(MissionError::Unreachable {
+                from: prev.name.clone(),
+                to: next.name.clone(),
+                error: last_error,
+            });
         }
         best.push(stage_best);
     }
@@ -204,8 +259,17 @@ fn plan_mission_in_pool(bytes: &[u8], scenario: &Scenario, frame: &LocalFrame, p
     let last = stages.len() - 1;
     let mut k = (0..stages[last].headings.len())
         .filter(|&b| best[last][b].is_some())
-        .min_by(|&x, &y| best[last][x].map(|v| v.0).unwrap_or(f64::INFINITY).total_cmp(&best[last][y].map(|v| v.0).unwrap_or(f64::INFINITY)))
-        .ok_or(MissionError::Unreachable { from: stages[last - 1].name.clone(), to: stages[last].name.clone(), error: PlanError::NoRoute })?;
+        .min_by(|&x, &y| {
+            best[last][x]
+                .map(|v| v.0)
+                .unwrap_or(f64::INFINITY)
+                .total_cmp(&best[last][y].map(|v| v.0).unwrap_or(f64::INFINITY))
+        })
+        .ok_or(MissionError::Unreachable {
+            from: stages[last - 1].name.clone(),
+            to: stages[last].name.clone(),
+            error: PlanError::NoRoute,
+        })?;
     let mut chosen = vec![0usize; stages.len()];
     for i in (1..stages.len()).rev() {
         chosen[i] = k;
@@ -216,15 +280,34 @@ fn plan_mission_in_pool(bytes: &[u8], scenario: &Scenario, frame: &LocalFrame, p
     let mut length = 0.0;
     for i in 1..stages.len() {
         let (prev, next) = (&stages[i - 1], &stages[i]);
-        let from = Pose { position: prev.position, heading: prev.headings[chosen[i - 1]].unwrap_or(0.0) };
-        let q = Query { start: from, goal: Goal { position: next.position, heading: next.headings[chosen[i]] }, search: Search::AStar };
+        let from = Pose {
+            position: prev.position,
+            heading: prev.headings[chosen[i - 1]].unwrap_or(0.0),
+        };
+        let q = Query {
+            start: from,
+            goal: Goal {
+                position: next.position,
+                heading: next.headings[chosen[i]],
+            },
+            search: Search::AStar,
+        };
         let planned = p
             .plan(&q, budget)
-            .map_err(|error| MissionError::Unreachable { from: prev.name.clone(), to: next.name.clone(), error })?;
+            .map_err(|error| MissionError::Unreachable {
+                from: prev.name.clone(),
+                to: next.name.clone(),
+                error,
+            })?;
         // Post-processing (Niendorf et al. §V): both passes keep the route collision-free.
-        let unreachable = |error| MissionError::Unreachable { from: prev.name.clone(), to: next.name.clone(), error };
+        let unreachable = |error| MissionError::Unreachable {
+            from: prev.name.clone(),
+            to: next.name.clone(),
+            error,
+        };
         p.shortcut(budget).map_err(unreachable)?;
-        p.smooth_headings(SMOOTHING_HEADINGS, budget).map_err(unreachable)?;
+        p.smooth_headings(SMOOTHING_HEADINGS, budget)
+            .map_err(unreachable)?;
         let summary = *p.route_summary().ok_or(unreachable(PlanError::Internal))?;
         length += summary.length as f64;
         legs.push(Leg {
@@ -235,7 +318,12 @@ fn plan_mission_in_pool(bytes: &[u8], scenario: &Scenario, frame: &LocalFrame, p
             primitives: p.route().to_vec(),
         });
     }
-    Ok(Mission { legs, length, queries, work })
+    Ok(Mission {
+        legs,
+        length,
+        queries,
+        work,
+    })
 }
 
 fn add_work(total: &mut Work, w: &Work) {

@@ -7,7 +7,10 @@
 //! number of threads.
 
 use rayon::prelude::*;
-use skyroute::geometry::predicates::{conflicts_with_circle, conflicts_with_polygon, point_in_polygon, primitive_point_distance, PolygonView};
+use skyroute::geometry::predicates::{
+    conflicts_with_circle, conflicts_with_polygon, point_in_polygon, primitive_point_distance,
+    PolygonView,
+};
 use skyroute::geometry::WordSet;
 use skyroute::network::write::{EdgeSpec, ObstacleSpec};
 use skyroute::{DubinsPath, Pose, Primitive, Vec2};
@@ -102,7 +105,9 @@ fn splitmix(state: &mut u64) -> f64 {
 pub fn primitive_conflicts(prim: &Primitive, obstacle: &ObstacleSpec, clearance: f32) -> bool {
     match obstacle {
         ObstacleSpec::Polygon(points) => conflicts_with_polygon(prim, points.as_slice(), clearance),
-        ObstacleSpec::Circle { centre, radius } => conflicts_with_circle(prim, *centre, *radius, clearance),
+        ObstacleSpec::Circle { centre, radius } => {
+            conflicts_with_circle(prim, *centre, *radius, clearance)
+        }
     }
 }
 
@@ -112,10 +117,14 @@ fn point_conflicts(p: Vec2, obstacle: &ObstacleSpec, clearance: f32) -> bool {
         ObstacleSpec::Polygon(points) => {
             point_in_polygon(p, points.as_slice())
                 || (0..points.vertex_count()).any(|i| {
-                    points.as_slice().edge(i).is_some_and(|e| skyroute::geometry::predicates::point_segment_distance(p, &e) <= clearance)
+                    points.as_slice().edge(i).is_some_and(|e| {
+                        skyroute::geometry::predicates::point_segment_distance(p, &e) <= clearance
+                    })
                 })
         }
-        ObstacleSpec::Circle { centre, radius } => primitive_point_distance(&probe, *centre) <= radius + clearance,
+        ObstacleSpec::Circle { centre, radius } => {
+            primitive_point_distance(&probe, *centre) <= radius + clearance
+        }
     }
 }
 
@@ -131,12 +140,21 @@ impl<'a> ObstacleIndex<'a> {
             .map(|o| {
                 let (lo, hi) = match o {
                     ObstacleSpec::Polygon(p) => p.iter().fold(
-                        (Vec2::new(f32::INFINITY, f32::INFINITY), Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY)),
-                        |(lo, hi), q| (Vec2::new(lo.x.min(q.x), lo.y.min(q.y)), Vec2::new(hi.x.max(q.x), hi.y.max(q.y))),
+                        (
+                            Vec2::new(f32::INFINITY, f32::INFINITY),
+                            Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY),
+                        ),
+                        |(lo, hi), q| {
+                            (
+                                Vec2::new(lo.x.min(q.x), lo.y.min(q.y)),
+                                Vec2::new(hi.x.max(q.x), hi.y.max(q.y)),
+                            )
+                        },
                     ),
-                    ObstacleSpec::Circle { centre, radius } => {
-                        (Vec2::new(centre.x - radius, centre.y - radius), Vec2::new(centre.x + radius, centre.y + radius))
-                    }
+                    ObstacleSpec::Circle { centre, radius } => (
+                        Vec2::new(centre.x - radius, centre.y - radius),
+                        Vec2::new(centre.x + radius, centre.y + radius),
+                    ),
                 };
                 (o, lo, hi)
             })
@@ -147,7 +165,10 @@ impl<'a> ObstacleIndex<'a> {
     /// Obstacles whose box comes within `margin` of the box `[lo, hi]`.
     fn near(&self, lo: Vec2, hi: Vec2, margin: f32) -> impl Iterator<Item = &'a ObstacleSpec> + '_ {
         self.items.iter().filter_map(move |(o, olo, ohi)| {
-            let apart = lo.x - margin > ohi.x || hi.x + margin < olo.x || lo.y - margin > ohi.y || hi.y + margin < olo.y;
+            let apart = lo.x - margin > ohi.x
+                || hi.x + margin < olo.x
+                || lo.y - margin > ohi.y
+                || hi.y + margin < olo.y;
             (!apart).then_some(*o)
         })
     }
@@ -156,7 +177,8 @@ impl<'a> ObstacleIndex<'a> {
         match check {
             CollisionCheck::Exact => path.primitives().into_iter().flatten().all(|prim| {
                 let (lo, hi) = prim.bounding_box();
-                self.near(lo, hi, clearance).all(|o| !primitive_conflicts(&prim, o, clearance))
+                self.near(lo, hi, clearance)
+                    .all(|o| !primitive_conflicts(&prim, o, clearance))
             }),
             CollisionCheck::Discretised { arc_step_m } => {
                 // The paper's method: the path is replaced by chords between points `d` apart
@@ -168,11 +190,15 @@ impl<'a> ObstacleIndex<'a> {
                 let f = r * (1.0 - (arc_step_m / (2.0 * r)).cos());
                 let margin = clearance + f;
                 let steps = (path.length() / arc_step_m).ceil().max(1.0) as usize;
-                let point = |i: usize| path.sample(path.length() * i as f32 / steps as f32).position;
+                let point = |i: usize| {
+                    path.sample(path.length() * i as f32 / steps as f32)
+                        .position
+                };
                 (0..steps).all(|i| {
                     let chord = Primitive::Line(skyroute::Segment::new(point(i), point(i + 1)));
                     let (lo, hi) = chord.bounding_box();
-                    self.near(lo, hi, margin).all(|o| !primitive_conflicts(&chord, o, margin))
+                    self.near(lo, hi, margin)
+                        .all(|o| !primitive_conflicts(&chord, o, margin))
                 })
             }
         }
@@ -192,7 +218,13 @@ impl SampleGrid {
     fn new(points: &[Vec2], lo: Vec2, hi: Vec2, cell: f32) -> Self {
         let nx = (((hi.x - lo.x) / cell).ceil() as usize).max(1);
         let ny = (((hi.y - lo.y) / cell).ceil() as usize).max(1);
-        let mut g = Self { origin: lo, cell, nx, ny, buckets: vec![Vec::new(); nx * ny] };
+        let mut g = Self {
+            origin: lo,
+            cell,
+            nx,
+            ny,
+            buckets: vec![Vec::new(); nx * ny],
+        };
         for (i, p) in points.iter().enumerate() {
             let c = g.cell_of(*p);
             g.buckets[c.1 * nx + c.0].push(i as u32);
@@ -211,12 +243,17 @@ impl SampleGrid {
         let (cx, cy) = self.cell_of(p);
         let xs = cx.saturating_sub(1)..=(cx + 1).min(self.nx - 1);
         let ys = cy.saturating_sub(1)..=(cy + 1).min(self.ny - 1);
-        ys.flat_map(move |y| xs.clone().map(move |x| (x, y))).flat_map(move |(x, y)| self.buckets[y * self.nx + x].iter().copied())
+        ys.flat_map(move |y| xs.clone().map(move |x| (x, y)))
+            .flat_map(move |(x, y)| self.buckets[y * self.nx + x].iter().copied())
     }
 }
 
 /// Builds the roadmap. `progress` is called with (done, total) as sample rows finish.
-pub fn build_roadmap(input: &RoadmapInput, params: &RoadmapParams, progress: &(dyn Fn(usize, usize) + Sync)) -> Roadmap {
+pub fn build_roadmap(
+    input: &RoadmapInput,
+    params: &RoadmapParams,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Roadmap {
     let obstacles = ObstacleIndex::new(&input.obstacles);
     let (lo, hi) = (input.area_min, input.area_max);
     let (w, h) = ((hi.x - lo.x) as f64, (hi.y - lo.y) as f64);
@@ -225,7 +262,11 @@ pub fn build_roadmap(input: &RoadmapInput, params: &RoadmapParams, progress: &(d
     // filter then thins them to a Poisson-disc-like set.
     let candidates = ((2.0 * w * h / (spacing * spacing)).ceil() as u64).max(1);
     let mut state = params.seed;
-    let shift = [splitmix(&mut state), splitmix(&mut state), splitmix(&mut state)];
+    let shift = [
+        splitmix(&mut state),
+        splitmix(&mut state),
+        splitmix(&mut state),
+    ];
 
     let mut vertices: Vec<Pose> = input.fixed_vertices.clone();
     let mut positions: Vec<Vec2> = vertices.iter().map(|p| p.position).collect();
@@ -240,25 +281,41 @@ pub fn build_roadmap(input: &RoadmapInput, params: &RoadmapParams, progress: &(d
         let v = (radical_inverse(i, 2) + shift[1]).fract();
         let a = (radical_inverse(i, 3) + shift[2]).fract();
         let p = Vec2::new((lo.x as f64 + u * w) as f32, (lo.y as f64 + v * h) as f32);
-        if obstacles.near(p, p, params.clearance_m).any(|o| point_conflicts(p, o, params.clearance_m)) {
+        if obstacles
+            .near(p, p, params.clearance_m)
+            .any(|o| point_conflicts(p, o, params.clearance_m))
+        {
             dropped_in_obstacles += 1;
             continue;
         }
-        if spacing_grid.around(p).any(|j| positions[j as usize].distance(p) < params.sample_spacing_m) {
+        if spacing_grid
+            .around(p)
+            .any(|j| positions[j as usize].distance(p) < params.sample_spacing_m)
+        {
             dropped_by_spacing += 1;
             continue;
         }
         let c = spacing_grid.cell_of(p);
         spacing_grid.buckets[c.1 * spacing_grid.nx + c.0].push(positions.len() as u32);
         positions.push(p);
-        vertices.push(Pose { position: p, heading: (a * std::f64::consts::TAU - std::f64::consts::PI) as f32 });
+        vertices.push(Pose {
+            position: p,
+            heading: (a * std::f64::consts::TAU - std::f64::consts::PI) as f32,
+        });
     }
 
-    let words = if params.allow_ccc { WordSet::ALL } else { WordSet::CSC_ONLY };
+    let words = if params.allow_ccc {
+        WordSet::ALL
+    } else {
+        WordSet::CSC_ONLY
+    };
     let grid = SampleGrid::new(&positions, lo, hi, params.neighbour_radius_m.max(1.0));
     let done = std::sync::atomic::AtomicUsize::new(0);
     let total = vertices.len();
-    let connect = |s: usize, targets: &mut dyn Iterator<Item = u32>, examined: &mut usize| -> Vec<EdgeSpec> {
+    let connect = |s: usize,
+                   targets: &mut dyn Iterator<Item = u32>,
+                   examined: &mut usize|
+     -> Vec<EdgeSpec> {
         let mut out = Vec::new();
         for t in targets {
             let t = t as usize;
@@ -266,9 +323,19 @@ pub fn build_roadmap(input: &RoadmapInput, params: &RoadmapParams, progress: &(d
                 continue;
             }
             *examined += 1;
-            let Some(path) = DubinsPath::shortest_among(&vertices[s], &vertices[t], params.turn_radius_m, words) else { continue };
+            let Some(path) =
+                DubinsPath::shortest_among(&vertices[s], &vertices[t], params.turn_radius_m, words)
+            else {
+                continue;
+            };
             if obstacles.path_is_clear(&path, params.clearance_m, params.check) {
-                out.push(EdgeSpec { source: s as u32, target: t as u32, cost: path.length(), word: path.word, lengths: path.lengths });
+                out.push(EdgeSpec {
+                    source: s as u32,
+                    target: t as u32,
+                    cost: path.length(),
+                    word: path.word,
+                    lengths: path.lengths,
+                });
             }
         }
         out
@@ -278,15 +345,20 @@ pub fn build_roadmap(input: &RoadmapInput, params: &RoadmapParams, progress: &(d
         .map(|s| {
             let p = positions[s];
             let mut examined = 0;
-            let mut near: Vec<u32> =
-                grid.around(p).filter(|&t| positions[t as usize].distance(p) <= params.neighbour_radius_m).collect();
+            let mut near: Vec<u32> = grid
+                .around(p)
+                .filter(|&t| positions[t as usize].distance(p) <= params.neighbour_radius_m)
+                .collect();
             near.sort_unstable();
             let mut edges = connect(s, &mut near.into_iter(), &mut examined);
             let mut fallback = false;
             if edges.is_empty() && params.k_nearest_fallback > 0 {
                 let mut order: Vec<u32> = (0..total as u32).filter(|&t| t as usize != s).collect();
                 order.sort_by(|&a, &b| {
-                    positions[a as usize].distance(p).total_cmp(&positions[b as usize].distance(p)).then(a.cmp(&b))
+                    positions[a as usize]
+                        .distance(p)
+                        .total_cmp(&positions[b as usize].distance(p))
+                        .then(a.cmp(&b))
                 });
                 order.truncate(params.k_nearest_fallback);
                 edges = connect(s, &mut order.into_iter(), &mut examined);

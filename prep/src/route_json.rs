@@ -10,7 +10,9 @@ use skyroute::{Primitive, Turn};
 /// metres and radians in the local frame.
 pub fn primitive_json(p: &Primitive) -> Value {
     match p {
-        Primitive::Line(s) => json!({"type": "line", "start": [s.start.x, s.start.y], "end": [s.end.x, s.end.y]}),
+        Primitive::Line(s) => {
+            json!({"type": "line", "start": [s.start.x, s.start.y], "end": [s.end.x, s.end.y]})
+        }
         Primitive::Arc(a) => json!({
             "type": "arc",
             "centre": [a.centre.x, a.centre.y],
@@ -51,7 +53,11 @@ pub fn sampled_lon_lat(primitives: &[Primitive], frame: &LocalFrame, step: f32) 
 
 /// The route file written by `skyroute plan`.
 pub fn mission_json(m: &Mission, frame: &LocalFrame, scenario_name: &str) -> Value {
-    let all: Vec<Primitive> = m.legs.iter().flat_map(|l| l.primitives.iter().copied()).collect();
+    let all: Vec<Primitive> = m
+        .legs
+        .iter()
+        .flat_map(|l| l.primitives.iter().copied())
+        .collect();
     let (lat0, lon0) = frame.origin();
     json!({
         "scenario": scenario_name,

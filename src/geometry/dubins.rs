@@ -166,8 +166,8 @@ impl DubinsPath {
         // for nearly coincident poses made the tangent direction, and so a loop, a coin toss
         // (a goal 0.3 mm straight ahead at r = 115 m got LSL/RSR loops of 2πr). With equal
         // headings the normals now cancel exactly and v is the goal offset itself.
-        let v = g.position
-            + (g.direction().perp() * k3.sign() - s.direction().perp() * k1.sign()) * r;
+        let v =
+            g.position + (g.direction().perp() * k3.sign() - s.direction().perp() * k1.sign()) * r;
         let d = v.norm();
         let angles = match middle {
             None => csc_angles(&s, &g, k1, k3, v, d, r)?,

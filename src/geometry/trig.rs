@@ -10,8 +10,8 @@
 
 /// π/2 split as C1 + C2 + C3, C1 and C2 with trailing zero bits (Cephes DP1..DP3 ×2).
 const C1: f32 = 1.570_312_5;
-const C2: f32 = 4.837_512_969_970_703e-4;
-const C3: f32 = 7.549_789_954_891_882e-8;
+const C2: f32 = 4.837_513e-4;
+const C3: f32 = 7.549_79e-8;
 const TWO_OVER_PI: f32 = core::f32::consts::FRAC_2_PI;
 const LIMIT: f32 = 8192.0;
 

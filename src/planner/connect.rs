@@ -141,7 +141,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
         self.start_links.clear();
-        let candidates = self.nearest_vertices(start.position, self.config().start_links(), meter)?;
+        let candidates =
+            self.nearest_vertices(start.position, self.config().start_links(), meter)?;
         for &(_, v) in &candidates {
             let Some(target) = self.network.vertex(v) else {
                 return Err(PlanError::Internal);

@@ -172,7 +172,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Removes pop-up `id` and re-enables the edges only it blocked. Work: |E| mask updates.
     pub fn remove_popup(&mut self, id: u8) -> Result<(), PopupError> {
-        let at = self.popups.iter().position(|(used, _)| *used == id).ok_or(PopupError::UnknownId { id })?;
+        let at = self
+            .popups
+            .iter()
+            .position(|(used, _)| *used == id)
+            .ok_or(PopupError::UnknownId { id })?;
         self.popups.swap_remove(at);
         let keep = !(1u16 << id);
         for m in self.blocked_by.iter_mut() {

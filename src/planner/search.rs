@@ -38,12 +38,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
         self.connect_start(&query.start, &mut meter)?;
         self.connect_goal(&query.goal, &mut meter)?;
-        let direct =
-            if query.start.position.distance(query.goal.position) <= self.config().connect_radius_m {
-                self.best_clear_path_to_goal(&query.start, &query.goal, &mut meter)?
-            } else {
-                None
-            };
+        let direct = if query.start.position.distance(query.goal.position)
+            <= self.config().connect_radius_m
+        {
+            self.best_clear_path_to_goal(&query.start, &query.goal, &mut meter)?
+        } else {
+            None
+        };
         if self.start_links.is_empty() && direct.is_none() {
             return Err(PlanError::StartUnconnected);
         }
@@ -173,7 +174,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Replaces the route with the one `arrival` describes, if it fits in `R` paths and `R`
     /// primitives.
-    fn write_route(&mut self, arrival: Arrival, meter: &mut Meter) -> Result<RouteSummary, PlanError> {
+    fn write_route(
+        &mut self,
+        arrival: Arrival,
+        meter: &mut Meter,
+    ) -> Result<RouteSummary, PlanError> {
         let count = |p: &DubinsPath| p.primitives().iter().flatten().count() as u32;
         let (needed, paths, network_edges) = match arrival {
             Arrival::Direct(p) => (count(&p), 1, 0),
@@ -188,7 +193,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
         };
         if needed as usize > R || paths as usize > R {
-            return Err(PlanError::RouteTooLong { primitives: needed.max(paths), capacity: R as u32 });
+            return Err(PlanError::RouteTooLong {
+                primitives: needed.max(paths),
+                capacity: R as u32,
+            });
         }
         // Charge the second walk (identical to the first) before it starts, so that the budget
         // is settled before the old route is touched.

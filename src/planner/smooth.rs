@@ -47,7 +47,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let mut i = 1;
         let mut result = Ok(());
         while i < self.paths.len() {
-            let (Some(a), Some(b)) = (self.paths.get(i - 1).copied(), self.paths.get(i).copied()) else { break };
+            let (Some(a), Some(b)) = (self.paths.get(i - 1).copied(), self.paths.get(i).copied())
+            else {
+                break;
+            };
             let target = b.end();
             match self.solve_clear(&a.start, &target, &mut meter) {
                 Some(joined)
@@ -77,7 +80,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     ///
     /// Work: at most (paths − 1) · candidates · 2 Dubins solves and clearance checks. If the
     /// budget runs out, the route keeps the changes made so far (each leaves it valid).
-    pub fn smooth_headings(&mut self, candidates: u16, budget: u64) -> Result<SmoothSummary, PlanError> {
+    pub fn smooth_headings(
+        &mut self,
+        candidates: u16,
+        budget: u64,
+    ) -> Result<SmoothSummary, PlanError> {
         let mut meter = Meter::new(budget);
         let length_before = self.route_length();
         let mut changes = 0;
@@ -85,18 +92,32 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let mut count = self.route.len();
         let n = candidates.max(1) as usize;
         'junctions: for i in 1..self.paths.len() {
-            let (Some(a), Some(b)) = (self.paths.get(i - 1).copied(), self.paths.get(i).copied()) else { break };
+            let (Some(a), Some(b)) = (self.paths.get(i - 1).copied(), self.paths.get(i).copied())
+            else {
+                break;
+            };
             let junction = b.start;
             let mut best = (a.length() + b.length(), a, b);
             for k in 0..n {
                 // Offsets −90° … +90°, evenly spaced; 0 (the current heading) is already `best`.
-                let offset = if n == 1 { 0.0 } else { -PI / 2.0 + PI * k as f32 / (n - 1) as f32 };
-                let pose = Pose { position: junction.position, heading: wrap_to_pi(junction.heading + offset) };
-                let Some(first) = self.solve_clear(&a.start, &pose, &mut meter) else { continue };
+                let offset = if n == 1 {
+                    0.0
+                } else {
+                    -PI / 2.0 + PI * k as f32 / (n - 1) as f32
+                };
+                let pose = Pose {
+                    position: junction.position,
+                    heading: wrap_to_pi(junction.heading + offset),
+                };
+                let Some(first) = self.solve_clear(&a.start, &pose, &mut meter) else {
+                    continue;
+                };
                 if first.length() >= best.0 {
                     continue;
                 }
-                let Some(second) = self.solve_clear(&pose, &b.end(), &mut meter) else { continue };
+                let Some(second) = self.solve_clear(&pose, &b.end(), &mut meter) else {
+                    continue;
+                };
                 if first.length() + second.length() < best.0 {
                     best = (first.length() + second.length(), first, second);
                 }
@@ -120,14 +141,25 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.finish(length_before, changes, meter, result)
     }
 
-    fn finish(&mut self, length_before: f32, changes: u32, meter: Meter, result: Result<(), PlanError>) -> Result<SmoothSummary, PlanError> {
+    fn finish(
+        &mut self,
+        length_before: f32,
+        changes: u32,
+        meter: Meter,
+        result: Result<(), PlanError>,
+    ) -> Result<SmoothSummary, PlanError> {
         self.flatten_route();
         let length_after = self.route_length();
         if let Some(s) = self.summary.as_mut() {
             s.length = length_after;
             s.primitives = self.route.len() as u32;
         }
-        result.map(|()| SmoothSummary { length_before, length_after, changes, work: meter.work })
+        result.map(|()| SmoothSummary {
+            length_before,
+            length_after,
+            changes,
+            work: meter.work,
+        })
     }
 }
 

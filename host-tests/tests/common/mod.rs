@@ -31,7 +31,12 @@ impl Rng {
 
 /// An axis-aligned rectangle as a polygon.
 pub fn rect(x0: f32, y0: f32, x1: f32, y1: f32) -> Vec<Vec2> {
-    vec![Vec2::new(x0, y0), Vec2::new(x1, y0), Vec2::new(x1, y1), Vec2::new(x0, y1)]
+    vec![
+        Vec2::new(x0, y0),
+        Vec2::new(x1, y0),
+        Vec2::new(x1, y1),
+        Vec2::new(x0, y1),
+    ]
 }
 
 /// A test world: a square area with rectangular and circular obstacles.
@@ -47,12 +52,23 @@ pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize
     let mut rng = Rng(seed);
     let mut obstacles = Vec::new();
     for i in 0..n_obstacles {
-        let (x, y) = (rng.range(0.1 * size, 0.9 * size), rng.range(0.1 * size, 0.9 * size));
+        let (x, y) = (
+            rng.range(0.1 * size, 0.9 * size),
+            rng.range(0.1 * size, 0.9 * size),
+        );
         let s = rng.range(0.02 * size, 0.06 * size);
         if i % 3 == 2 {
-            obstacles.push(ObstacleSpec::Circle { centre: Vec2::new(x, y), radius: s });
+            obstacles.push(ObstacleSpec::Circle {
+                centre: Vec2::new(x, y),
+                radius: s,
+            });
         } else {
-            obstacles.push(ObstacleSpec::Polygon(rect(x - s, y - s * 0.7, x + s, y + s * 0.7)));
+            obstacles.push(ObstacleSpec::Polygon(rect(
+                x - s,
+                y - s * 0.7,
+                x + s,
+                y + s * 0.7,
+            )));
         }
     }
     let input = RoadmapInput {
@@ -83,7 +99,12 @@ pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize
         grid_cell_m: 2.0 * radius,
     };
     let bytes = encode(&spec).expect("test network encodes");
-    World { size, obstacles, spec, bytes }
+    World {
+        size,
+        obstacles,
+        spec,
+        bytes,
+    }
 }
 
 /// A random pose in the world, outside every obstacle by `margin`.
@@ -101,7 +122,10 @@ pub fn free_pose(rng: &mut Rng, w: &World, margin: f32) -> Pose {
             ObstacleSpec::Circle { centre, radius } => p.distance(*centre) > radius + margin,
         });
         if clear {
-            return Pose { position: p, heading: rng.range(-3.14159, 3.14159) };
+            return Pose {
+                position: p,
+                heading: rng.range(-std::f32::consts::PI, std::f32::consts::PI),
+            };
         }
     }
 }
