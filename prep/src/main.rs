@@ -5,7 +5,8 @@ use skyroute_prep::build::local;
 use skyroute_prep::build::{build, BuildOptions};
 use skyroute_prep::mission::{plan_mission, LocalPopup};
 use skyroute_prep::scenario;
-use std::path::PathBuf;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -19,6 +20,12 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Build, plan and render the embedded niendorf-urban scenario into a folder.
+    Demo {
+        /// Folder for the scenario, network, route and picture.
+        #[arg(short, long, default_value = "skyroute-demo")]
+        output: PathBuf,
+    },
     /// Build a scenario's network and write it as a network image.
     Build {
         /// The scenario (GeoJSON).
@@ -135,7 +142,119 @@ fn parse_area(s: &str) -> Result<(f64, f64, f64, f64), String> {
     }
 }
 
-fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
+type CliResult = Result<(), Box<dyn std::error::Error>>;
+
+/// `skyroute build`.
+fn build_command(path: &Path, output: &Path, options: &BuildOptions) -> CliResult {
+    let t0 = Instant::now();
+    let s = scenario::load(path)?;
+    let bar = ProgressBar::new(0).with_style(
+        ProgressStyle::with_template("{msg} {bar:40} {pos}/{len} samples ({eta} left)")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar.set_message("connecting");
+    let progress = |done: usize, total: usize| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    };
+    let built = build(&s, options, &progress)?;
+    bar.finish_and_clear();
+    std::fs::write(output, &built.bytes).map_err(|e| format!("{}: {e}", output.display()))?;
+    let r = &built.roadmap;
+    println!(
+        "built {}: {} vertices, {} edges ({} examined, {} check), {} bytes, {:.2} s -> {}",
+        path.display(),
+        r.vertices.len(),
+        r.edges.len(),
+        r.edges_examined,
+        if options.discretised { "discretised" } else { "exact" },
+        built.bytes.len(),
+        t0.elapsed().as_secs_f64(),
+        output.display()
+    );
+    Ok(())
+}
+
+/// `skyroute plan`.
+fn plan_command(
+    network: &Path,
+    scenario_path: &Path,
+    popup: &[(f64, f64, f64)],
+    weather: Option<&str>,
+    output: &Path,
+) -> CliResult {
+    let t0 = Instant::now();
+    let bytes = std::fs::read(network).map_err(|e| format!("{}: {e}", network.display()))?;
+    let net = skyroute::Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", network.display()))?;
+    if let Some(w) = weather {
+        return Err(format!("--weather {w}: {} is a roadmap network, which has no weather", network.display()).into());
+    }
+    let s = scenario::load(scenario_path)?;
+    let (lat0, lon0) = net.origin_deg();
+    let frame = skyroute_prep::frame::LocalFrame::new(lat0, lon0);
+    let popups: Vec<LocalPopup> = popup
+        .iter()
+        .enumerate()
+        .map(|(i, &(lon, lat, r))| LocalPopup {
+            name: format!("--popup #{}", i + 1),
+            centre: local(&frame, lon, lat),
+            radius: r as f32,
+        })
+        .collect();
+    let m = plan_mission(&bytes, &s, &frame, &popups).map_err(|e| format!("{}: {e}", scenario_path.display()))?;
+    let json = skyroute_prep::route_json::mission_json(&m, &frame, &s.name);
+    std::fs::write(output, serde_json::to_string_pretty(&json)?).map_err(|e| format!("{}: {e}", output.display()))?;
+    for l in &m.legs {
+        println!(
+            "  {} -> {}: {:.1} m ({:.1} m before post-processing), {} network edges, work {}",
+            l.from,
+            l.to,
+            l.summary.length,
+            l.planned_length,
+            l.summary.network_edges,
+            l.summary.work.total()
+        );
+    }
+    println!(
+        "planned {}: {:.1} m over {} legs ({} core queries to choose headings), {:.2} s -> {}",
+        s.name,
+        m.length,
+        m.legs.len(),
+        m.queries,
+        t0.elapsed().as_secs_f64(),
+        output.display()
+    );
+    Ok(())
+}
+
+/// The scenario `skyroute demo` runs, built into the binary.
+const DEMO_SCENARIO: &str = include_str!("../../scenarios/niendorf-urban.geojson");
+
+/// `skyroute demo`: build, plan and render the embedded niendorf-urban scenario.
+fn demo_command(dir: &Path) -> CliResult {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let scenario_path = dir.join("niendorf-urban.geojson");
+    std::fs::write(&scenario_path, DEMO_SCENARIO).map_err(|e| format!("{}: {e}", scenario_path.display()))?;
+    let (network, route, picture) = (dir.join("niendorf-urban.bin"), dir.join("route.json"), dir.join("niendorf-urban.png"));
+    build_command(&scenario_path, &network, &BuildOptions::default())?;
+    plan_command(&network, &scenario_path, &[], None, &route)?;
+    let request = skyroute_prep::render::RenderRequest {
+        network,
+        route: Some(route),
+        scenario: Some(scenario_path),
+        popups: Vec::new(),
+        output: picture.clone(),
+        png: None,
+        map_width_px: 1200.0,
+        no_edges: false,
+        area: None,
+    };
+    skyroute_prep::render::render(&request)?;
+    println!("demo: open {} to see the network and the planned route", picture.display());
+    Ok(())
+}
+
+fn run(cli: Cli) -> CliResult {
     match cli.command {
         Command::Build {
             scenario: path,
@@ -145,38 +264,13 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             discretised,
             grid_cell,
         } => {
-            let t0 = Instant::now();
-            let s = scenario::load(&path)?;
             let options = BuildOptions {
                 sample_spacing_m: sample_spacing,
                 neighbour_radius_m: neighbour_radius,
                 discretised,
                 grid_cell_m: grid_cell,
             };
-            let progress = |done: usize, total: usize| {
-                if total >= 1024 {
-                    eprint!("\rconnecting samples: {done}/{total}");
-                    if done == total {
-                        eprintln!();
-                    }
-                }
-            };
-            let built = build(&s, &options, &progress)?;
-            std::fs::write(&output, &built.bytes)
-                .map_err(|e| format!("{}: {e}", output.display()))?;
-            let r = &built.roadmap;
-            println!(
-                "built {}: {} vertices, {} edges ({} examined, {} check), {} bytes, {:.2} s -> {}",
-                path.display(),
-                r.vertices.len(),
-                r.edges.len(),
-                r.edges_examined,
-                if discretised { "discretised" } else { "exact" },
-                built.bytes.len(),
-                t0.elapsed().as_secs_f64(),
-                output.display()
-            );
-            Ok(())
+            build_command(&path, &output, &options)
         }
         Command::Plan {
             network,
@@ -184,58 +278,8 @@ fn run(cli: Cli) -> Result<(), Box<dyn std::error::Error>> {
             popup,
             weather,
             output,
-        } => {
-            let t0 = Instant::now();
-            let bytes =
-                std::fs::read(&network).map_err(|e| format!("{}: {e}", network.display()))?;
-            let net = skyroute::Network::from_bytes(&bytes)
-                .map_err(|e| format!("{}: {e}", network.display()))?;
-            if let Some(w) = weather {
-                return Err(format!(
-                    "--weather {w}: {} is a roadmap network, which has no weather",
-                    network.display()
-                )
-                .into());
-            }
-            let s = scenario::load(&scenario_path)?;
-            let (lat0, lon0) = net.origin_deg();
-            let frame = skyroute_prep::frame::LocalFrame::new(lat0, lon0);
-            let popups: Vec<LocalPopup> = popup
-                .iter()
-                .enumerate()
-                .map(|(i, &(lon, lat, r))| LocalPopup {
-                    name: format!("--popup #{}", i + 1),
-                    centre: local(&frame, lon, lat),
-                    radius: r as f32,
-                })
-                .collect();
-            let m = plan_mission(&bytes, &s, &frame, &popups)
-                .map_err(|e| format!("{}: {e}", scenario_path.display()))?;
-            let json = skyroute_prep::route_json::mission_json(&m, &frame, &s.name);
-            std::fs::write(&output, serde_json::to_string_pretty(&json)?)
-                .map_err(|e| format!("{}: {e}", output.display()))?;
-            for l in &m.legs {
-                println!(
-                    "  {} -> {}: {:.1} m ({:.1} m before post-processing), {} network edges, work {}",
-                    l.from,
-                    l.to,
-                    l.summary.length,
-                    l.planned_length,
-                    l.summary.network_edges,
-                    l.summary.work.total()
-                );
-            }
-            println!(
-                "planned {}: {:.1} m over {} legs ({} core queries to choose headings), {:.2} s -> {}",
-                s.name,
-                m.length,
-                m.legs.len(),
-                m.queries,
-                t0.elapsed().as_secs_f64(),
-                output.display()
-            );
-            Ok(())
-        }
+        } => plan_command(&network, &scenario_path, &popup, weather.as_deref(), &output),
+        Command::Demo { output } => demo_command(&output),
         Command::Export {
             network,
             output,
