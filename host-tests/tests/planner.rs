@@ -34,13 +34,15 @@ fn bellman_ford(p: &TestPlanner<'_>, w: &World, q: &Query) -> Option<f32> {
                     .all(|(_, pop)| !pop.conflicts(&prim, net.clearance()).0)
         })
     };
-    let nearest = |at: Vec2, k: usize| {
+    // The planner tries the MAX_CANDIDATES nearest vertices in order and keeps the first K
+    // that a clear path connects.
+    let nearest = |at: Vec2| {
         let mut c: Vec<(f32, u32)> = (0..n as u32)
             .map(|v| (net.vertex(v).unwrap().position.distance(at), v))
             .filter(|(d, _)| *d <= cfg.connect_radius_m)
             .collect();
         c.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        c.truncate(k);
+        c.truncate(skyroute::planner::MAX_CANDIDATES);
         c
     };
     let headings: Vec<f32> = match q.goal.heading {
@@ -67,11 +69,16 @@ fn bellman_ford(p: &TestPlanner<'_>, w: &World, q: &Query) -> Option<f32> {
             .fold(None, |m: Option<f32>, l| Some(m.map_or(l, |m| m.min(l))))
     };
     let mut dist = vec![f64::INFINITY; n];
-    for (_, v) in nearest(q.start.position, cfg.start_candidates as usize) {
+    let mut kept = 0;
+    for (_, v) in nearest(q.start.position) {
+        if kept == cfg.start_candidates {
+            break;
+        }
         if let Some(path) =
             DubinsPath::shortest(&q.start, &net.vertex(v).unwrap(), r).filter(|p| clear(p))
         {
             dist[v as usize] = dist[v as usize].min(path.length() as f64);
+            kept += 1;
         }
     }
     for _ in 0..n {
@@ -97,11 +104,14 @@ fn bellman_ford(p: &TestPlanner<'_>, w: &World, q: &Query) -> Option<f32> {
             best = best.min(l as f64);
         }
     }
-    for (_, v) in nearest(q.goal.position, cfg.goal_candidates as usize) {
-        if dist[v as usize].is_finite() {
-            if let Some(l) = to_goal(&net.vertex(v).unwrap()) {
-                best = best.min(dist[v as usize] + l as f64);
-            }
+    let mut kept = 0;
+    for (_, v) in nearest(q.goal.position) {
+        if kept == cfg.goal_candidates {
+            break;
+        }
+        if let Some(l) = to_goal(&net.vertex(v).unwrap()) {
+            kept += 1;
+            best = best.min(dist[v as usize] + l as f64);
         }
     }
     best.is_finite().then_some(best as f32)

@@ -1,11 +1,11 @@
 //! `skyroute`: the ground tool's command line.
 
 use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
 use skyroute_prep::build::local;
 use skyroute_prep::build::{build, BuildOptions};
 use skyroute_prep::mission::{plan_mission, LocalPopup};
 use skyroute_prep::scenario;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -167,7 +167,11 @@ fn build_command(path: &Path, output: &Path, options: &BuildOptions) -> CliResul
         r.vertices.len(),
         r.edges.len(),
         r.edges_examined,
-        if options.discretised { "discretised" } else { "exact" },
+        if options.discretised {
+            "discretised"
+        } else {
+            "exact"
+        },
         built.bytes.len(),
         t0.elapsed().as_secs_f64(),
         output.display()
@@ -185,9 +189,14 @@ fn plan_command(
 ) -> CliResult {
     let t0 = Instant::now();
     let bytes = std::fs::read(network).map_err(|e| format!("{}: {e}", network.display()))?;
-    let net = skyroute::Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", network.display()))?;
+    let net =
+        skyroute::Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", network.display()))?;
     if let Some(w) = weather {
-        return Err(format!("--weather {w}: {} is a roadmap network, which has no weather", network.display()).into());
+        return Err(format!(
+            "--weather {w}: {} is a roadmap network, which has no weather",
+            network.display()
+        )
+        .into());
     }
     let s = scenario::load(scenario_path)?;
     let (lat0, lon0) = net.origin_deg();
@@ -201,9 +210,11 @@ fn plan_command(
             radius: r as f32,
         })
         .collect();
-    let m = plan_mission(&bytes, &s, &frame, &popups).map_err(|e| format!("{}: {e}", scenario_path.display()))?;
+    let m = plan_mission(&bytes, &s, &frame, &popups)
+        .map_err(|e| format!("{}: {e}", scenario_path.display()))?;
     let json = skyroute_prep::route_json::mission_json(&m, &frame, &s.name);
-    std::fs::write(output, serde_json::to_string_pretty(&json)?).map_err(|e| format!("{}: {e}", output.display()))?;
+    std::fs::write(output, serde_json::to_string_pretty(&json)?)
+        .map_err(|e| format!("{}: {e}", output.display()))?;
     for l in &m.legs {
         println!(
             "  {} -> {}: {:.1} m ({:.1} m before post-processing), {} network edges, work {}",
@@ -234,8 +245,13 @@ const DEMO_SCENARIO: &str = include_str!("../../scenarios/niendorf-urban.geojson
 fn demo_command(dir: &Path) -> CliResult {
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let scenario_path = dir.join("niendorf-urban.geojson");
-    std::fs::write(&scenario_path, DEMO_SCENARIO).map_err(|e| format!("{}: {e}", scenario_path.display()))?;
-    let (network, route, picture) = (dir.join("niendorf-urban.bin"), dir.join("route.json"), dir.join("niendorf-urban.png"));
+    std::fs::write(&scenario_path, DEMO_SCENARIO)
+        .map_err(|e| format!("{}: {e}", scenario_path.display()))?;
+    let (network, route, picture) = (
+        dir.join("niendorf-urban.bin"),
+        dir.join("route.json"),
+        dir.join("niendorf-urban.png"),
+    );
     build_command(&scenario_path, &network, &BuildOptions::default())?;
     plan_command(&network, &scenario_path, &[], None, &route)?;
     let request = skyroute_prep::render::RenderRequest {
@@ -250,7 +266,10 @@ fn demo_command(dir: &Path) -> CliResult {
         area: None,
     };
     skyroute_prep::render::render(&request)?;
-    println!("demo: open {} to see the network and the planned route", picture.display());
+    println!(
+        "demo: open {} to see the network and the planned route",
+        picture.display()
+    );
     Ok(())
 }
 
@@ -278,7 +297,13 @@ fn run(cli: Cli) -> CliResult {
             popup,
             weather,
             output,
-        } => plan_command(&network, &scenario_path, &popup, weather.as_deref(), &output),
+        } => plan_command(
+            &network,
+            &scenario_path,
+            &popup,
+            weather.as_deref(),
+            &output,
+        ),
         Command::Demo { output } => demo_command(&output),
         Command::Export {
             network,

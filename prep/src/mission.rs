@@ -64,7 +64,8 @@ pub enum MissionError {
     Load(skyroute::LoadError),
     /// A pop-up could not be added.
     Popup(String, skyroute::PopupError),
-    /// No copy of this waypoint (or the start) has a collision-free way on to the next stage.
+    /// This waypoint can be reached, but none of the headings it can be reached with has a
+    /// collision-free way on to the next stage.
     InevitableCollision(String),
     /// The stage named cannot be reached from the previous one.
     Unreachable {
@@ -81,7 +82,7 @@ impl fmt::Display for MissionError {
             MissionError::Load(e) => write!(f, "the network does not load: {e}"),
             MissionError::Popup(name, e) => write!(f, "pop-up {name}: {e}"),
             MissionError::InevitableCollision(name) => {
-                write!(f, "{name} is an inevitable-collision state: no heading has a collision-free way out")
+                write!(f, "{name} is an inevitable-collision state: no heading it can be reached with has a collision-free way out")
             }
             MissionError::Unreachable { from, to, error } => {
                 write!(f, "no route from {from} to {to}: {error}")
@@ -243,7 +244,9 @@ fn plan_mission_in_pool(
             }
         }
         if !way_out.iter().any(|w| *w) {
-            if i >= 2 && prev.headings.len() > 1 {
+            if i >= 2 {
+                // `prev` is a waypoint that was reached, but from no pose it was reached in is
+                // there a collision-free way on.
                 return Err(MissionError::InevitableCollision(prev.name.clone()));
             }
             return Err(MissionError::Unreachable {

@@ -261,7 +261,8 @@ pub struct Arc {
 impl Arc {
     /// The turn direction this arc flies.
     pub fn turn(&self) -> Turn {
-        if self.sweep >= 0.0 {
+        // By sign bit, so that a zero-length right arc (sweep −0.0) still turns right.
+        if !self.sweep.is_sign_negative() {
             Turn::Left
         } else {
             Turn::Right
@@ -304,7 +305,7 @@ impl Arc {
     /// Whether polar angle `a` lies within the swept range (inclusive).
     pub fn contains_angle(&self, a: f32) -> bool {
         // Offset from the start, measured in the direction of the sweep, in [0, 2π).
-        let offset = if self.sweep >= 0.0 {
+        let offset = if !self.sweep.is_sign_negative() {
             wrap_to_tau(a - self.start_angle)
         } else {
             wrap_to_tau(self.start_angle - a)

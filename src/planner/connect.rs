@@ -1,6 +1,6 @@
 //! Connecting the start and the goal to the network with collision-checked Dubins paths.
 
-use super::{Goal, Link, Meter, PlanError, Planner, QueryField, MAX_LINKS};
+use super::{Goal, Link, Meter, PlanError, Planner, QueryField, MAX_CANDIDATES};
 use crate::geometry::predicates::{
     conflicts_with_circle, conflicts_with_polygon, point_in_polygon,
 };
@@ -10,7 +10,7 @@ use core::f32::consts::TAU;
 use heapless::Vec;
 
 /// The nearest vertices to a point, nearest first.
-type Candidates = Vec<(f32, u32), MAX_LINKS>;
+type Candidates = Vec<(f32, u32), MAX_CANDIDATES>;
 
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
     /// Rejects a start or goal that lies inside a static obstacle or an active pop-up.
@@ -45,13 +45,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Ok(())
     }
 
-    /// The `k` vertices nearest to `p` within the connect radius. Work: |V| vertex scans.
-    fn nearest_vertices(
-        &self,
-        p: Vec2,
-        k: usize,
-        meter: &mut Meter,
-    ) -> Result<Candidates, PlanError> {
+    /// The [`MAX_CANDIDATES`] vertices nearest to `p` within the connect radius, nearest first.
+    /// Work: |V| vertex scans (each with an insertion into the sorted list of ≤ 32).
+    fn nearest_vertices(&self, p: Vec2, meter: &mut Meter) -> Result<Candidates, PlanError> {
+        let k = MAX_CANDIDATES;
         let mut best = Candidates::new();
         let radius = self.config().connect_radius_m;
         for v in 0..self.network.vertex_count() {
@@ -134,16 +131,21 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// Fills the start links: collision-free Dubins paths from the start to its nearest vertices.
+    /// Fills the start links: collision-free Dubins paths from the start to the nearest vertices
+    /// they reach, trying the [`MAX_CANDIDATES`] nearest in order until
+    /// [`PlannerConfig::start_candidates`](super::PlannerConfig) succeed.
     pub(super) fn connect_start(
         &mut self,
         start: &Pose,
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
         self.start_links.clear();
-        let candidates =
-            self.nearest_vertices(start.position, self.config().start_links(), meter)?;
+        let candidates = self.nearest_vertices(start.position, meter)?;
+        let wanted = self.config().start_links();
         for &(_, v) in &candidates {
+            if self.start_links.len() >= wanted {
+                break;
+            }
             let Some(target) = self.network.vertex(v) else {
                 return Err(PlanError::Internal);
             };
@@ -160,12 +162,17 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Ok(())
     }
 
-    /// Fills the goal links: for each vertex near the goal, the shortest collision-free Dubins
-    /// path to the goal over the goal headings tried.
+    /// Fills the goal links: for the vertices nearest the goal, the shortest collision-free
+    /// Dubins path to the goal over the goal headings tried; the [`MAX_CANDIDATES`] nearest are
+    /// tried in order until [`PlannerConfig::goal_candidates`](super::PlannerConfig) succeed.
     pub(super) fn connect_goal(&mut self, goal: &Goal, meter: &mut Meter) -> Result<(), PlanError> {
         self.goal_links.clear();
-        let candidates = self.nearest_vertices(goal.position, self.config().goal_links(), meter)?;
+        let candidates = self.nearest_vertices(goal.position, meter)?;
+        let wanted = self.config().goal_links();
         for &(_, v) in &candidates {
+            if self.goal_links.len() >= wanted {
+                break;
+            }
             let Some(from) = self.network.vertex(v) else {
                 return Err(PlanError::Internal);
             };

@@ -24,16 +24,22 @@ use crate::network::{LoadError, Network};
 use heap::IndexedHeap;
 use heapless::Vec;
 
-/// The most start (and the most goal) candidates a query connects.
+/// The most start (and the most goal) links a query keeps.
 pub const MAX_LINKS: usize = 16;
+
+/// The most vertices a query tries to connect the start (and the goal) to, nearest first, to
+/// find its links: enough to get past nearby vertices whose heading or surroundings admit no
+/// collision-free connection.
+pub const MAX_CANDIDATES: usize = 32;
 
 /// How a query connects to the network.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct PlannerConfig {
-    /// Nearest vertices the start is connected to (at most [`MAX_LINKS`]).
+    /// Links from the start wanted (at most [`MAX_LINKS`]): the nearest vertices a
+    /// collision-free Dubins path reaches, among the [`MAX_CANDIDATES`] nearest.
     pub start_candidates: u8,
-    /// Nearest vertices connected to the goal (at most [`MAX_LINKS`]).
+    /// Links to the goal wanted (at most [`MAX_LINKS`]), chosen as for the start.
     pub goal_candidates: u8,
     /// Only vertices within this distance are candidates, metres.
     pub connect_radius_m: f32,
@@ -255,6 +261,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             obstacle_points: header.obstacle_point_count as u64,
             popups: P as u64,
             popup_vertices: MAX_POPUP_VERTICES as u64,
+            candidates: MAX_CANDIDATES as u64,
             start_links: self.config().start_links() as u64,
             goal_links: self.config().goal_links() as u64,
             goal_headings: if goal_has_heading {

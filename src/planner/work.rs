@@ -59,9 +59,11 @@ pub struct WorkBoundInputs {
     pub popups: u64,
     /// Most vertices (polygon) a pop-up has.
     pub popup_vertices: u64,
-    /// Start candidates, Ks.
+    /// Vertices tried per endpoint, C ([`MAX_CANDIDATES`](super::MAX_CANDIDATES)).
+    pub candidates: u64,
+    /// Start links kept, Ks.
     pub start_links: u64,
-    /// Goal candidates, Kg.
+    /// Goal links kept, Kg.
     pub goal_links: u64,
     /// Goal headings tried, H (1 with a fixed goal heading, 36 without).
     pub goal_headings: u64,
@@ -71,17 +73,17 @@ pub struct WorkBoundInputs {
 ///
 /// * free-space checks of start and goal: 2(O + P) collision tests;
 /// * candidate search: 2|V| vertex scans (start and goal);
-/// * connections: C = Ks + Kg·H + H Dubins solves (start links, goal links over each heading,
-///   direct start–goal over each heading), each of ≤ 3 primitives, each tested against every
-///   obstacle's box (O), every polygon edge and containment (points + O), and every pop-up
-///   (P·(popup_vertices + 1)): 3·C·(2O + points + P·(popup_vertices + 1)) collision tests;
+/// * connections: N = C + C·H + H Dubins solves (start candidates, goal candidates over each
+///   heading, direct start–goal over each heading), each of ≤ 3 primitives, each tested against
+///   every obstacle's box (O), every polygon edge and containment (points + O), and every pop-up
+///   (P·(popup_vertices + 1)): 3·N·(2O + points + P·(popup_vertices + 1)) collision tests;
 /// * search: |V| heap resets; ≤ |V| pops and ≤ Ks + |E| pushes or decreases of ≤ L = ⌊log2|V|⌋+1
 ///   levels each; ≤ |E| out-edge and ≤ |V|·Kg goal-link relaxations;
 /// * route: ≤ 2(|V| + 1) vertex scans for the two walks back from the goal.
 pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
     let v = n.vertices;
     let levels = heap_levels(v);
-    let connections = n.start_links + n.goal_links * n.goal_headings + n.goal_headings;
+    let connections = n.candidates + n.candidates * n.goal_headings + n.goal_headings;
     let per_primitive = 2 * n.obstacles + n.obstacle_points + n.popups * (n.popup_vertices + 1);
     let candidates = 2 * v;
     let connecting = connections + 3 * connections * per_primitive;
