@@ -129,9 +129,18 @@ fn point_conflicts(p: Vec2, obstacle: &ObstacleSpec, clearance: f32) -> bool {
 }
 
 /// Obstacles with their bounding boxes, for a cheap first test.
+/// A spatial index of the obstacles: their bounding boxes bucketed on a uniform grid, so a
+/// query visits only the obstacles in the cells its (widened) box overlaps.
 struct ObstacleIndex<'a> {
     items: Vec<(&'a ObstacleSpec, Vec2, Vec2)>,
+    /// Side of a bucket, metres.
+    cell: f32,
+    /// Obstacle indices by bucket `(column, row)`.
+    buckets: std::collections::HashMap<(i32, i32), Vec<u32>>,
 }
+
+/// Side of an obstacle bucket, metres: a few turn radii, the size of a typical query box.
+const OBSTACLE_CELL_M: f32 = 100.0;
 
 impl<'a> ObstacleIndex<'a> {
     fn new(obstacles: &'a [ObstacleSpec]) -> Self {
@@ -158,17 +167,42 @@ impl<'a> ObstacleIndex<'a> {
                 };
                 (o, lo, hi)
             })
-            .collect();
-        Self { items }
+            .collect::<Vec<_>>();
+        let cell = OBSTACLE_CELL_M;
+        let mut buckets: std::collections::HashMap<(i32, i32), Vec<u32>> = Default::default();
+        for (i, (_, lo, hi)) in items.iter().enumerate() {
+            for key in cells(*lo, *hi, cell) {
+                buckets.entry(key).or_default().push(i as u32);
+            }
+        }
+        Self {
+            items,
+            cell,
+            buckets,
+        }
     }
 
-    /// Obstacles whose box comes within `margin` of the box `[lo, hi]`.
+    /// Obstacles whose box comes within `margin` of the box `[lo, hi]`, in index order.
     fn near(&self, lo: Vec2, hi: Vec2, margin: f32) -> impl Iterator<Item = &'a ObstacleSpec> + '_ {
-        self.items.iter().filter_map(move |(o, olo, ohi)| {
-            let apart = lo.x - margin > ohi.x
-                || hi.x + margin < olo.x
-                || lo.y - margin > ohi.y
-                || hi.y + margin < olo.y;
+        let (qlo, qhi) = (
+            Vec2::new(lo.x - margin, lo.y - margin),
+            Vec2::new(hi.x + margin, hi.y + margin),
+        );
+        let span = ((qhi.x - qlo.x) / self.cell + 1.0) * ((qhi.y - qlo.y) / self.cell + 1.0);
+        let mut ids: Vec<u32> = if span.is_finite() && span <= self.items.len().max(16) as f32 {
+            cells(qlo, qhi, self.cell)
+                .filter_map(|k| self.buckets.get(&k))
+                .flatten()
+                .copied()
+                .collect()
+        } else {
+            (0..self.items.len() as u32).collect() // a box larger than the index: scan all
+        };
+        ids.sort_unstable();
+        ids.dedup();
+        ids.into_iter().filter_map(move |i| {
+            let (o, olo, ohi) = &self.items[i as usize];
+            let apart = qlo.x > ohi.x || qhi.x < olo.x || qlo.y > ohi.y || qhi.y < olo.y;
             (!apart).then_some(*o)
         })
     }
@@ -203,6 +237,13 @@ impl<'a> ObstacleIndex<'a> {
             }
         }
     }
+}
+
+/// The keys of the buckets of side `cell` that the box `[lo, hi]` overlaps.
+fn cells(lo: Vec2, hi: Vec2, cell: f32) -> impl Iterator<Item = (i32, i32)> {
+    let key = |v: f32| (v / cell).floor() as i32;
+    let (x0, x1, y0, y1) = (key(lo.x), key(hi.x), key(lo.y), key(hi.y));
+    (y0..=y1).flat_map(move |y| (x0..=x1).map(move |x| (x, y)))
 }
 
 /// Buckets of sample indices on a square grid, for neighbour queries.
