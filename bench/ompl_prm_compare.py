@@ -217,10 +217,10 @@ def draw_queries(obstacles, bounds, n, seed, min_free, min_sep, edge_margin):
         a, b = free_position(), free_position()
         if math.hypot(b[0] - a[0], b[1] - a[1]) < min_sep:
             continue
-        ha = rng.uniform(-math.pi, math.pi)
-        hb = rng.uniform(-math.pi, math.pi)
-        # Rounded to f32, the precision the onboard core works in.
+        # Rounded to f32, the precision the onboard core works in (and kept inside OMPL's
+        # SO(2) bounds [-pi, pi], which an f32 rounding of +-pi would leave).
         f32 = lambda v: float(np.float32(v))
+        ha, hb = f32(rng.uniform(-3.14159, 3.14159)), f32(rng.uniform(-3.14159, 3.14159))
         out.append({"start": [f32(a[0]), f32(a[1]), f32(ha)], "goal": [f32(b[0]), f32(b[1]), f32(hb)]})
     return out
 
@@ -283,29 +283,139 @@ def run_skyroute(exe, network, scenario_path, route_path, repeat):
 # --------------------------------------------------------------------------------------------
 
 
-def setup_ompl(network, bounds, obstacles, resolution_m):
-    space = ob.DubinsStateSpace(float(network["turn_radius_m"]), False)
-    b = ob.RealVectorBounds(2)
-    b.setLow(0, bounds[0])
-    b.setHigh(0, bounds[2])
-    b.setLow(1, bounds[1])
-    b.setHigh(1, bounds[3])
-    space.setBounds(b)
-    si = ob.SpaceInformation(space)
-    calls = [0]
-    blocked = obstacles.blocked
+class OmplVariant:
+    """PRM* over `DubinsStateSpace(r)` (forward-only) with the clearance checker.
 
-    def valid(s):
-        calls[0] += 1
-        return not blocked(s.getX(), s.getY())
+    `both_ways=False` is stock OMPL: the default discrete motion validator, and PRM's roadmap is
+    an undirected graph whose edge {n, m} is checked only as the Dubins path n -> m (n the older
+    milestone). `both_ways=True` accepts an edge only when the Dubins paths n -> m and m -> n are
+    both collision-free (OMPL's DubinsMotionValidator on each), so every edge is flyable in
+    whichever direction the graph search uses it.
+    """
 
-    si.setStateValidityChecker(valid)
-    # The resolution is a fraction of the space's maximum extent; OMPL's Dubins space cuts a
-    # motion into ceil(dubins_length / (fraction * extent)) segments and checks every state.
-    extent = space.getMaximumExtent()
-    si.setStateValidityCheckingResolution(resolution_m / extent)
-    si.setup()
-    return space, si, calls
+    def __init__(self, name, network, bounds, obstacles, resolution_m, both_ways):
+        self.name = name
+        self.both_ways = both_ways
+        self.bounds = bounds
+        space = ob.DubinsStateSpace(float(network["turn_radius_m"]), False)
+        b = ob.RealVectorBounds(2)
+        b.setLow(0, bounds[0])
+        b.setHigh(0, bounds[2])
+        b.setLow(1, bounds[1])
+        b.setHigh(1, bounds[3])
+        space.setBounds(b)
+        si = ob.SpaceInformation(space)
+        self.calls = [0]
+        calls, blocked = self.calls, obstacles.blocked
+
+        def valid(s):
+            calls[0] += 1
+            return not blocked(s.getX(), s.getY())
+
+        si.setStateValidityChecker(valid)
+        # The resolution is a fraction of the space's maximum extent; OMPL's Dubins space cuts a
+        # motion into ceil(dubins_length / (fraction * extent)) segments and checks each state.
+        si.setStateValidityCheckingResolution(resolution_m / space.getMaximumExtent())
+        # An independent forward-only validator, for re-checking solutions as they are flown.
+        self.forward = ob.DubinsMotionValidator(si)
+        if both_ways:
+            fwd = ob.DubinsMotionValidator(si)
+
+            class BothWays(ob.MotionValidator):
+                def checkMotion(self, a, b, *rest):
+                    return fwd.checkMotion(a, b) and fwd.checkMotion(b, a)
+
+            self._mv = BothWays(si)  # keep the Python object alive
+            si.setMotionValidator(self._mv)
+        si.setup()
+        self.space, self.si = space, si
+        self.planner = og.PRMstar(si)
+        # The first solution found ends solve(): any finite cost satisfies the objective. PRM*
+        # otherwise keeps growing the roadmap to improve the route until the time cap.
+        self.objective = ob.PathLengthOptimizationObjective(si)
+        self.objective.setCostThreshold(self.objective.infiniteCost())
+        pd = self.problem((0.0, 0.0, 0.0), (1.0, 0.0, 0.0))
+        self.planner.setProblemDefinition(pd)
+        self.planner.setup()
+        self.simplifier = og.PathSimplifier(si)
+
+    def problem(self, start, goal):
+        s, g = self.space.allocState(), self.space.allocState()
+        set_pose(s, start)
+        set_pose(g, goal)
+        pd = ob.ProblemDefinition(self.si)
+        pd.setStartAndGoalStates(s, g)
+        pd.setOptimizationObjective(self.objective)
+        self._keep = (s, g, pd)
+        return pd
+
+    def grow(self, target, obstacles):
+        """Grows the roadmap to exactly `target` milestones (the termination condition is
+        evaluated before every sample)."""
+        p = self.planner
+        ptc = ob.PlannerTerminationCondition(lambda: p.milestoneCount() >= target)
+        self.calls[0], obstacles.exact_tests = 0, 0
+        t0 = time.perf_counter()
+        p.growRoadmapPtc(ptc) if hasattr(p, "growRoadmapPtc") else p.growRoadmap(ptc)
+        seconds = time.perf_counter() - t0
+        # Cost of one validity callback as OMPL makes it (C++ -> Python -> grid or GEOS),
+        # measured on random states through si.isValid, to say how much of the time is Python.
+        rng = np.random.default_rng(7)
+        st = self.space.allocState()
+        n = 50000
+        xs = rng.uniform(self.bounds[0], self.bounds[2], n)
+        ys = rng.uniform(self.bounds[1], self.bounds[3], n)
+        t1 = time.perf_counter()
+        for x, y in zip(xs, ys):
+            st.setXY(x, y)
+            self.si.isValid(st)
+        per_check = (time.perf_counter() - t1) / n
+        return {
+            "seconds": seconds,
+            "milestones": p.milestoneCount(),
+            "edges": p.edgeCount(),
+            "validity_checks": self.calls[0],
+            "exact_point_tests": obstacles.exact_tests,
+            "per_check_us": per_check * 1e6,
+            "python_checker_seconds_estimate": per_check * self.calls[0],
+        }
+
+    def solve(self, q, time_cap, simplify_time, obstacles):
+        pd = self.problem(q["start"], q["goal"])
+        p = self.planner
+        p.setProblemDefinition(pd)  # also clears the previous query (clearQuery)
+        m0 = p.milestoneCount()
+        t0 = time.perf_counter()
+        status = p.solve(ob.timedPlannerTerminationCondition(time_cap))
+        o = {"status": str(status), "solve_s": time.perf_counter() - t0,
+             "milestones_added": p.milestoneCount() - m0, "solved": bool(pd.hasExactSolution())}
+        if not o["solved"]:
+            return o
+        raw = og.PathGeometric(pd.getSolutionPath())
+        o.update(self.describe("raw", raw, obstacles))
+        simp = og.PathGeometric(raw)
+        t1 = time.perf_counter()
+        self.simplifier.simplify(simp, simplify_time)
+        o["simplify_s"] = time.perf_counter() - t1
+        o.update(self.describe("simplified", simp, obstacles))
+        return o
+
+    def describe(self, tag, path, obstacles):
+        """Length as flown (state i to state i+1 along the forward Dubins path), whether every
+        motion passes OMPL's own discrete check in that direction, how many motions pass only
+        in the reverse direction, and the closest approach to the obstacles (0.5 m sampling)."""
+        n = path.getStateCount()
+        fwd = [self.forward.checkMotion(path.getState(i), path.getState(i + 1)) for i in range(n - 1)]
+        rev_only = sum(1 for i in range(n - 1)
+                       if not fwd[i] and self.forward.checkMotion(path.getState(i + 1), path.getState(i)))
+        return {
+            f"{tag}_states": n,
+            f"{tag}_length_m": path.length(),
+            f"{tag}_forward_valid": all(fwd),
+            f"{tag}_motions_failing_forward": fwd.count(False),
+            f"{tag}_motions_valid_only_reversed": rev_only,
+            f"{tag}_min_obstacle_distance_m": obstacles.min_distance_along(path_points(self.space, path)),
+        }
 
 
 def set_pose(state, pose):
@@ -315,7 +425,7 @@ def set_pose(state, pose):
 
 def path_points(space, path, step=0.5):
     """Points every `step` metres along the Dubins curves joining the path's states in order."""
-    tmp = space.allocState()
+    tmp = space.allocState()  # owned by Python: not freed by hand
     pts = []
     for i in range(path.getStateCount() - 1):
         a, b = path.getState(i), path.getState(i + 1)
@@ -326,17 +436,48 @@ def path_points(space, path, step=0.5):
     return np.array(pts)
 
 
-def forward_motions_valid(si, path):
-    """Whether every motion of the path, flown from state i to state i+1, passes OMPL's own
-    (discrete) motion check."""
-    return all(si.checkMotion(path.getState(i), path.getState(i + 1)) for i in range(path.getStateCount() - 1))
-
-
 # --------------------------------------------------------------------------------------------
 
 
 def median(xs):
-    return statistics.median(xs) if xs else float("nan")
+    return statistics.median(xs) if xs else None
+
+
+def summarise(results, key, clearance):
+    """Summary of one OMPL variant against ours over the queries."""
+    ours_ok = [r for r in results if r["ours"]["solved"]]
+    ompl_ok = [r for r in results if r[key]["solved"]]
+    both = [r for r in ours_ok if r[key]["solved"]]
+    tol = 1e-6
+
+    def ratio(a, b):
+        return median([r["ours"][a] / r[key][b] for r in both])
+
+    return {
+        "ompl_solved": len(ompl_ok),
+        "both_solved": len(both),
+        "ratio_ours_over_raw_median": ratio("length_m", "raw_length_m"),
+        "ratio_ours_over_simplified_median": ratio("length_m", "simplified_length_m"),
+        "ratio_ours_planned_over_raw_median": ratio("planned_length_m", "raw_length_m"),
+        "raw_length_median_m": median([r[key]["raw_length_m"] for r in ompl_ok]),
+        "simplified_length_median_m": median([r[key]["simplified_length_m"] for r in ompl_ok]),
+        "solve_median_s": median([r[key]["solve_s"] for r in results]),
+        "solve_max_s": max(r[key]["solve_s"] for r in results),
+        "solve_median_solved_s": median([r[key]["solve_s"] for r in ompl_ok]),
+        "solve_max_solved_s": max((r[key]["solve_s"] for r in ompl_ok), default=None),
+        "simplify_median_s": median([r[key]["simplify_s"] for r in ompl_ok]),
+        "raw_forward_valid": sum(r[key]["raw_forward_valid"] for r in ompl_ok),
+        "simplified_forward_valid": sum(r[key]["simplified_forward_valid"] for r in ompl_ok),
+        "raw_inside_clearance": sum(r[key]["raw_min_obstacle_distance_m"] < clearance - 0.5 for r in ompl_ok),
+        "raw_inside_obstacle": sum(r[key]["raw_min_obstacle_distance_m"] <= tol for r in ompl_ok),
+        "simplified_inside_clearance": sum(
+            r[key]["simplified_min_obstacle_distance_m"] < clearance - 0.5 for r in ompl_ok),
+        "simplified_inside_obstacle": sum(r[key]["simplified_min_obstacle_distance_m"] <= tol for r in ompl_ok),
+        "raw_min_obstacle_distance_m": min((r[key]["raw_min_obstacle_distance_m"] for r in ompl_ok), default=None),
+        "simplified_min_obstacle_distance_m": min(
+            (r[key]["simplified_min_obstacle_distance_m"] for r in ompl_ok), default=None),
+        "milestones_added_during_queries": sum(r[key]["milestones_added"] for r in results),
+    }
 
 
 def main():
@@ -358,6 +499,8 @@ def main():
     ap.add_argument("--simplify-time", type=float, default=1.0, help="OMPL PathSimplifier cap, seconds")
     ap.add_argument("--repeat", type=int, default=5, help="`skyroute plan` runs per query (timing)")
     ap.add_argument("--target", type=int, default=None, help="milestones (default: the network's vertices)")
+    ap.add_argument("--variants", default="stock,both-ways",
+                    help="OMPL variants to run: stock (one-way edge checks), both-ways")
     args = ap.parse_args()
 
     with open(args.network_json) as f:
@@ -368,8 +511,9 @@ def main():
     frame = Frame(fr["origin_lat_deg"], fr["origin_lon_deg"])
     bounds = scenario_bounds(scenario, frame.to_local)
     target = args.target or len(net["vertices"])
+    clearance = float(net["clearance_m"])
     print(f"area {bounds[0]:.1f}..{bounds[2]:.1f} x {bounds[1]:.1f}..{bounds[3]:.1f} m, "
-          f"r = {net['turn_radius_m']:.3f} m, clearance {net['clearance_m']} m, "
+          f"r = {net['turn_radius_m']:.3f} m, clearance {clearance} m, "
           f"{len(net['obstacles'])} obstacles; skyroute: {len(net['vertices'])} vertices, {len(net['edges'])} edges")
 
     t0 = time.perf_counter()
@@ -378,62 +522,14 @@ def main():
     tested = obstacles.self_test(bounds)
     print(f"validity checker: grid {obstacles.nx}x{obstacles.ny} cells of {obstacles.cell} m, "
           f"{checker_setup_s:.2f} s to set up, agrees with the exact test on {tested} points")
-
-    # Our vertices must be valid states for OMPL too (the same clearance rule).
+    # Our vertices are valid states for the OMPL checker too (the same clearance rule).
     ours_invalid = sum(obstacles.blocked(v["x"], v["y"]) for v in net["vertices"])
 
-    ou.setLogLevel(ou.LOG_WARN)
-    ou.RNG.setSeed(args.ompl_seed)
-    space, si, calls = setup_ompl(net, bounds, obstacles, args.resolution_m)
-    planner = og.PRMstar(si)
-    pdef = ob.ProblemDefinition(si)
-    s0, g0 = space.allocState(), space.allocState()
-    set_pose(s0, (0.0, 0.0, 0.0))
-    set_pose(g0, (1.0, 0.0, 0.0))
-    pdef.setStartAndGoalStates(s0, g0)
-    planner.setProblemDefinition(pdef)
-    planner.setup()
-    print(f"OMPL: DubinsStateSpace extent {space.getMaximumExtent():.1f}, resolution "
-          f"{si.getStateValidityCheckingResolution():.3e} of it = {space.getLongestValidSegmentLength():.3f} m")
-
-    # Grow to exactly `target` milestones: the termination condition is evaluated before every
-    # sample, so the roadmap stops at the count.
-    ptc = ob.PlannerTerminationCondition(lambda: planner.milestoneCount() >= target)
-    calls[0], obstacles.exact_tests = 0, 0
-    t0 = time.perf_counter()
-    planner.growRoadmapPtc(ptc) if hasattr(planner, "growRoadmapPtc") else planner.growRoadmap(ptc)
-    build_s = time.perf_counter() - t0
-    build = {
-        "seconds": build_s,
-        "milestones": planner.milestoneCount(),
-        "edges": planner.edgeCount(),
-        "validity_checks": calls[0],
-        "exact_point_tests": obstacles.exact_tests,
-    }
-    print(f"OMPL PRM*: {build['milestones']} milestones, {build['edges']} edges, {build_s:.2f} s, "
-          f"{calls[0]} state validity checks")
-
-    # Cost of one validity callback as OMPL sees it (C++ -> Python -> grid/GEOS), measured on a
-    # separate batch of random states through si.isValid.
-    rng = np.random.default_rng(7)
-    st = space.allocState()
-    n_cal = 50000
-    xs = rng.uniform(bounds[0], bounds[2], n_cal)
-    ys = rng.uniform(bounds[1], bounds[3], n_cal)
-    t0 = time.perf_counter()
-    for x, y in zip(xs, ys):
-        st.setXY(x, y)
-        si.isValid(st)
-    per_check_s = (time.perf_counter() - t0) / n_cal
-    build["per_check_us_estimate"] = per_check_s * 1e6
-
-    # Queries
+    # The queries, and our side of them.
     os.makedirs(args.work_dir, exist_ok=True)
     queries = draw_queries(obstacles, bounds, args.queries, args.seed, args.min_free_m,
                            args.min_separation_m, args.edge_margin_m)
-    simplifier = og.PathSimplifier(si)
     results = []
-    milestones_before = planner.milestoneCount()
     for i, q in enumerate(queries):
         name = f"q{i:02d}"
         spath = os.path.join(args.work_dir, f"{name}.geojson")
@@ -441,120 +537,90 @@ def main():
         with open(spath, "w") as f:
             json.dump(query_scenario(scenario, q, frame, name), f, indent=1)
         route, times, err = run_skyroute(args.skyroute, args.network, spath, rpath, args.repeat)
-        r = {"name": name, "start": q["start"], "goal": q["goal"],
+        r = {"name": name, "scenario": spath, "start": q["start"], "goal": q["goal"],
              "euclidean_m": math.hypot(q["goal"][0] - q["start"][0], q["goal"][1] - q["start"][1])}
         if route is not None:
             prims = [p for leg in route["legs"] for p in leg["primitives"]]
             pts = sample_primitives(prims)
-            first = pts[0] if len(pts) else (math.nan, math.nan)
             r["ours"] = {
                 "solved": True,
                 "length_m": route["length_m"],
                 "planned_length_m": sum(l["planned_length_m"] for l in route["legs"]),
                 "network_edges": sum(l["network_edges"] for l in route["legs"]),
                 "core_queries": route["queries"],
+                "work_total": route["work_all_queries"]["total"],
                 "wall_s": times,
                 "wall_median_s": median(times),
                 "min_obstacle_distance_m": obstacles.min_distance_along(pts),
-                "start_offset_m": math.hypot(first[0] - q["start"][0], first[1] - q["start"][1]),
+                "start_offset_m": math.hypot(pts[0][0] - q["start"][0], pts[0][1] - q["start"][1]),
+                "end_offset_m": math.hypot(pts[-1][0] - q["goal"][0], pts[-1][1] - q["goal"][1]),
             }
         else:
             r["ours"] = {"solved": False, "error": err, "wall_s": times, "wall_median_s": median(times)}
-
-        # OMPL: the same poses on the grown roadmap.
-        s, g = space.allocState(), space.allocState()
-        set_pose(s, q["start"])
-        set_pose(g, q["goal"])
-        pd = ob.ProblemDefinition(si)
-        pd.setStartAndGoalStates(s, g)
-        planner.setProblemDefinition(pd)  # also clears the previous query
-        m0 = planner.milestoneCount()
-        t0 = time.perf_counter()
-        status = planner.solve(ob.timedPlannerTerminationCondition(args.solve_time))
-        solve_s = time.perf_counter() - t0
-        o = {"status": str(status), "solve_s": solve_s, "milestones_added": planner.milestoneCount() - m0,
-             "solved": bool(pd.hasExactSolution())}
-        if o["solved"]:
-            path = pd.getSolutionPath()
-            raw = og.PathGeometric(path)
-            o["raw_states"] = raw.getStateCount()
-            o["raw_length_m"] = raw.length()
-            o["raw_forward_valid"] = forward_motions_valid(si, raw)
-            o["raw_min_obstacle_distance_m"] = obstacles.min_distance_along(path_points(space, raw))
-            simp = og.PathGeometric(raw)
-            t1 = time.perf_counter()
-            simplifier.simplify(simp, args.simplify_time)
-            o["simplify_s"] = time.perf_counter() - t1
-            o["simplified_states"] = simp.getStateCount()
-            o["simplified_length_m"] = simp.length()
-            o["simplified_forward_valid"] = forward_motions_valid(si, simp)
-            o["simplified_min_obstacle_distance_m"] = obstacles.min_distance_along(path_points(space, simp))
-        r["ompl"] = o
-        results.append(r)
         ours = r["ours"]
         print(f"{name}: {r['euclidean_m']:6.0f} m apart | ours "
-              + (f"{ours['length_m']:7.1f} m (planned {ours['planned_length_m']:7.1f}) {ours['wall_median_s']*1e3:5.0f} ms"
-                 if ours["solved"] else f"FAILED ({ours['error']})")
-              + f" | OMPL {o['status']}, {solve_s*1e3:6.1f} ms"
-              + (f", raw {o['raw_length_m']:7.1f} m (flyable as checked: {o['raw_forward_valid']}),"
-                 f" simplified {o['simplified_length_m']:7.1f} m" if o["solved"] else ""))
+              + (f"{ours['length_m']:7.1f} m (planned {ours['planned_length_m']:7.1f}), "
+                 f"{ours['wall_median_s'] * 1e3:4.0f} ms" if ours["solved"] else f"FAILED: {ours['error']}"),
+              flush=True)
+        results.append(r)
 
-    both = [r for r in results if r["ours"]["solved"] and r["ompl"]["solved"]]
-    ours_ok = [r for r in results if r["ours"]["solved"]]
-    ompl_ok = [r for r in results if r["ompl"]["solved"]]
-    summary = {
-        "queries": len(results),
-        "ours_solved": len(ours_ok),
-        "ompl_solved": len(ompl_ok),
-        "both_solved": len(both),
-        "ratio_ours_over_ompl_raw_median": median([r["ours"]["length_m"] / r["ompl"]["raw_length_m"] for r in both]),
-        "ratio_ours_over_ompl_simplified_median": median(
-            [r["ours"]["length_m"] / r["ompl"]["simplified_length_m"] for r in both]),
-        "ratio_ours_planned_over_ompl_raw_median": median(
-            [r["ours"]["planned_length_m"] / r["ompl"]["raw_length_m"] for r in both]),
-        "ours_length_median_m": median([r["ours"]["length_m"] for r in ours_ok]),
-        "ours_planned_length_median_m": median([r["ours"]["planned_length_m"] for r in ours_ok]),
-        "ompl_raw_length_median_m": median([r["ompl"]["raw_length_m"] for r in ompl_ok]),
-        "ompl_simplified_length_median_m": median([r["ompl"]["simplified_length_m"] for r in ompl_ok]),
-        "ours_wall_median_s": median([r["ours"]["wall_median_s"] for r in results]),
-        "ours_wall_max_s": max(r["ours"]["wall_median_s"] for r in results),
-        "ompl_solve_median_s": median([r["ompl"]["solve_s"] for r in results]),
-        "ompl_solve_max_s": max(r["ompl"]["solve_s"] for r in results),
-        "ompl_simplify_median_s": median([r["ompl"]["simplify_s"] for r in ompl_ok]),
-        "ompl_raw_forward_valid": sum(r["ompl"]["raw_forward_valid"] for r in ompl_ok),
-        "ompl_simplified_forward_valid": sum(r["ompl"]["simplified_forward_valid"] for r in ompl_ok),
-        "ompl_raw_min_obstacle_distance_m": min((r["ompl"]["raw_min_obstacle_distance_m"] for r in ompl_ok), default=None),
-        "ompl_simplified_min_obstacle_distance_m": min(
-            (r["ompl"]["simplified_min_obstacle_distance_m"] for r in ompl_ok), default=None),
-        "ours_min_obstacle_distance_m": min((r["ours"]["min_obstacle_distance_m"] for r in ours_ok), default=None),
-        "ompl_milestones_added_during_queries": planner.milestoneCount() - milestones_before,
-        "ompl_milestones_after_queries": planner.milestoneCount(),
-        "ompl_edges_after_queries": planner.edgeCount(),
-    }
     report = {
         "setup": {
-            "network_json": args.network_json,
-            "scenario": args.scenario,
-            "bounds": bounds,
-            "turn_radius_m": net["turn_radius_m"],
-            "clearance_m": net["clearance_m"],
-            "resolution_m": space.getLongestValidSegmentLength(),
-            "resolution_fraction": si.getStateValidityCheckingResolution(),
-            "solve_time_cap_s": args.solve_time,
-            "seed": args.seed,
-            "ompl_seed": args.ompl_seed,
-            "repeat": args.repeat,
-            "checker_setup_s": checker_setup_s,
+            "network_json": args.network_json, "scenario": args.scenario, "bounds": bounds,
+            "turn_radius_m": net["turn_radius_m"], "clearance_m": clearance,
+            "resolution_m": args.resolution_m, "solve_time_cap_s": args.solve_time,
+            "simplify_time_cap_s": args.simplify_time, "seed": args.seed, "ompl_seed": args.ompl_seed,
+            "repeat": args.repeat, "checker_setup_s": checker_setup_s,
             "ours_vertices_invalid_for_ompl_checker": ours_invalid,
         },
         "ours_network": {"vertices": len(net["vertices"]), "edges": len(net["edges"])},
-        "ompl_build": build,
-        "summary": summary,
+        "ours_summary": {
+            "solved": sum(r["ours"]["solved"] for r in results),
+            "length_median_m": median([r["ours"]["length_m"] for r in results if r["ours"]["solved"]]),
+            "wall_median_s": median([r["ours"]["wall_median_s"] for r in results]),
+            "wall_max_s": max(r["ours"]["wall_median_s"] for r in results),
+            "min_obstacle_distance_m": min(
+                (r["ours"]["min_obstacle_distance_m"] for r in results if r["ours"]["solved"]), default=None),
+        },
+        "ompl": {},
         "queries": results,
     }
+
+    ou.setLogLevel(ou.LOG_WARN)
+    # One seed for the process (OMPL allows setting it once, before any sampling). Every roadmap
+    # is grown before any query is solved: growing is single-threaded and reproducible, while
+    # solve() grows the roadmap further for as long as its solution thread takes to answer.
+    ou.RNG.setSeed(args.ompl_seed)
+    variants = []
+    for vname in [v.strip() for v in args.variants.split(",") if v.strip()]:
+        if vname not in ("stock", "both-ways"):
+            sys.exit(f"--variants: unknown variant {vname!r}")
+        v = OmplVariant(vname, net, bounds, obstacles, args.resolution_m, vname == "both-ways")
+        print(f"OMPL {vname}: DubinsStateSpace extent {v.space.getMaximumExtent():.1f} m, resolution "
+              f"{v.si.getStateValidityCheckingResolution():.4e} of it = {v.space.getLongestValidSegmentLength():.3f} m",
+              flush=True)
+        v.build = v.grow(target, obstacles)
+        b = v.build
+        print(f"OMPL {vname}: PRM* {b['milestones']} milestones, {b['edges']} edges, {b['seconds']:.2f} s, "
+              f"{b['validity_checks']} state validity checks (~{b['per_check_us']:.2f} us each)", flush=True)
+        variants.append(v)
+    for v in variants:
+        vname = v.name
+        for r in results:
+            o = v.solve(r, args.solve_time, args.simplify_time, obstacles)
+            r[vname] = o
+            print(f"  {vname} {r['name']}: {o['status']}, {o['solve_s'] * 1e3:6.1f} ms"
+                  + (f", raw {o['raw_length_m']:7.1f} m (flyable as checked: {o['raw_forward_valid']}, "
+                     f"closest {o['raw_min_obstacle_distance_m']:.1f} m), simplified {o['simplified_length_m']:7.1f} m"
+                     if o["solved"] else ""), flush=True)
+        report["ompl"][vname] = {"build": v.build, "summary": summarise(results, vname, clearance),
+                                 "milestones_after_queries": v.planner.milestoneCount(),
+                                 "edges_after_queries": v.planner.edgeCount()}
+        print(json.dumps(report["ompl"][vname], indent=1), flush=True)
+
     with open(args.report, "w") as f:
         json.dump(report, f, indent=1)
-    print(json.dumps({"ompl_build": build, "summary": summary}, indent=1))
+    print(json.dumps({"ours_network": report["ours_network"], "ours_summary": report["ours_summary"]}, indent=1))
     print(f"report -> {args.report}")
 
 

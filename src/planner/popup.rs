@@ -149,7 +149,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         let mut hit = false;
                         for prim in path.primitives().into_iter().flatten() {
                             let (conflict, tests) = popup.conflicts(&prim, clearance);
-                            summary.predicate_tests += tests;
+                            summary.predicate_tests = summary.predicate_tests.saturating_add(tests);
                             if conflict {
                                 hit = true;
                                 break;
