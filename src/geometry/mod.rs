@@ -5,6 +5,8 @@
 //! Cortex-M4F without `std`.
 
 mod dubins;
+pub mod grid;
+pub mod hermite;
 pub mod predicates;
 pub mod trig;
 
