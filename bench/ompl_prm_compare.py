@@ -11,19 +11,31 @@ What it does (see bench/README.md for how to run it and what the numbers mean):
    obstacle (distance <= clearance, polygons with their interiors, as skyroute's sample filter),
    and OMPL's discrete motion validator with one state checked every `--resolution-m` metres
    along each Dubins path (default 1 m).
-3. Grows a PRM* roadmap (`growRoadmap`) until it has as many milestones as skyroute's network has
-   vertices, and records the wall time, the milestone and edge counts, and the validity checks.
+3. Grows PRM* roadmaps (`growRoadmap`, single-threaded) until each has as many milestones as
+   skyroute's network has vertices, and records the wall time, the milestone and edge counts and
+   the state validity checks. Two variants (`--variants`):
+   * `stock`: OMPL as it comes. PRM's roadmap is an undirected graph; the edge {n, m} is checked
+     only as the Dubins path n -> m (n the older milestone, m the new one), yet the graph search
+     may use it m -> n, which is a different Dubins path that nobody checked.
+   * `both-ways`: a motion validator that accepts an edge only when the Dubins paths n -> m and
+     m -> n are both collision-free, so every route the search returns is flyable as checked
+     (the search still weighs the edge with the n -> m length in both directions).
+   Every roadmap is grown before any query: growth is single-threaded and reproducible with the
+   seed, whereas solve() grows the roadmap further while its solution thread looks for a route.
 4. Draws `--queries` start/goal pose pairs with a fixed seed (free positions at least
    `--min-free-m` beyond the clearance from every obstacle, at least `--min-separation-m` apart,
    fixed uniformly drawn headings), writes each as a scenario (a copy of the original scenario
    with its start, goal and waypoints replaced: start and goal both with a heading, no
    waypoints), plans it with `skyroute plan` (timed as a whole process: start-up, network load,
-   planning, post-processing, writing the route), and solves the same pair with the grown PRM*
-   (`solve` with a time cap, `clearQuery` between queries).
-5. Compares lengths pair by pair, re-checks every OMPL solution in its direction of flight
-   (PRM's roadmap is an undirected graph: an edge is only checked in the direction it was added),
-   measures the closest approach to the obstacles of both routes by dense sampling, and writes a
-   JSON report with every number (`--report`).
+   planning, post-processing, writing the route), and solves the same pair on each grown PRM*
+   roadmap: `solve` with a time cap, the objective's cost threshold set to infinity so that the
+   first route found (A* on the roadmap once start and goal share a component) ends the solve,
+   and a fresh problem definition (which clears the query) each time. Start and goal stay in
+   the roadmap as milestones afterwards, as PRM does.
+5. Compares lengths pair by pair (raw and after `PathSimplifier.simplify`), re-checks every OMPL
+   route in its direction of flight, measures the closest approach to the obstacles of both
+   planners' routes by sampling them every 0.5 m, and writes a JSON report with every number
+   (`--report`).
 
 Usage:
     python3 bench/ompl_prm_compare.py /tmp/n.json --network /tmp/n.bin \
@@ -55,8 +67,6 @@ try:
     from ompl import util as ou
 except ImportError as e:  # pragma: no cover - environment problem, explained to the user
     sys.exit(f"{e}: pip install ompl shapely pyproj numpy")
-
-TAU = 2.0 * math.pi
 
 
 # --------------------------------------------------------------------------------------------
@@ -272,8 +282,8 @@ def run_skyroute(exe, network, scenario_path, route_path, repeat):
         t0 = time.perf_counter()
         proc = subprocess.run(cmd, capture_output=True, text=True)
         times.append(time.perf_counter() - t0)
-        if proc.returncode != 0:
-            return None, times, proc.stderr.strip()
+    if proc.returncode != 0:
+        return None, times, proc.stderr.strip()
     with open(route_path) as f:
         return json.load(f), times, ""
 
@@ -358,40 +368,69 @@ class OmplVariant:
         t0 = time.perf_counter()
         p.growRoadmapPtc(ptc) if hasattr(p, "growRoadmapPtc") else p.growRoadmap(ptc)
         seconds = time.perf_counter() - t0
-        # Cost of one validity callback as OMPL makes it (C++ -> Python -> grid or GEOS),
-        # measured on random states through si.isValid, to say how much of the time is Python.
+        checks, exact = self.calls[0], obstacles.exact_tests
+        # What one checked state costs inside a motion check (OMPL interpolates the Dubins path
+        # in C++ and calls the Python checker): motions between random nearby free poses,
+        # checked from C++, time divided by the states checked.
         rng = np.random.default_rng(7)
-        st = self.space.allocState()
-        n = 50000
-        xs = rng.uniform(self.bounds[0], self.bounds[2], n)
-        ys = rng.uniform(self.bounds[1], self.bounds[3], n)
-        t1 = time.perf_counter()
-        for x, y in zip(xs, ys):
-            st.setXY(x, y)
-            self.si.isValid(st)
-        per_check = (time.perf_counter() - t1) / n
+        a, b = self.space.allocState(), self.space.allocState()
+        n0, t_cal = self.calls[0], 0.0
+        done = 0
+        while done < 300:
+            x, y = rng.uniform(self.bounds[0], self.bounds[2]), rng.uniform(self.bounds[1], self.bounds[3])
+            ang = rng.uniform(-math.pi, math.pi)
+            set_pose(a, (x, y, rng.uniform(-3.14, 3.14)))
+            set_pose(b, (x + 150 * math.cos(ang), y + 150 * math.sin(ang), rng.uniform(-3.14, 3.14)))
+            t1 = time.perf_counter()
+            self.forward.checkMotion(a, b)
+            t_cal += time.perf_counter() - t1
+            done += 1
+        per_check = t_cal / max(1, self.calls[0] - n0)
         return {
             "seconds": seconds,
             "milestones": p.milestoneCount(),
             "edges": p.edgeCount(),
-            "validity_checks": self.calls[0],
-            "exact_point_tests": obstacles.exact_tests,
+            "validity_checks": checks,
+            "exact_point_tests": exact,
             "per_check_us": per_check * 1e6,
-            "python_checker_seconds_estimate": per_check * self.calls[0],
+            "checking_seconds_estimate": per_check * checks,
         }
 
-    def solve(self, q, time_cap, simplify_time, obstacles):
+    def solve(self, q, mode, time_cap, simplify_time, obstacles):
+        """One query. `mode`:
+
+        * "fixed": on the roadmap as it is. solve() with a termination condition that is already
+          true: PRM adds the start and the goal as milestones (connecting each to its k nearest
+          with checked motions), grows nothing, finds no exact solution and returns its
+          approximate one, an A* over the roadmap towards the goal; the goal was reached iff the
+          reported difference is 0. A second solve() on the same problem (start and goal already
+          in the roadmap) times the graph search alone.
+        * "grow": PRM*'s own single-query behaviour: solve() grows the roadmap in the calling
+          thread while a second thread looks for a route every millisecond; the first route found
+          (A* once start and goal share a component) ends it, or the `time_cap`.
+        """
         pd = self.problem(q["start"], q["goal"])
         p = self.planner
         p.setProblemDefinition(pd)  # also clears the previous query (clearQuery)
         m0 = p.milestoneCount()
+        ptc = ob.timedPlannerTerminationCondition(0.0 if mode == "fixed" else time_cap)
         t0 = time.perf_counter()
-        status = p.solve(ob.timedPlannerTerminationCondition(time_cap))
-        o = {"status": str(status), "solve_s": time.perf_counter() - t0,
-             "milestones_added": p.milestoneCount() - m0, "solved": bool(pd.hasExactSolution())}
+        status = p.solve(ptc)
+        o = {"status": str(status), "solve_s": time.perf_counter() - t0, "milestones_added": p.milestoneCount() - m0}
+        if mode == "fixed":
+            o["solved"] = bool(pd.hasSolution()) and pd.getSolutionDifference() == 0.0
+            if o["solved"]:
+                path = og.PathGeometric(pd.getSolutionPath())
+                pd.clearSolutionPaths()
+                t1 = time.perf_counter()
+                p.solve(ob.timedPlannerTerminationCondition(0.0))
+                o["search_only_s"] = time.perf_counter() - t1
+        else:
+            o["solved"] = bool(pd.hasExactSolution())
+            path = pd.getSolutionPath() if o["solved"] else None
         if not o["solved"]:
             return o
-        raw = og.PathGeometric(pd.getSolutionPath())
+        raw = og.PathGeometric(path)
         o.update(self.describe("raw", raw, obstacles))
         simp = og.PathGeometric(raw)
         t1 = time.perf_counter()
@@ -443,8 +482,9 @@ def median(xs):
     return statistics.median(xs) if xs else None
 
 
-def summarise(results, key, clearance):
-    """Summary of one OMPL variant against ours over the queries."""
+def summarise(results, vname, mode, clearance):
+    """Summary of one OMPL variant and query mode against ours over the queries."""
+    key = f"{vname}/{mode}"
     ours_ok = [r for r in results if r["ours"]["solved"]]
     ompl_ok = [r for r in results if r[key]["solved"]]
     both = [r for r in ours_ok if r[key]["solved"]]
@@ -476,6 +516,8 @@ def summarise(results, key, clearance):
         "raw_min_obstacle_distance_m": min((r[key]["raw_min_obstacle_distance_m"] for r in ompl_ok), default=None),
         "simplified_min_obstacle_distance_m": min(
             (r[key]["simplified_min_obstacle_distance_m"] for r in ompl_ok), default=None),
+        "search_only_median_s": median([r[key]["search_only_s"] for r in ompl_ok if "search_only_s" in r[key]]),
+        "search_only_max_s": max((r[key]["search_only_s"] for r in ompl_ok if "search_only_s" in r[key]), default=None),
         "milestones_added_during_queries": sum(r[key]["milestones_added"] for r in results),
     }
 
@@ -602,26 +644,35 @@ def main():
         v.build = v.grow(target, obstacles)
         b = v.build
         print(f"OMPL {vname}: PRM* {b['milestones']} milestones, {b['edges']} edges, {b['seconds']:.2f} s, "
-              f"{b['validity_checks']} state validity checks (~{b['per_check_us']:.2f} us each)", flush=True)
+              f"{b['validity_checks']} state validity checks (~{b['per_check_us']:.2f} us each, ~{b['checking_seconds_estimate']:.1f} s)", flush=True)
         variants.append(v)
-    for v in variants:
-        vname = v.name
-        for r in results:
-            o = v.solve(r, args.solve_time, args.simplify_time, obstacles)
-            r[vname] = o
-            print(f"  {vname} {r['name']}: {o['status']}, {o['solve_s'] * 1e3:6.1f} ms"
-                  + (f", raw {o['raw_length_m']:7.1f} m (flyable as checked: {o['raw_forward_valid']}, "
-                     f"closest {o['raw_min_obstacle_distance_m']:.1f} m), simplified {o['simplified_length_m']:7.1f} m"
-                     if o["solved"] else ""), flush=True)
-        report["ompl"][vname] = {"build": v.build, "summary": summarise(results, vname, clearance),
-                                 "milestones_after_queries": v.planner.milestoneCount(),
-                                 "edges_after_queries": v.planner.edgeCount()}
-        print(json.dumps(report["ompl"][vname], indent=1), flush=True)
+    # All "fixed" queries first (the roadmaps then differ from the grown ones only by the start
+    # and goal milestones the queries leave behind), then the "grow" queries.
+    for mode in ("fixed", "grow"):
+        for v in variants:
+            key = f"{v.name}/{mode}"
+            for r in results:
+                o = v.solve(r, mode, args.solve_time, args.simplify_time, obstacles)
+                r[key] = o
+                print(f"  {key} {r['name']}: {o['status']}, {o['solve_s'] * 1e3:6.1f} ms"
+                      + (f", raw {o['raw_length_m']:7.1f} m (flyable as checked: {o['raw_forward_valid']}, "
+                         f"closest {o['raw_min_obstacle_distance_m']:.1f} m), simplified {o['simplified_length_m']:7.1f} m"
+                         if o["solved"] else ""), flush=True)
+            entry = report["ompl"].setdefault(v.name, {"build": v.build})
+            entry[mode] = summarise(results, v.name, mode, clearance)
+            entry[f"milestones_after_{mode}_queries"] = v.planner.milestoneCount()
+            entry[f"edges_after_{mode}_queries"] = v.planner.edgeCount()
+            print(key, json.dumps(entry[mode], indent=1), flush=True)
 
     with open(args.report, "w") as f:
         json.dump(report, f, indent=1)
     print(json.dumps({"ours_network": report["ours_network"], "ours_summary": report["ours_summary"]}, indent=1))
     print(f"report -> {args.report}")
+    sys.stdout.flush()
+    sys.stderr.flush()
+    # Skips the interpreter's teardown, where nanobind lists the OMPL objects still shared with
+    # C++ (the planner holds states, validators and callbacks) as "leaked": harmless, but noisy.
+    os._exit(0)
 
 
 if __name__ == "__main__":
