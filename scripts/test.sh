@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The project's whole check, as CI runs it (.ci/run): installs what is missing, then
-#   format → clippy (host, thumbv7em, thumbv7em+defmt) → OMPL reference → tests →
+#   format → clippy (host, thumbv7em, thumbv7em+defmt) → core docs → OMPL reference → tests →
 #   firmware fixture → firmware build → firmware clippy → firmware under QEMU → sizes.
 # Runnable from any directory. Stops at the first failing step; KEEP_GOING=1 runs every step
 # and fails at the end instead.
@@ -207,6 +207,8 @@ step "clippy (skyroute, thumbv7em-none-eabihf)" \
     cargo clippy -p skyroute --target thumbv7em-none-eabihf -- -D warnings
 step "clippy (skyroute, thumbv7em-none-eabihf, defmt)" \
     cargo clippy -p skyroute --target thumbv7em-none-eabihf --features defmt -- -D warnings
+step "core docs (cargo doc, warnings denied)" \
+    env RUSTDOCFLAGS="-D warnings" cargo doc -p skyroute --no-deps
 step "OMPL Dubins reference" ompl_reference
 step "cargo test --workspace" cargo test --workspace
 step "firmware fixture" fixture
