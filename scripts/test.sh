@@ -101,8 +101,8 @@ install_missing() {
     if ! command -v defmt-print >/dev/null; then
         cargo install defmt-print --locked
     fi
-    # The OMPL cross-check needs OMPL's Python bindings (only when its script exists).
-    if [[ -f scripts/ompl_dubins_reference.py ]] && ! python3 -c 'import ompl' 2>/dev/null; then
+    # The OMPL cross-check needs OMPL's Python bindings.
+    if ! python3 -c 'import ompl, numpy' 2>/dev/null; then
         python3 -m pip install ompl numpy
     fi
     local qemu_version
@@ -118,39 +118,32 @@ fmt_check() {
 }
 
 ompl_reference() {
-    if [[ -f scripts/ompl_dubins_reference.py ]]; then
-        python3 scripts/ompl_dubins_reference.py
-    else
-        echo "scripts/ompl_dubins_reference.py does not exist yet: skipped"
-    fi
+    python3 scripts/ompl_dubins_reference.py
 }
 
-# Builds the network with the ground tool when it has a `build` command and the scenario exists;
-# otherwise the fixture tool makes a synthetic grid network. Then writes the firmware's fixture.
+# Builds the niendorf-urban network with the ground tool and writes the firmware's fixture
+# (FIXTURE_SYNTHETIC=1: a small synthetic grid network instead, for debugging the firmware alone).
 fixture() {
-    local help
     local extra=()
     # shellcheck disable=SC2206 # FIXTURE_ARGS is meant to split
     extra=(${FIXTURE_ARGS:-})
-    if [[ ${FIXTURE_SYNTHETIC:-0} != 1 ]] &&
-        help=$(cargo run --release -q -p skyroute-prep --bin skyroute -- build --help 2>&1) &&
-        grep -qi 'usage' <<<"$help" && [[ -f $scenario ]]; then
-        echo "network: skyroute $SKYROUTE_BUILD_ARGS"
-        mkdir -p "$(dirname "$network_src")"
-        rm -f "$network_src"
-        # shellcheck disable=SC2086 # the arguments are meant to split
-        cargo run --release -q -p skyroute-prep --bin skyroute -- $SKYROUTE_BUILD_ARGS
-        if [[ ! -f $network_src ]]; then
-            echo "skyroute build did not write $network_src" >&2
-            return 1
-        fi
-        cargo run --release -q -p host-tests --bin firmware_fixture -- \
-            "$network_src" "$fixture_dir" ${extra[@]+"${extra[@]}"}
-    else
-        echo "network: synthetic (FIXTURE_SYNTHETIC=1, no \`skyroute build\` yet, or no $scenario)"
+    if [[ ${FIXTURE_SYNTHETIC:-0} == 1 ]]; then
+        echo "network: synthetic (FIXTURE_SYNTHETIC=1)"
         cargo run --release -q -p host-tests --bin firmware_fixture -- \
             --synthetic "$fixture_dir" ${extra[@]+"${extra[@]}"}
+        return
     fi
+    echo "network: skyroute $SKYROUTE_BUILD_ARGS"
+    mkdir -p "$(dirname "$network_src")"
+    rm -f "$network_src"
+    # shellcheck disable=SC2086 # the arguments are meant to split
+    cargo run --release -q -p skyroute-prep --bin skyroute -- $SKYROUTE_BUILD_ARGS
+    if [[ ! -f $network_src ]]; then
+        echo "skyroute build did not write $network_src" >&2
+        return 1
+    fi
+    cargo run --release -q -p host-tests --bin firmware_fixture -- \
+        "$network_src" "$fixture_dir" ${extra[@]+"${extra[@]}"}
 }
 
 firmware_build() {
