@@ -7,9 +7,8 @@
 #
 # Knobs (environment):
 #   SKYROUTE_BUILD_ARGS  arguments of the ground tool that builds the firmware's network
-#                        (default below); `--synthetic` is used while `skyroute build` is absent
-#   FIXTURE_SYNTHETIC=1  use the fixture tool's synthetic grid network even when the ground tool
-#                        can build the scenario
+#                        (default below: niendorf-urban)
+#   FIXTURE_SYNTHETIC=1  use the fixture tool's small synthetic grid network instead (debugging)
 #   FIXTURE_ARGS         extra options of the fixture tool, e.g. "--start x,y,h --goal x,y
 #                        --popup x,y,r" (local metres, radians CCW from east); defaults: see
 #                        host-tests/src/bin/firmware_fixture.rs
