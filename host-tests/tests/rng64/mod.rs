@@ -1,0 +1,42 @@
+//! A tiny deterministic RNG (SplitMix64) in f64, so reference tests are reproducible without
+//! dependencies.
+#![allow(dead_code)]
+
+use std::f64::consts::PI;
+
+/// SplitMix64 with f64 helpers.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+    pub fn log_range(&mut self, lo: f64, hi: f64) -> f64 {
+        self.range(lo.ln(), hi.ln()).exp()
+    }
+    pub fn below(&mut self, n: u64) -> u64 {
+        self.next_u64() % n
+    }
+    pub fn sign(&mut self) -> f64 {
+        if self.below(2) == 0 {
+            -1.0
+        } else {
+            1.0
+        }
+    }
+    pub fn unit_vector(&mut self) -> (f64, f64) {
+        let a = self.range(-PI, PI);
+        (a.cos(), a.sin())
+    }
+}
