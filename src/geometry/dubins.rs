@@ -177,6 +177,9 @@ impl DubinsPath {
             None => [angles.0 * r, angles.1, angles.2 * r],
             Some(_) => [angles.0 * r, angles.1 * r, angles.2 * r],
         };
+        if lengths.iter().any(|l| !l.is_finite()) {
+            return None; // poses so far apart that a length overflows f32
+        }
         Some(Self {
             start: Pose {
                 position: start.position,

@@ -21,6 +21,11 @@ use core::ops::{Add, Mul, Neg, Sub};
 /// At a 1 km turn radius the tolerance is 1 cm of arc.
 pub const ANGLE_TOLERANCE: f32 = 1e-5;
 
+/// The largest coordinate or radius, metres, that the planner accepts in a query or pop-up
+/// (10 000 km). Beyond it, squared distances in f32 approach overflow and distance tests could
+/// fail open.
+pub const MAX_COORDINATE_M: f32 = 1e7;
+
 /// A 2-D vector or point, metres east (`x`) and north (`y`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -86,6 +91,11 @@ impl Vec2 {
     /// Both components are finite.
     pub fn is_finite(self) -> bool {
         self.x.is_finite() && self.y.is_finite()
+    }
+
+    /// Both components lie within ±[`MAX_COORDINATE_M`].
+    pub fn is_in_range(self) -> bool {
+        libm::fabsf(self.x) <= MAX_COORDINATE_M && libm::fabsf(self.y) <= MAX_COORDINATE_M
     }
 }
 

@@ -166,6 +166,19 @@ pub enum LoadError {
         /// The kind code.
         code: u8,
     },
+    /// Flying an edge's geometry from its source does not end at its target's pose.
+    EdgeMissesTarget {
+        /// Edge index.
+        edge: u32,
+        /// How far from the target it ends, millimetres (saturating; a heading mismatch alone
+        /// may show a small or zero distance).
+        miss_mm: u32,
+    },
+    /// An edge costs less than the length of its geometry.
+    CostBelowLength {
+        /// Edge index.
+        edge: u32,
+    },
     /// An obstacle is neither a polygon of at least 3 points nor a circle of positive radius.
     BadObstacle {
         /// Obstacle index.
@@ -257,6 +270,13 @@ impl fmt::Display for LoadError {
             }
             NegativeValue { edge } => write!(f, "edge {edge} has a negative cost or length"),
             UnknownGeometry { edge, code } => write!(f, "edge {edge} has unknown geometry {code}"),
+            EdgeMissesTarget { edge, miss_mm } => {
+                write!(
+                    f,
+                    "edge {edge} ends {miss_mm} mm (or a heading) away from its target"
+                )
+            }
+            CostBelowLength { edge } => write!(f, "edge {edge} costs less than its length"),
             BadObstacle { obstacle } => write!(f, "obstacle {obstacle} is malformed"),
             GridTooSmall { vertex } => {
                 write!(f, "grid index does not cover the reach of vertex {vertex}")

@@ -344,12 +344,55 @@ impl<'a> Network<'a> {
             if r.cost < 0.0 || r.params.iter().any(|&x| x < 0.0) {
                 return Err(LoadError::NegativeValue { edge: i });
             }
-            if DubinsWord::from_code(r.geometry).is_none() {
+            let Some(word) = DubinsWord::from_code(r.geometry) else {
                 return Err(LoadError::UnknownGeometry {
                     edge: i,
                     code: r.geometry,
                 });
-            }
+            };
+            self.validate_edge_geometry(i, &r, word)?;
+        }
+        Ok(())
+    }
+
+    /// Flying edge `i` from its source must end at its target's pose, and its cost must not
+    /// undercut its length (the A* heuristic and the grid's 4r reach rely on both). Tolerances
+    /// cover f32 rounding: 10⁻⁴ of (turn radius + coordinate size + length) plus 1 cm, and
+    /// 10⁻³ rad; measured Dubins end errors are below 5·10⁻⁶ of that scale.
+    fn validate_edge_geometry(
+        &self,
+        i: u32,
+        r: &EdgeRecord,
+        word: DubinsWord,
+    ) -> Result<(), LoadError> {
+        let malformed = LoadError::Malformed {
+            section: Section::Edges,
+            index: i,
+        };
+        let (Some(start), Some(target)) = (self.vertex(r.source), self.vertex(r.target)) else {
+            return Err(malformed);
+        };
+        let path = DubinsPath {
+            start,
+            radius: self.header.turn_radius_m,
+            word,
+            lengths: r.params,
+        };
+        let end = path.end();
+        let length = path.length();
+        let scale = self.header.turn_radius_m
+            + libm::fabsf(target.position.x).max(libm::fabsf(target.position.y))
+            + length;
+        let miss = end.position.distance(target.position);
+        let turn = libm::fabsf(crate::geometry::wrap_to_pi(end.heading - target.heading));
+        if !(miss <= 1e-4 * scale + 0.01 && turn <= 1e-3) {
+            return Err(LoadError::EdgeMissesTarget {
+                edge: i,
+                miss_mm: (miss * 1000.0).min(u32::MAX as f32) as u32,
+            });
+        }
+        if !(r.cost >= length * (1.0 - 1e-5)) {
+            return Err(LoadError::CostBelowLength { edge: i });
         }
         Ok(())
     }
@@ -370,6 +413,9 @@ impl<'a> Network<'a> {
                 });
             }
         }
+        // Polygons own back-to-back point ranges that together use every point exactly once:
+        // the work bound charges each point once.
+        let mut next_point = 0u64;
         for i in 0..self.header.obstacle_count {
             let o: ObstacleRecord = self.checked_record(
                 Section::Obstacles,
@@ -386,6 +432,12 @@ impl<'a> Network<'a> {
             let ok = match o.kind {
                 OBSTACLE_POLYGON => {
                     let end = o.first_point as u64 + o.point_count as u64;
+                    if o.first_point as u64 != next_point {
+                        return Err(LoadError::BadOffsets {
+                            section: Section::Obstacles,
+                            index: i,
+                        });
+                    }
                     if end > points as u64 {
                         return Err(LoadError::IndexOutOfRange {
                             section: Section::Obstacles,
@@ -394,6 +446,7 @@ impl<'a> Network<'a> {
                             limit: points,
                         });
                     }
+                    next_point = end;
                     o.point_count >= 3
                 }
                 OBSTACLE_CIRCLE => o.circle[2] > 0.0,
@@ -402,6 +455,13 @@ impl<'a> Network<'a> {
             if !ok || o.bbox[0] > o.bbox[2] || o.bbox[1] > o.bbox[3] {
                 return Err(LoadError::BadObstacle { obstacle: i });
             }
+        }
+        if next_point != points as u64 {
+            // Points that no polygon uses.
+            return Err(LoadError::BadOffsets {
+                section: Section::ObstaclePoints,
+                index: next_point as u32,
+            });
         }
         Ok(())
     }
@@ -620,7 +680,9 @@ impl<'a> Network<'a> {
     /// Total number of polygon edges and circles over all obstacles: the number of elementary
     /// predicate evaluations one primitive costs against every obstacle.
     pub fn obstacle_elements(&self) -> u32 {
-        self.header.obstacle_point_count + self.header.obstacle_count
+        self.header
+            .obstacle_point_count
+            .saturating_add(self.header.obstacle_count)
     }
 
     /// The grid cells overlapping the rectangle `[min, max]`, clamped to the grid; `None` when

@@ -21,6 +21,12 @@ pub enum PlanError {
         /// Which one.
         field: QueryField,
     },
+    /// A position lies beyond [`MAX_COORDINATE_M`](crate::geometry::MAX_COORDINATE_M) of the
+    /// network's origin.
+    OutOfRange {
+        /// Which one.
+        field: QueryField,
+    },
     /// The start or goal lies inside a static obstacle.
     InsideObstacle {
         /// Start or goal.
@@ -64,6 +70,7 @@ impl fmt::Display for PlanError {
         use PlanError::*;
         match *self {
             NonFinite { field } => write!(f, "{field:?} has a NaN or infinite value"),
+            OutOfRange { field } => write!(f, "{field:?} lies beyond 10 000 km of the origin"),
             InsideObstacle { field, obstacle } => {
                 write!(f, "{field:?} lies inside obstacle {obstacle}")
             }
@@ -101,6 +108,8 @@ pub enum PopupError {
     NonFinite,
     /// A circle's radius is not positive.
     NonPositiveRadius,
+    /// A coordinate or the radius exceeds [`MAX_COORDINATE_M`](crate::geometry::MAX_COORDINATE_M).
+    OutOfRange,
     /// A polygon has fewer than 3 vertices, a zero-length edge, or edges that cross.
     NotSimple,
     /// No active pop-up has this id.
@@ -116,6 +125,7 @@ impl fmt::Display for PopupError {
             PopupError::NoFreeSlot { capacity } => write!(f, "all {capacity} pop-up slots in use"),
             PopupError::NonFinite => write!(f, "pop-up has a NaN or infinite value"),
             PopupError::NonPositiveRadius => write!(f, "pop-up radius is not positive"),
+            PopupError::OutOfRange => write!(f, "pop-up lies beyond 10 000 km of the origin"),
             PopupError::NotSimple => write!(f, "pop-up polygon is not simple"),
             PopupError::UnknownId { id } => write!(f, "no active pop-up with id {id}"),
         }

@@ -280,8 +280,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// The most work [`Planner::add_popup`] can count on the loaded network.
     pub fn worst_case_popup_work(&self) -> u64 {
+        let h = self.network.header();
         popup_work_bound(
-            self.network.header().grid_entry_count as u64,
+            h.grid_nx as u64 * h.grid_ny as u64,
+            h.grid_entry_count as u64,
             MAX_POPUP_VERTICES as u64,
         )
     }

@@ -6,7 +6,7 @@ use super::{Planner, PopupError};
 use crate::geometry::predicates::{
     conflicts_with_circle, conflicts_with_polygon, point_in_polygon, polygon_is_simple,
 };
-use crate::geometry::{Primitive, Vec2};
+use crate::geometry::{Primitive, Vec2, MAX_COORDINATE_M};
 use heapless::Vec;
 
 /// The most vertices a pop-up polygon may have.
@@ -35,6 +35,8 @@ pub struct PopupSummary {
     pub id: u8,
     /// Edges this pop-up blocks (including ones another pop-up blocks too).
     pub edges_blocked: u32,
+    /// Grid cells visited.
+    pub cells_visited: u32,
     /// Grid entries visited.
     pub entries_visited: u32,
     /// Exact predicate evaluations.
@@ -50,6 +52,8 @@ impl Popup {
                     Err(PopupError::NonFinite)
                 } else if *radius <= 0.0 {
                     Err(PopupError::NonPositiveRadius)
+                } else if !centre.is_in_range() || *radius > MAX_COORDINATE_M {
+                    Err(PopupError::OutOfRange)
                 } else {
                     Ok(())
                 }
@@ -57,6 +61,8 @@ impl Popup {
             Popup::Polygon(points) => {
                 if points.iter().any(|p| !p.is_finite()) {
                     Err(PopupError::NonFinite)
+                } else if points.iter().any(|p| !p.is_in_range()) {
+                    Err(PopupError::OutOfRange)
                 } else if !polygon_is_simple(points.as_slice()) {
                     Err(PopupError::NotSimple)
                 } else {
@@ -124,6 +130,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let mut summary = PopupSummary {
             id: slot as u8,
             edges_blocked: 0,
+            cells_visited: 0,
             entries_visited: 0,
             predicate_tests: 0,
         };
@@ -132,6 +139,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if let Some(cells) = self.network.cells_overlapping(lo - widen, hi + widen) {
             for y in cells.y0..=cells.y1 {
                 for x in cells.x0..=cells.x1 {
+                    summary.cells_visited = summary.cells_visited.saturating_add(1);
                     for k in self.network.cell_entries(x, y) {
                         summary.entries_visited += 1;
                         let Some(e) = self.network.cell_entry(k) else {

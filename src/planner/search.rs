@@ -33,6 +33,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 field: QueryField::Goal,
             });
         }
+        if !query.start.position.is_in_range() {
+            return Err(PlanError::OutOfRange {
+                field: QueryField::Start,
+            });
+        }
+        if !query.goal.position.is_in_range() {
+            return Err(PlanError::OutOfRange {
+                field: QueryField::Goal,
+            });
+        }
         self.check_free(query.start.position, QueryField::Start, &mut meter)?;
         self.check_free(query.goal.position, QueryField::Goal, &mut meter)?;
 

@@ -99,6 +99,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             let junction = b.start;
             let mut best = (a.length() + b.length(), a, b);
             for k in 0..n {
+                // Checked before every candidate, whichever way the previous one ended.
+                if let Err(e) = meter.check() {
+                    result = Err(e);
+                    break 'junctions;
+                }
                 // Offsets −90° … +90°, evenly spaced; 0 (the current heading) is already `best`.
                 let offset = if n == 1 {
                     0.0
@@ -120,10 +125,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 };
                 if first.length() + second.length() < best.0 {
                     best = (first.length() + second.length(), first, second);
-                }
-                if let Err(e) = meter.check() {
-                    result = Err(e);
-                    break 'junctions;
                 }
             }
             let fits = count + pieces(&best.1) + pieces(&best.2) <= R + pieces(&a) + pieces(&b);
@@ -148,6 +149,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         meter: Meter,
         result: Result<(), PlanError>,
     ) -> Result<SmoothSummary, PlanError> {
+        // The last candidate's work must fit the budget too.
+        let result = result.and_then(|()| meter.check());
         self.flatten_route();
         let length_after = self.route_length();
         if let Some(s) = self.summary.as_mut() {

@@ -94,8 +94,9 @@ pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
 }
 
 /// The most work one [`Planner::add_popup`](super::Planner::add_popup) can count: every grid
-/// entry of the network visited once (`entries`), each of its edge's ≤ 3 primitives tested
-/// against the pop-up (`popup_vertices + 1` predicate evaluations).
-pub fn popup_work_bound(entries: u64, popup_vertices: u64) -> u64 {
-    entries * (1 + 3 * (popup_vertices + 1))
+/// cell of the network visited once (`cells`), every grid entry once (`entries`), each entry's
+/// edge's ≤ 3 primitives tested against the pop-up (`popup_vertices + 1` predicate
+/// evaluations).
+pub fn popup_work_bound(cells: u64, entries: u64, popup_vertices: u64) -> u64 {
+    cells + entries * (1 + 3 * (popup_vertices + 1))
 }

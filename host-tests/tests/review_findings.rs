@@ -1,0 +1,595 @@
+//! Regression tests for the defects a review of the core found (each failed before its fix:
+//! the `DEFECT n` comments describe the defect as it was), and edge cases not covered
+//! elsewhere (marked `EDGE CASE`).
+
+use skyroute::network::format::{EdgeRecord, Header, ObstacleRecord, U32Record, VertexRecord};
+use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec};
+use skyroute::network::{crc32, LoadError};
+use skyroute::planner::{Goal, PlanError, PlannerConfig, Popup, Query, Search};
+use skyroute::{DubinsPath, Network, Planner, Pose, Vec2};
+use std::f32::consts::{FRAC_PI_2, PI};
+
+type Big<'n> = Planner<'n, 1024, 16384, 16, 1024>;
+
+fn boxed<'n, const V: usize, const E: usize, const P: usize, const R: usize>(
+    bytes: &'n [u8],
+) -> Box<Planner<'n, V, E, P, R>> {
+    let mut p: Box<Planner<'n, V, E, P, R>> = Box::new(Planner::new());
+    p.load(bytes).expect("test network loads");
+    p
+}
+
+/// A lattice roadmap: `n × n` positions `spacing` apart from `origin`, four headings each,
+/// an edge (the shortest Dubins path) from every vertex to every vertex at a neighbouring
+/// position (8-neighbourhood).
+fn lattice_spec(n: usize, spacing: f32, origin: f32, radius: f32) -> NetworkSpec {
+    let headings = [0.0, FRAC_PI_2, PI, -FRAC_PI_2];
+    let mut vertices = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            for h in headings {
+                vertices.push(Pose::new(
+                    origin + i as f32 * spacing,
+                    origin + j as f32 * spacing,
+                    h,
+                ));
+            }
+        }
+    }
+    let mut edges = Vec::new();
+    for (a, pa) in vertices.iter().enumerate() {
+        for (b, pb) in vertices.iter().enumerate() {
+            let d = pa.position.distance(pb.position);
+            if d > 0.0 && d <= 1.5 * spacing {
+                let path = DubinsPath::shortest(pa, pb, radius).unwrap();
+                edges.push(EdgeSpec {
+                    source: a as u32,
+                    target: b as u32,
+                    cost: path.length(),
+                    word: path.word,
+                    lengths: path.lengths,
+                });
+            }
+        }
+    }
+    NetworkSpec {
+        origin_lat_deg: 48.0,
+        origin_lon_deg: 11.6,
+        turn_radius_m: radius,
+        clearance_m: 5.0,
+        vertices,
+        edges,
+        obstacles: Vec::new(),
+        grid_cell_m: 2.0 * radius,
+    }
+}
+
+fn put_u32(b: &mut [u8], at: usize, v: u32) {
+    b[at..at + 4].copy_from_slice(&v.to_le_bytes());
+}
+
+fn obstacle_bytes(kind: u8, first: u32, count: u32, circle: [f32; 3], bbox: [f32; 4]) -> Vec<u8> {
+    let mut out = vec![kind];
+    out.extend_from_slice(&first.to_le_bytes());
+    out.extend_from_slice(&count.to_le_bytes());
+    for x in circle.iter().chain(bbox.iter()) {
+        out.extend_from_slice(&x.to_le_bytes());
+    }
+    assert_eq!(out.len(), ObstacleRecord::SIZE);
+    out
+}
+
+/// Replaces the obstacle and point sections of an image that has no obstacles, fixing the
+/// header's counts, body length and CRC. (The grid index does not depend on obstacles.)
+fn splice_obstacles(image: &[u8], obstacles: &[Vec<u8>], points: &[Vec2]) -> Vec<u8> {
+    let net = Network::from_bytes(image).unwrap();
+    assert_eq!(net.obstacle_count(), 0);
+    let (v, e) = (net.vertex_count() as usize, net.edge_count() as usize);
+    let at =
+        Header::SIZE + v * VertexRecord::SIZE + (v + 1) * U32Record::SIZE + e * EdgeRecord::SIZE;
+    let mut out = image[..at].to_vec();
+    for o in obstacles {
+        out.extend_from_slice(o);
+    }
+    for p in points {
+        out.extend_from_slice(&p.x.to_le_bytes());
+        out.extend_from_slice(&p.y.to_le_bytes());
+    }
+    out.extend_from_slice(&image[at..]);
+    put_u32(&mut out, 40, obstacles.len() as u32);
+    put_u32(&mut out, 44, points.len() as u32);
+    let body_len = (out.len() - Header::SIZE) as u32;
+    put_u32(&mut out, 72, body_len);
+    let crc = crc32(&out[Header::SIZE..]);
+    put_u32(&mut out, 76, crc);
+    out
+}
+
+fn plan_route(p: &mut Big<'_>) -> skyroute::RouteSummary {
+    // A short connect radius: no direct start–goal path, the route runs through the network.
+    p.set_config(PlannerConfig {
+        connect_radius_m: 150.0,
+        ..PlannerConfig::DEFAULT
+    });
+    let q = Query {
+        start: Pose::new(300.0, 300.0, 0.0),
+        goal: Goal {
+            position: Vec2::new(700.0, 700.0),
+            heading: Some(FRAC_PI_2),
+        },
+        search: Search::Dijkstra,
+    };
+    p.plan(&q, u64::MAX).expect("lattice route")
+}
+
+// ---------------------------------------------------------------------------------------------
+// DEFECT 1 (fixed): `smooth_headings` does not enforce its budget.
+// src/planner/smooth.rs: `meter.check()` is only reached after a candidate whose both halves were
+// solved and found clear; every `continue` (first solve not clear / not shorter / second not
+// clear) skips it, and `finish` never checks. So the pass returns Ok with work > budget.
+// ---------------------------------------------------------------------------------------------
+#[test]
+fn smooth_headings_never_reports_success_over_budget() {
+    let spec = lattice_spec(5, 100.0, 300.0, 30.0);
+    let bytes = encode(&spec).unwrap();
+    let mut p: Box<Big<'_>> = boxed(&bytes);
+    let s = plan_route(&mut p);
+    assert!(
+        p.route_paths().len() >= 3,
+        "need a route with junctions: {s:?}"
+    );
+    // Pop-ups arrive on the route's junctions (after the route was planned): every candidate
+    // heading there now fails its clearance check, so each candidate `continue`s.
+    let junctions: Vec<Vec2> = p.route_paths()[1..]
+        .iter()
+        .map(|path| path.start.position)
+        .collect();
+    assert!(junctions.len() <= 16);
+    for centre in junctions {
+        p.add_popup(Popup::Circle {
+            centre,
+            radius: 2.0,
+        })
+        .unwrap();
+    }
+    for (candidates, budget) in [(1000u16, 100u64), (64, 10), (1, 0)] {
+        match p.smooth_headings(candidates, budget) {
+            Ok(summary) => assert!(
+                summary.work.total() <= budget,
+                "smooth_headings({candidates}, {budget}) returned Ok with work {} > budget",
+                summary.work.total()
+            ),
+            Err(PlanError::BudgetExhausted { .. }) => {}
+            Err(e) => panic!("unexpected {e:?}"),
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// DEFECT 2 (fixed): the loader accepted polygon obstacles whose point ranges overlap (FORMAT.md: Q is
+// "polygon points over all obstacles"), but `plan_work_bound` charges `obstacle_points` once
+// in total. Each polygon is charged `point_count + 1` collision tests per primitive in
+// `path_is_clear`, so an accepted image makes `plan` count far more than `worst_case_work()`,
+// and a query given exactly `worst_case_work()` as budget fails with BudgetExhausted.
+// src/network/mod.rs validate_obstacles (~line 375), src/planner/work.rs plan_work_bound.
+// ---------------------------------------------------------------------------------------------
+#[test]
+fn overlapping_polygon_point_ranges_are_rejected() {
+    let spec = lattice_spec(5, 100.0, 300.0, 30.0);
+    let image = encode(&spec).unwrap();
+    // A thin, simple L-shaped polygon along the south and east sides of the area, with many
+    // collinear points on its south side: its bounding box covers the whole area, so every
+    // primitive is tested exactly against it, but nothing in the interior conflicts.
+    let mut pts = Vec::new();
+    for k in 0..=100 {
+        pts.push(Vec2::new(-100.0 + 12.0 * k as f32, -100.0)); // (-100,-100) .. (1100,-100)
+    }
+    pts.push(Vec2::new(1100.0, 1100.0));
+    pts.push(Vec2::new(1090.0, 1100.0));
+    pts.push(Vec2::new(1090.0, -90.0));
+    pts.push(Vec2::new(-100.0, -90.0));
+    let n = pts.len() as u32;
+    let bbox = [-100.0, -100.0, 1100.0, 1100.0];
+    // 100 obstacle records, all naming the same points.
+    let obstacles: Vec<Vec<u8>> = (0..100)
+        .map(|_| obstacle_bytes(0, 0, n, [0.0; 3], bbox))
+        .collect();
+    let bytes = splice_obstacles(&image, &obstacles, &pts);
+    // Rejected: polygons must own back-to-back point ranges covering every point once, which
+    // is what the work bound charges.
+    assert_eq!(
+        Network::from_bytes(&bytes).unwrap_err(),
+        skyroute::LoadError::BadOffsets {
+            section: skyroute::network::Section::Obstacles,
+            index: 1
+        }
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// DEFECT 3 (fixed) (fail-open, numeric range): `Vec2::norm` squares in f32, so distances above ~1.8e19 m
+// overflow to +inf. A circle pop-up whose centre is far away but whose radius reaches the
+// network (here a disc that contains the whole area) passes `Popup::validate`, blocks no edge
+// (`conflicts_with_circle`: inf <= r + c is false) and does not contain the start
+// (`Popup::contains`: inf <= r is false): the planner routes straight through it.
+// src/planner/popup.rs validate/contains/conflicts, src/geometry/mod.rs Vec2::norm.
+// ---------------------------------------------------------------------------------------------
+#[test]
+fn huge_circle_popup_that_contains_the_start_is_not_ignored() {
+    let spec = lattice_spec(5, 100.0, 300.0, 30.0);
+    let bytes = encode(&spec).unwrap();
+    let mut p: Box<Big<'_>> = boxed(&bytes);
+    let r = 1.0e20f32;
+    // Disc centred (r, 500) of radius r: every point with x > 0 and |y − 500| ≪ sqrt(r·x) is
+    // inside; the whole lattice (x, y in [300, 700]) is, by ~x metres.
+    let popup = Popup::Circle {
+        centre: Vec2::new(r, 500.0),
+        radius: r,
+    };
+    match p.add_popup(popup) {
+        Err(_) => return, // refusing such a pop-up is an acceptable fix
+        Ok(s) => {
+            let q = Query {
+                start: Pose::new(300.0, 300.0, 0.0),
+                goal: Goal {
+                    position: Vec2::new(700.0, 700.0),
+                    heading: None,
+                },
+                search: Search::Dijkstra,
+            };
+            let res = p.plan(&q, u64::MAX);
+            assert!(
+                matches!(res, Err(PlanError::InsidePopup { .. })),
+                "start lies inside the pop-up, yet plan gave {res:?} (edges blocked: {})",
+                s.edges_blocked
+            );
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// DEFECT 4 (fixed) (NaN/inf propagation): with `connect_radius_m = +inf` (or any radius ≥ ~1.8e19) a far
+// start is accepted; `DubinsPath::with_word` squares the centre distance in f32 (d*d → inf), so
+// the start link has an infinite straight, and the planner returns Ok with a route whose length
+// is infinite and whose primitives have non-finite coordinates.
+// src/geometry/dubins.rs csc_angles (l_sq = d*d − …), src/planner/connect.rs nearest_vertices.
+// ---------------------------------------------------------------------------------------------
+#[test]
+fn plan_never_returns_a_non_finite_route() {
+    let spec = lattice_spec(5, 100.0, 300.0, 30.0);
+    let bytes = encode(&spec).unwrap();
+    let mut p: Box<Big<'_>> = boxed(&bytes);
+    p.set_config(PlannerConfig {
+        connect_radius_m: f32::INFINITY,
+        ..PlannerConfig::DEFAULT
+    });
+    let q = Query {
+        start: Pose::new(1.0e30, 500.0, PI),
+        goal: Goal {
+            position: Vec2::new(500.0, 500.0),
+            heading: Some(0.0),
+        },
+        search: Search::Dijkstra,
+    };
+    if let Ok(s) = p.plan(&q, u64::MAX) {
+        assert!(
+            s.length.is_finite(),
+            "route length {}: {:?}",
+            s.length,
+            p.route()
+        );
+        for prim in p.route() {
+            assert!(
+                prim.start().is_finite() && prim.end().is_finite() && prim.length().is_finite(),
+                "non-finite primitive in an accepted route: {prim:?}"
+            );
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// DEFECT 5 (fixed) (validation gap): FORMAT.md says an edge's path "starts at the source vertex's pose;
+// flying it ends at the target's pose", and the grid-coverage check (4r around each vertex) and
+// pop-up pruning rely on it, but `validate_edges` never checks it. An accepted image can hold an
+// edge that flies 5 km away from its target: routes through it are discontinuous, and a pop-up
+// on its far part (outside the grid) blocks nothing. src/network/mod.rs validate_edges.
+// ---------------------------------------------------------------------------------------------
+#[test]
+fn loader_rejects_edge_geometry_that_misses_its_target() {
+    let spec = lattice_spec(3, 100.0, 300.0, 30.0);
+    let mut bytes = encode(&spec).unwrap();
+    let net = Network::from_bytes(&bytes).unwrap();
+    let v = net.vertex_count() as usize;
+    let edge0 = Header::SIZE + v * VertexRecord::SIZE + (v + 1) * U32Record::SIZE;
+    // Edge 0 becomes LSL with lengths [0, 5000, 0]: a 5 km straight from its source.
+    bytes[edge0 + 12] = 0;
+    for (k, x) in [0.0f32, 5000.0, 0.0].iter().enumerate() {
+        let at = edge0 + 13 + 4 * k;
+        bytes[at..at + 4].copy_from_slice(&x.to_le_bytes());
+    }
+    let crc = crc32(&bytes[Header::SIZE..]);
+    put_u32(&mut bytes, 76, crc);
+    match Network::from_bytes(&bytes) {
+        Err(_) => {}
+        Ok(net) => {
+            let e = net.edge(0).unwrap();
+            let end = net.edge_path(0).unwrap().end();
+            let target = net.vertex(e.target).unwrap();
+            panic!(
+                "accepted an edge whose path ends at {:?}, {} m from its target {:?}",
+                end.position,
+                end.position.distance(target.position),
+                target.position
+            );
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// EDGE CASE (passes): the degenerate capacities. `Planner<0,0,0,0>` and `<1,1,1,1>` must load a
+// network that fits, refuse one that does not, and never panic on plan / pop-ups / smoothing.
+// ---------------------------------------------------------------------------------------------
+#[test]
+fn zero_and_one_capacities_never_panic() {
+    let empty = NetworkSpec {
+        origin_lat_deg: 0.0,
+        origin_lon_deg: 0.0,
+        turn_radius_m: 30.0,
+        clearance_m: 5.0,
+        vertices: Vec::new(),
+        edges: Vec::new(),
+        obstacles: vec![ObstacleSpec::Circle {
+            centre: Vec2::new(50.0, 50.0),
+            radius: 10.0,
+        }],
+        grid_cell_m: 60.0,
+    };
+    let empty = encode(&empty).unwrap();
+    let one = NetworkSpec {
+        vertices: vec![Pose::new(0.0, 0.0, 0.0)],
+        edges: vec![EdgeSpec {
+            source: 0,
+            target: 0,
+            cost: 2.0 * PI * 30.0,
+            word: skyroute::DubinsWord::Lsl,
+            lengths: [2.0 * PI * 30.0, 0.0, 0.0],
+        }],
+        obstacles: Vec::new(),
+        ..lattice_spec(1, 100.0, 0.0, 30.0)
+    };
+    let one = encode(&one).unwrap();
+    let queries = [
+        Query {
+            start: Pose::new(-200.0, 0.0, 0.0),
+            goal: Goal {
+                position: Vec2::new(200.0, 0.0),
+                heading: None,
+            },
+            search: Search::AStar,
+        },
+        Query {
+            start: Pose::new(0.0, 0.0, 0.0),
+            goal: Goal {
+                position: Vec2::new(0.0, 0.0),
+                heading: Some(0.0),
+            },
+            search: Search::Dijkstra,
+        },
+    ];
+    let mut p0: Planner<'_, 0, 0, 0, 0> = Planner::new();
+    assert!(matches!(
+        p0.load(&one),
+        Err(LoadError::TooManyVertices { .. })
+    ));
+    p0.load(&empty).unwrap();
+    assert!(p0
+        .add_popup(Popup::Circle {
+            centre: Vec2::new(0.0, 0.0),
+            radius: 1.0
+        })
+        .is_err());
+    assert!(p0.remove_popup(0).is_err());
+    assert!(p0.remove_popup(255).is_err());
+    for q in &queries {
+        let _ = p0.plan(q, u64::MAX);
+        let _ = p0.plan(q, 0);
+    }
+    let _ = p0.shortcut(u64::MAX);
+    let _ = p0.smooth_headings(u16::MAX, 1000);
+    assert!(p0.route().is_empty());
+
+    let mut p1: Planner<'_, 1, 1, 1, 1> = Planner::new();
+    p1.load(&one).unwrap();
+    for cfg in [
+        PlannerConfig::DEFAULT,
+        PlannerConfig {
+            start_candidates: 0,
+            goal_candidates: 255,
+            connect_radius_m: f32::NAN,
+            free_goal_headings: 0,
+        },
+        PlannerConfig {
+            start_candidates: 255,
+            goal_candidates: 0,
+            connect_radius_m: -1.0,
+            free_goal_headings: u16::MAX,
+        },
+    ] {
+        p1.set_config(cfg);
+        for q in &queries {
+            let _ = p1.plan(q, u64::MAX);
+            let _ = p1.shortcut(u64::MAX);
+            let _ = p1.smooth_headings(3, u64::MAX);
+        }
+    }
+    let id = p1
+        .add_popup(Popup::Circle {
+            centre: Vec2::new(0.0, 60.0),
+            radius: 1.0,
+        })
+        .unwrap()
+        .id;
+    assert_eq!(id, 0);
+    assert!(p1
+        .add_popup(Popup::Circle {
+            centre: Vec2::new(9.0, 9.0),
+            radius: 1.0
+        })
+        .is_err());
+    assert!(!p1.is_edge_enabled(0));
+    p1.remove_popup(id).unwrap();
+    assert!(p1.is_edge_enabled(0));
+}
+
+// ---------------------------------------------------------------------------------------------
+// EDGE CASE (passes): random sequences of calls with extreme values (NaN, ±inf, ±f32::MAX,
+// subnormals, huge headings, odd configs, degenerate pop-ups) never panic (debug assertions on)
+// and every Ok result keeps its counted work within the budget it was given.
+// ---------------------------------------------------------------------------------------------
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+    fn f(&mut self) -> f32 {
+        const SPECIAL: [f32; 14] = [
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::MAX,
+            f32::MIN,
+            f32::MIN_POSITIVE,
+            1.0e-40,
+            0.0,
+            -0.0,
+            1.0e20,
+            -1.0e20,
+            1.0e30,
+            8192.5,
+            -1.0e7,
+        ];
+        match self.below(4) {
+            0 => SPECIAL[self.below(SPECIAL.len() as u64) as usize],
+            _ => (self.below(2_000_000) as f32) / 1000.0 - 500.0,
+        }
+    }
+    fn v(&mut self) -> Vec2 {
+        Vec2::new(self.f(), self.f())
+    }
+}
+
+#[test]
+fn random_extreme_call_sequences_never_panic() {
+    let mut spec = lattice_spec(4, 100.0, 300.0, 30.0);
+    spec.obstacles = vec![
+        ObstacleSpec::Circle {
+            centre: Vec2::new(450.0, 450.0),
+            radius: 12.0,
+        },
+        ObstacleSpec::Polygon(vec![
+            Vec2::new(340.0, 520.0),
+            Vec2::new(370.0, 520.0),
+            Vec2::new(370.0, 560.0),
+            Vec2::new(340.0, 560.0),
+        ]),
+    ];
+    let bytes = encode(&spec).unwrap();
+    let mut p: Box<Planner<'_, 64, 4096, 3, 24>> = boxed(&bytes);
+    let seeds: u64 = std::env::var("FUZZ_SEEDS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(3);
+    for seed in 0..seeds {
+        let mut rng = Rng(42 + seed);
+        for _ in 0..6000 {
+            match rng.below(9) {
+                0 => p.set_config(PlannerConfig {
+                    start_candidates: rng.below(256) as u8,
+                    goal_candidates: rng.below(256) as u8,
+                    connect_radius_m: rng.f().abs() * if rng.below(5) == 0 { -1.0 } else { 1.0 },
+                    free_goal_headings: rng.below(400) as u16,
+                }),
+                1 | 2 => {
+                    let popup = if rng.below(2) == 0 {
+                        Popup::Circle {
+                            centre: rng.v(),
+                            radius: rng.f(),
+                        }
+                    } else {
+                        let mut pts = heapless::Vec::new();
+                        for _ in 0..rng.below(18) {
+                            let _ = pts.push(rng.v());
+                        }
+                        Popup::Polygon(pts)
+                    };
+                    let _ = p.add_popup(popup);
+                }
+                3 => {
+                    let _ = p.remove_popup(rng.below(20) as u8);
+                }
+                4 => {
+                    let b = rng.below(2000);
+                    if let Ok(s) = p.shortcut(b) {
+                        assert!(s.work.total() <= b);
+                    }
+                }
+                5 => {
+                    // (No budget assertion here: see DEFECT 1.)
+                    let _ = p.smooth_headings(rng.below(40) as u16, rng.below(5000));
+                }
+                _ => {
+                    let near = rng.below(3) != 0;
+                    let pick = |rng: &mut Rng| {
+                        if near {
+                            Vec2::new(250.0 + rng.below(500) as f32, 250.0 + rng.below(500) as f32)
+                        } else {
+                            rng.v()
+                        }
+                    };
+                    let start = Pose {
+                        position: pick(&mut rng),
+                        heading: rng.f(),
+                    };
+                    let goal = Goal {
+                        position: pick(&mut rng),
+                        heading: if rng.below(2) == 0 {
+                            None
+                        } else {
+                            Some(rng.f())
+                        },
+                    };
+                    let q = Query {
+                        start,
+                        goal,
+                        search: if rng.below(2) == 0 {
+                            Search::Dijkstra
+                        } else {
+                            Search::AStar
+                        },
+                    };
+                    let before = format!("{:?}{:?}", p.route(), p.route_paths());
+                    let budget = if rng.below(3) == 0 {
+                        rng.below(20_000)
+                    } else {
+                        u64::MAX
+                    };
+                    match p.plan(&q, budget) {
+                        Ok(s) => assert!(s.work.total() <= budget),
+                        Err(e) => assert_eq!(
+                            format!("{:?}{:?}", p.route(), p.route_paths()),
+                            before,
+                            "{e:?} changed the route"
+                        ),
+                    }
+                }
+            }
+        }
+    }
+}
