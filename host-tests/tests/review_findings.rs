@@ -227,7 +227,8 @@ fn huge_circle_popup_that_contains_the_start_is_not_ignored() {
         radius: r,
     };
     match p.add_popup(popup) {
-        Err(_) => return, // refusing such a pop-up is an acceptable fix
+        // Refused since the fix: beyond MAX_COORDINATE_M.
+        Err(e) => assert_eq!(e, skyroute::PopupError::OutOfRange),
         Ok(s) => {
             let q = Query {
                 start: Pose::new(300.0, 300.0, 0.0),

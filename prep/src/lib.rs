@@ -9,3 +9,4 @@ pub mod render;
 pub mod roadmap;
 pub mod route_json;
 pub mod scenario;
+pub mod terrain;
