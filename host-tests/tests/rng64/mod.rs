@@ -5,6 +5,7 @@
 use std::f64::consts::PI;
 
 /// SplitMix64 with f64 helpers.
+#[derive(Clone)]
 pub struct Rng(pub u64);
 
 impl Rng {
@@ -26,7 +27,7 @@ impl Rng {
         self.range(lo.ln(), hi.ln()).exp()
     }
     pub fn below(&mut self, n: u64) -> u64 {
-        self.next_u64() % n
+        self.next_u64() % n.max(1)
     }
     pub fn sign(&mut self) -> f64 {
         if self.below(2) == 0 {
@@ -34,6 +35,14 @@ impl Rng {
         } else {
             1.0
         }
+    }
+    /// True with probability `p`.
+    pub fn chance(&mut self, p: f64) -> bool {
+        self.unit() < p
+    }
+    /// Uniform integer in [lo, hi].
+    pub fn int(&mut self, lo: i64, hi: i64) -> i64 {
+        lo + self.below((hi - lo + 1) as u64) as i64
     }
     pub fn unit_vector(&mut self) -> (f64, f64) {
         let a = self.range(-PI, PI);
