@@ -145,20 +145,9 @@ pub fn build(
     };
     let frame = s.local_frame();
     let obstacles = local_obstacles(s, &frame);
-    let pts: Vec<Vec2> = s
-        .positions()
-        .map(|(lon, lat)| local(&frame, lon, lat))
-        .collect();
-    let lo = pts
-        .iter()
-        .fold(Vec2::new(f32::INFINITY, f32::INFINITY), |a, p| {
-            Vec2::new(a.x.min(p.x), a.y.min(p.y))
-        });
-    let hi = pts
-        .iter()
-        .fold(Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY), |a, p| {
-            Vec2::new(a.x.max(p.x), a.y.max(p.y))
-        });
+    let (lo, hi) = skyroute::geometry::points_bounding_box(
+        s.positions().map(|(lon, lat)| local(&frame, lon, lat)),
+    );
     let input = RoadmapInput {
         area_min: lo,
         area_max: hi,

@@ -233,7 +233,7 @@ fn plan_mission_in_pool(
         for (a, b, r) in costs {
             match r {
                 Ok(s) => {
-                    add_work(&mut work, &s.work);
+                    work += s.work;
                     way_out[a] = true;
                     let total = best[i - 1][a].map_or(f64::INFINITY, |x| x.0) + s.length as f64;
                     if stage_best[b].is_none_or(|x| total < x.0) {
@@ -327,12 +327,4 @@ fn plan_mission_in_pool(
         queries,
         work,
     })
-}
-
-fn add_work(total: &mut Work, w: &Work) {
-    total.vertex_scans += w.vertex_scans;
-    total.dubins_solves += w.dubins_solves;
-    total.collision_tests += w.collision_tests;
-    total.heap_steps += w.heap_steps;
-    total.relaxations += w.relaxations;
 }

@@ -147,24 +147,7 @@ impl<'a> ObstacleIndex<'a> {
         let items = obstacles
             .iter()
             .map(|o| {
-                let (lo, hi) = match o {
-                    ObstacleSpec::Polygon(p) => p.iter().fold(
-                        (
-                            Vec2::new(f32::INFINITY, f32::INFINITY),
-                            Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY),
-                        ),
-                        |(lo, hi), q| {
-                            (
-                                Vec2::new(lo.x.min(q.x), lo.y.min(q.y)),
-                                Vec2::new(hi.x.max(q.x), hi.y.max(q.y)),
-                            )
-                        },
-                    ),
-                    ObstacleSpec::Circle { centre, radius } => (
-                        Vec2::new(centre.x - radius, centre.y - radius),
-                        Vec2::new(centre.x + radius, centre.y + radius),
-                    ),
-                };
+                let (lo, hi) = o.bounding_box();
                 (o, lo, hi)
             })
             .collect::<Vec<_>>();

@@ -127,6 +127,17 @@ impl Neg for Vec2 {
     }
 }
 
+/// The axis-aligned bounding box `(min, max)` of some points; `(+∞, −∞)` when there are none.
+pub fn points_bounding_box(points: impl IntoIterator<Item = Vec2>) -> (Vec2, Vec2) {
+    let mut lo = Vec2::new(f32::INFINITY, f32::INFINITY);
+    let mut hi = Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY);
+    for p in points {
+        lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    (lo, hi)
+}
+
 /// Reduces an angle to [0, 2π), taking values within [`ANGLE_TOLERANCE`] of 2π as 0.
 pub fn wrap_to_tau(a: f32) -> f32 {
     let mut r = libm::fmodf(a, TAU);

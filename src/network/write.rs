@@ -2,7 +2,7 @@
 
 use super::format::*;
 use super::{crc32, Network};
-use crate::geometry::{DubinsPath, DubinsWord, Pose, Vec2};
+use crate::geometry::{points_bounding_box, DubinsPath, DubinsWord, Pose, Vec2};
 use std::vec;
 use std::vec::Vec;
 
@@ -141,7 +141,7 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     for o in &spec.obstacles {
         let record = match o {
             ObstacleSpec::Polygon(points) => {
-                let (lo, hi) = bbox(points.iter().copied());
+                let (lo, hi) = o.bounding_box();
                 let r = ObstacleRecord {
                     kind: OBSTACLE_POLYGON,
                     first_point: point_count,
@@ -159,12 +159,10 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
                 first_point: 0,
                 point_count: 0,
                 circle: [centre.x, centre.y, *radius],
-                bbox: [
-                    centre.x - radius,
-                    centre.y - radius,
-                    centre.x + radius,
-                    centre.y + radius,
-                ],
+                bbox: {
+                    let (lo, hi) = o.bounding_box();
+                    [lo.x, lo.y, hi.x, hi.y]
+                },
             },
         };
         push(&mut body, &record);
@@ -213,14 +211,17 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     Ok(out)
 }
 
-fn bbox(points: impl Iterator<Item = Vec2>) -> (Vec2, Vec2) {
-    let mut lo = Vec2::new(f32::INFINITY, f32::INFINITY);
-    let mut hi = Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY);
-    for p in points {
-        lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
-        hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
+impl ObstacleSpec {
+    /// Axis-aligned bounding box `(min, max)`.
+    pub fn bounding_box(&self) -> (Vec2, Vec2) {
+        match self {
+            ObstacleSpec::Polygon(points) => points_bounding_box(points.iter().copied()),
+            ObstacleSpec::Circle { centre, radius } => (
+                Vec2::new(centre.x - radius, centre.y - radius),
+                Vec2::new(centre.x + radius, centre.y + radius),
+            ),
+        }
     }
-    (lo, hi)
 }
 
 /// The uniform grid index: for each cell, the edges with a primitive whose bounding box
@@ -241,7 +242,7 @@ impl GridIndex {
         let (lo, hi) = if spec.vertices.is_empty() {
             (Vec2::default(), Vec2::default())
         } else {
-            bbox(spec.vertices.iter().map(|v| v.position))
+            points_bounding_box(spec.vertices.iter().map(|v| v.position))
         };
         let origin = Vec2::new(lo.x - reach, lo.y - reach);
         let nx = (((hi.x - lo.x + 2.0 * reach) / cell).ceil() as u32).max(1);

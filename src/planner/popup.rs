@@ -6,7 +6,7 @@ use super::{Planner, PopupError};
 use crate::geometry::predicates::{
     conflicts_with_circle, conflicts_with_polygon, point_in_polygon, polygon_is_simple,
 };
-use crate::geometry::{Primitive, Vec2, MAX_COORDINATE_M};
+use crate::geometry::{points_bounding_box, Primitive, Vec2, MAX_COORDINATE_M};
 use heapless::Vec;
 
 /// The most vertices a pop-up polygon may have.
@@ -79,15 +79,7 @@ impl Popup {
                 Vec2::new(centre.x - radius, centre.y - radius),
                 Vec2::new(centre.x + radius, centre.y + radius),
             ),
-            Popup::Polygon(points) => {
-                let mut lo = Vec2::new(f32::INFINITY, f32::INFINITY);
-                let mut hi = Vec2::new(f32::NEG_INFINITY, f32::NEG_INFINITY);
-                for p in points {
-                    lo = Vec2::new(lo.x.min(p.x), lo.y.min(p.y));
-                    hi = Vec2::new(hi.x.max(p.x), hi.y.max(p.y));
-                }
-                (lo, hi)
-            }
+            Popup::Polygon(points) => points_bounding_box(points.iter().copied()),
         }
     }
 

@@ -43,6 +43,16 @@ impl Work {
     }
 }
 
+impl core::ops::AddAssign for Work {
+    fn add_assign(&mut self, w: Work) {
+        self.vertex_scans += w.vertex_scans;
+        self.dubins_solves += w.dubins_solves;
+        self.collision_tests += w.collision_tests;
+        self.heap_steps += w.heap_steps;
+        self.relaxations += w.relaxations;
+    }
+}
+
 /// The counts that bound a query's work.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
