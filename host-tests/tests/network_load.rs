@@ -90,7 +90,7 @@ fn each_damage_has_its_own_error() {
         Network::from_bytes(&b).unwrap_err(),
         LoadError::UnsupportedVersion {
             found: 7,
-            supported: 1
+            supported: skyroute::network::format::FORMAT_VERSION
         }
     );
 

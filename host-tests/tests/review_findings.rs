@@ -61,6 +61,7 @@ fn lattice_spec(n: usize, spacing: f32, origin: f32, radius: f32) -> NetworkSpec
         edges,
         obstacles: Vec::new(),
         grid_cell_m: 2.0 * radius,
+        terrain: None,
     }
 }
 
@@ -344,6 +345,7 @@ fn zero_and_one_capacities_never_panic() {
             radius: 10.0,
         }],
         grid_cell_m: 60.0,
+        terrain: None,
     };
     let empty = encode(&empty).unwrap();
     let one = NetworkSpec {

@@ -28,7 +28,7 @@ fn same_bytes_on_any_number_of_threads() {
     let one = build_with_threads(1, &BuildOptions::default());
     let three = build_with_threads(3, &BuildOptions::default());
     assert_eq!(one.bytes, three.bytes);
-    assert!(one.roadmap.edges.len() > 6000);
+    assert!(one.roadmap.as_ref().unwrap().edges.len() > 6000);
 }
 
 #[test]
@@ -37,7 +37,7 @@ fn samples_keep_spacing_and_clearance_and_ccc_can_be_excluded() {
     let spacing = s.planner.sample_spacing_m.unwrap() as f32;
     let clearance = s.planner.clearance_m.unwrap() as f32;
     let built = build(&s, &BuildOptions::default(), &|_, _| {}).unwrap();
-    let v = &built.roadmap.vertices;
+    let v = &built.roadmap.as_ref().unwrap().vertices;
     for (i, a) in v.iter().enumerate() {
         for b in &v[i + 1..] {
             assert!(
@@ -80,9 +80,14 @@ fn exact_and_discretised_checks_are_both_reported() {
             ..Default::default()
         },
     );
-    let (e, d) = (exact.roadmap.edges.len(), discretised.roadmap.edges.len());
+    let (e, d) = (
+        exact.roadmap.as_ref().unwrap().edges.len(),
+        discretised.roadmap.as_ref().unwrap().edges.len(),
+    );
     let pairs = |b: &Built| {
         b.roadmap
+            .as_ref()
+            .unwrap()
             .edges
             .iter()
             .map(|x| (x.source, x.target))
@@ -95,7 +100,10 @@ fn exact_and_discretised_checks_are_both_reported() {
         "niendorf-urban edges accepted: exact {e}, discretised (arc step 40 m) {d}; \
          discretised accepts {unsafe_accepted} edges that violate the clearance and rejects {safe_rejected} that keep it"
     );
-    assert_eq!(exact.roadmap.vertices, discretised.roadmap.vertices);
+    assert_eq!(
+        exact.roadmap.as_ref().unwrap().vertices,
+        discretised.roadmap.as_ref().unwrap().vertices
+    );
     assert_eq!(
         unsafe_accepted, 0,
         "the chord check with the sagitta margin is conservative"

@@ -42,9 +42,19 @@ enum Command {
         /// Check edges with the paper's discretisation (planner.arc_step_m) instead of exactly.
         #[arg(long)]
         discretised: bool,
-        /// Side of a grid-index cell, metres (default: twice the turn radius).
+        /// Side of a grid-index cell, metres (default: twice the turn radius; terrain 4000).
         #[arg(long)]
         grid_cell: Option<f32>,
+        /// Terrain mode: drop nodes closer than this to a kept one, metres (default 0).
+        #[arg(long)]
+        node_spacing: Option<f64>,
+        /// Terrain mode: the longest edge tried, metres (default 10000).
+        #[arg(long)]
+        max_edge: Option<f64>,
+        /// Terrain mode: extra offset of a node from its corner beyond the widening, metres
+        /// (default 1; more leaves room for turn arcs).
+        #[arg(long)]
+        node_margin: Option<f64>,
     },
     /// Plan start → waypoints in order → goal through a network with the onboard core.
     Plan {
@@ -160,7 +170,29 @@ fn build_command(path: &Path, output: &Path, options: &BuildOptions) -> CliResul
     let built = build(&s, options, &progress)?;
     bar.finish_and_clear();
     std::fs::write(output, &built.bytes).map_err(|e| format!("{}: {e}", output.display()))?;
-    let r = &built.roadmap;
+    if let Some(g) = &built.terrain {
+        let st = &g.stats;
+        println!(
+            "built {}: terrain graph {} nodes, {} edges ({} corners, {} pairs tested), elevation \
+             grid {} x {} of {:.2} m, {} blocked at the scenario's altitude, {} bytes, {:.2} s -> {}",
+            path.display(),
+            g.nodes.len(),
+            g.edges.len(),
+            st.corners,
+            st.pairs_tested,
+            g.grid.cols,
+            g.grid.rows,
+            g.grid.cell,
+            st.blocked_cells,
+            built.bytes.len(),
+            t0.elapsed().as_secs_f64(),
+            output.display()
+        );
+        return Ok(());
+    }
+    let Some(r) = &built.roadmap else {
+        return Err("the build produced no network".into());
+    };
     println!(
         "built {}: {} vertices, {} edges ({} examined, {} check), {} bytes, {:.2} s -> {}",
         path.display(),
@@ -282,12 +314,18 @@ fn run(cli: Cli) -> CliResult {
             neighbour_radius,
             discretised,
             grid_cell,
+            node_spacing,
+            max_edge,
+            node_margin,
         } => {
             let options = BuildOptions {
                 sample_spacing_m: sample_spacing,
                 neighbour_radius_m: neighbour_radius,
                 discretised,
                 grid_cell_m: grid_cell,
+                node_spacing_m: node_spacing,
+                max_edge_m: max_edge,
+                node_margin_m: node_margin,
             };
             build_command(&path, &output, &options)
         }

@@ -11,15 +11,24 @@ use crate::build::{local, local_heading};
 use crate::frame::LocalFrame;
 use crate::scenario::{Endpoint, Scenario};
 use rayon::prelude::*;
-use skyroute::planner::{Goal, PlanError, Query, RouteSummary, Search, Work};
+use skyroute::planner::{Goal, PlanError, PlannerConfig, Query, RouteSummary, Search, Work};
 use skyroute::{Planner, Pose, Primitive, Vec2};
 use std::fmt;
 
 /// The planner used on the host: large enough for any network the ground tool builds.
-pub type HostPlanner<'n> = Planner<'n, 16384, 262144, 16, 4096>;
+/// Its `V` (search states) also holds a terrain network's directed edges.
+pub type HostPlanner<'n> = Planner<'n, 131072, 262144, 16, 4096>;
 
 /// Stack for threads that hold a [`HostPlanner`] (about 1 MiB) by value.
 pub const PLANNER_STACK: usize = 64 << 20;
+
+/// The connection settings for terrain networks: 16 links within 10 km (the longest edge).
+pub const TERRAIN_CONFIG: PlannerConfig = PlannerConfig {
+    start_candidates: 16,
+    goal_candidates: 16,
+    connect_radius_m: 10_000.0,
+    free_goal_headings: 36,
+};
 
 /// Headings tried per junction by the heading smoothing (±90° about the current one).
 pub const SMOOTHING_HEADINGS: u16 = 9;
@@ -134,6 +143,10 @@ fn planner<'n>(
 ) -> Result<Box<HostPlanner<'n>>, MissionError> {
     let mut p: Box<HostPlanner<'n>> = Box::new(Planner::new());
     p.load(bytes).map_err(MissionError::Load)?;
+    if p.network().terrain().is_some() {
+        // Terrain nodes sit at region corners, often kilometres from a valley's start or goal.
+        p.set_config(TERRAIN_CONFIG);
+    }
     for pop in popups {
         p.add_popup(skyroute::Popup::Circle {
             centre: pop.centre,

@@ -90,6 +90,7 @@ use crate::dem::{Dem, Units};
 use crate::frame::LocalFrame;
 use rayon::prelude::*;
 use skyroute::geometry::grid::{segment_cells, CellGrid, GridError, MAX_CELLS_PER_AXIS};
+use skyroute::network::elevation::{ElevationCoding, ELEVATION_BLOCKED};
 use skyroute::{Segment, Vec2};
 use std::fmt;
 use std::time::{Duration, Instant};
@@ -105,6 +106,9 @@ pub struct TerrainParams {
     pub min_node_spacing_m: f64,
     /// Longest edge tried, metres; `None`: every pair.
     pub max_edge_m: Option<f64>,
+    /// Keep only edges whose line is tangent to the blocked region at both nodes (the reduced
+    /// visibility graph; see the module documentation).
+    pub tangent_edges_only: bool,
 }
 
 impl Default for TerrainParams {
@@ -114,6 +118,7 @@ impl Default for TerrainParams {
             node_margin_m: 1.0,
             min_node_spacing_m: 0.0,
             max_edge_m: Some(10_000.0),
+            tangent_edges_only: true,
         }
     }
 }
@@ -170,8 +175,18 @@ pub struct TerrainStats {
 pub struct TerrainGraph {
     /// The metric grid.
     pub grid: CellGrid,
-    /// Per cell, row-major from the south: blocked.
+    /// How [`TerrainGraph::codes`] map to metres.
+    pub coding: ElevationCoding,
+    /// Per cell, row-major from the south: an upper bound of its highest terrain, encoded
+    /// ([`ElevationCoding`]; [`ELEVATION_BLOCKED`] for cells reaching outside the DEM or over
+    /// NODATA). This is the table the network carries.
+    pub codes: Vec<u8>,
+    /// Cells with a code at or above this are blocked at the graph's altitude.
+    pub blocking_code: u8,
+    /// Per cell, row-major from the south: blocked (`codes[i] >= blocking_code`).
     pub blocked: Vec<bool>,
+    /// Per node: the quadrant `(±1, ±1)` its corner's blocked cell lies in, seen from the node.
+    pub quadrants: Vec<[i8; 2]>,
     /// The half-width kept free around every edge and node: `wingspan/2 + clearance`, metres.
     pub widen_m: f32,
     /// The nodes, sorted by `(x, y)`.
@@ -428,12 +443,13 @@ pub fn build_terrain_graph(
     let pad_lon = stats.pad_m / m_per_deg_lon;
     let pad_lat = stats.pad_m / m_per_deg_lat;
 
-    // DEM navigability, then each metric cell against the DEM cells its footprint's box meets.
-    let nav: Vec<bool> = (0..nr * nc)
+    // DEM navigability (for the statistics), then each metric cell's highest DEM elevation
+    // over the DEM cells its footprint's box meets, encoded rounding up.
+    stats.dem_blocked = (0..nr * nc)
         .into_par_iter()
-        .map(|i| dem.is_navigable(i % nc, i / nc, altitude_m, safety_height_m))
-        .collect();
-    stats.dem_blocked = nav.iter().filter(|&&n| !n).count();
+        .filter(|&i| !dem.is_navigable(i % nc, i / nc, altitude_m, safety_height_m))
+        .count();
+    let coding = elevation_coding(dem)?;
     // Indices i in 0..n whose closed interval [i, i + 1] meets [lo, hi]; Err when it reaches
     // outside [0, n].
     let range = |lo: f64, hi: f64, n: usize| -> Result<(usize, usize), ()> {
@@ -444,8 +460,8 @@ pub fn build_terrain_graph(
         let b = hi.floor().min((n - 1) as f64);
         Ok((a as usize, b as usize))
     };
-    // 0: free, 1: blocked by terrain, 2: reaches outside the DEM.
-    let state: Vec<u8> = (0..rows * cols)
+    // `None`: the footprint reaches outside the DEM.
+    let highest: Vec<Option<f32>> = (0..rows * cols)
         .into_par_iter()
         .map(|i| {
             let (c, r) = (i % cols, i / cols);
@@ -457,18 +473,31 @@ pub fn build_terrain_graph(
             let dc = range((lon_lo - x0) / cs, (lon_hi - x0) / cs, nc);
             let dr = range((lat_lo - y0) / cs, (lat_hi - y0) / cs, nr);
             match (dc, dr) {
-                (Ok((c0, c1)), Ok((r0, r1))) => {
-                    let any = (r0..=r1).any(|rr| (c0..=c1).any(|cc| !nav[rr * nc + cc]));
-                    u8::from(any)
-                }
-                _ => 2,
+                (Ok((c0, c1)), Ok((r0, r1))) => Some(
+                    (r0..=r1)
+                        .flat_map(|rr| (c0..=c1).map(move |cc| dem.values()[rr * nc + cc]))
+                        // NaN (NODATA) wins the maximum: encoded as blocked.
+                        .fold(f32::NEG_INFINITY, |m, e| {
+                            if e.is_nan() || m.is_nan() {
+                                f32::NAN
+                            } else {
+                                m.max(e)
+                            }
+                        }),
+                ),
+                _ => None,
             }
         })
         .collect();
-    let blocked: Vec<bool> = state.iter().map(|&s| s != 0).collect();
+    let codes: Vec<u8> = highest
+        .iter()
+        .map(|h| h.map_or(ELEVATION_BLOCKED, |e| coding.encode(e)))
+        .collect();
+    let blocking = coding.blocking_code(altitude_m as f32, safety_height_m as f32);
+    let blocked: Vec<bool> = codes.iter().map(|&k| k >= blocking).collect();
     stats.cells = blocked.len();
     stats.blocked_cells = blocked.iter().filter(|&&b| b).count();
-    stats.outside_cells = state.iter().filter(|&&s| s == 2).count();
+    stats.outside_cells = highest.iter().filter(|h| h.is_none()).count();
     stats.grid_time = t0.elapsed();
 
     // ---- 2. Nodes.
@@ -513,16 +542,17 @@ pub fn build_terrain_graph(
                 stats.dropped_blocked += 1;
                 continue;
             }
-            nodes.push(p);
+            nodes.push((p, [dir.0 as i8, dir.1 as i8]));
         }
     }
     let placed = nodes.len();
     if params.min_node_spacing_m > 0.0 {
         nodes = thin(&nodes, params.min_node_spacing_m);
     }
-    nodes.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    nodes.dedup();
+    nodes.sort_by(|a, b| a.0.x.total_cmp(&b.0.x).then(a.0.y.total_cmp(&b.0.y)));
+    nodes.dedup_by(|a, b| a.0 == b.0);
     stats.dropped_thinned = placed - nodes.len();
+    let (nodes, quadrants): (Vec<Vec2>, Vec<[i8; 2]>) = nodes.into_iter().unzip();
     stats.nodes = nodes.len();
     stats.node_time = t1.elapsed();
 
@@ -541,6 +571,11 @@ pub fn build_terrain_graph(
                 }
                 let len = a.distance(b);
                 if len > max_edge {
+                    continue;
+                }
+                if params.tangent_edges_only
+                    && !(is_tangent(quadrants[i], b - a) && is_tangent(quadrants[j], b - a))
+                {
                     continue;
                 }
                 tested += 1;
@@ -568,7 +603,11 @@ pub fn build_terrain_graph(
 
     Ok(TerrainGraph {
         grid,
+        coding,
+        codes,
+        blocking_code: blocking,
         blocked,
+        quadrants,
         widen_m: widen,
         nodes,
         edges,
@@ -608,14 +647,47 @@ fn segment_clear(grid: &CellGrid, blocked: &[bool], widen: f32, a: Vec2, b: Vec2
     }
 }
 
+/// Whether the line through a node in direction `u` stays out of the interior of the node's
+/// blocked quadrant `s` on both sides of the node: `(s_x u_x)(s_y u_y) ≤ 0`. The grown region
+/// near the node is the quadrant `{s_x(x − p_x) ≥ 0, s_y(y − p_y) ≥ 0}`; the point `p + t u`
+/// is inside it iff `s_x u_x t > 0` and `s_y u_y t > 0`, for some `t` of either sign iff the
+/// two products have the same strict sign.
+fn is_tangent(s: [i8; 2], u: Vec2) -> bool {
+    (s[0] as f32 * u.x) * (s[1] as f32 * u.y) <= 0.0
+}
+
+/// The elevation coding for `dem`: base at its lowest elevation (rounded down to a metre), step
+/// such that its highest elevation encodes below [`ELEVATION_BLOCKED`].
+pub fn elevation_coding(dem: &Dem) -> Result<ElevationCoding, TerrainError> {
+    let (Some(lo), Some(hi)) = (dem.min(), dem.max()) else {
+        return Err(TerrainError::InvalidParameter(
+            "the DEM has no elevation (every cell is NODATA)".into(),
+        ));
+    };
+    let base = lo.floor();
+    let mut step = (((hi - base) as f64 / 253.0).max(0.01)) as f32;
+    let mut coding = ElevationCoding {
+        base_m: base,
+        step_m: step,
+    };
+    while coding.encode(hi) >= ELEVATION_BLOCKED {
+        step *= 1.001;
+        coding = ElevationCoding {
+            base_m: base,
+            step_m: step,
+        };
+    }
+    Ok(coding)
+}
+
 /// Greedy thinning in the given order: keeps a node unless a kept one lies within `spacing`.
-fn thin(nodes: &[Vec2], spacing: f64) -> Vec<Vec2> {
+fn thin(nodes: &[(Vec2, [i8; 2])], spacing: f64) -> Vec<(Vec2, [i8; 2])> {
     use std::collections::HashMap;
     let s = spacing as f32;
     let key = |p: Vec2| ((p.x / s).floor() as i64, (p.y / s).floor() as i64);
     let mut buckets: HashMap<(i64, i64), Vec<Vec2>> = HashMap::new();
     let mut kept = Vec::new();
-    for &p in nodes {
+    for &(p, quadrant) in nodes {
         let (kx, ky) = key(p);
         let near = (-1..=1).any(|dx| {
             (-1..=1).any(|dy| {
@@ -626,7 +698,7 @@ fn thin(nodes: &[Vec2], spacing: f64) -> Vec<Vec2> {
         });
         if !near {
             buckets.entry((kx, ky)).or_default().push(p);
-            kept.push(p);
+            kept.push((p, quadrant));
         }
     }
     kept

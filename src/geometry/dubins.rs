@@ -269,6 +269,45 @@ impl DubinsPath {
     pub fn end(&self) -> Pose {
         self.sample(self.length())
     }
+
+    /// The path that turns `turn` on radius `radius` from `start` until it heads straight at
+    /// `target`, then flies straight to it (a "CS" path, the first two pieces of `LSL` or `RSR`;
+    /// the heading on arrival is free). `None` if `target` lies strictly inside the turn circle
+    /// (no tangent reaches it) or an input is not finite.
+    ///
+    /// With centre `C` and `D = target − C`, `|D| = d ≥ r`, the tangent point's polar angle
+    /// about `C` is `φ ∓ acos(r/d)` (`φ` the angle of `D`; minus for a left turn): there the
+    /// radius is perpendicular to the line to the target, `cos(θ − φ) = r/d`, and of the two
+    /// solutions it is the one where the circle's direction of travel points at the target.
+    /// The straight is `√(d² − r²)` long.
+    pub fn turn_then_straight(start: &Pose, radius: f32, target: Vec2, turn: Turn) -> Option<Self> {
+        if !(start.is_finite() && target.is_finite() && radius.is_finite() && radius > 0.0) {
+            return None;
+        }
+        let centre = turn.centre(start, radius);
+        let d = target - centre;
+        let dist = d.norm();
+        if !(dist >= radius) {
+            return None;
+        }
+        let off = libm::acosf((radius / dist).min(1.0));
+        let sign = turn.sign();
+        let tangent_angle = d.angle() - sign * off;
+        let start_angle = start.heading - sign * core::f32::consts::FRAC_PI_2;
+        // Swept angle in the direction of travel, in [0, 2π).
+        let sweep = wrap_to_tau(sign * (tangent_angle - start_angle));
+        let straight = libm::sqrtf(((dist - radius) * (dist + radius)).max(0.0));
+        let word = match turn {
+            Turn::Left => DubinsWord::Lsl,
+            Turn::Right => DubinsWord::Rsr,
+        };
+        Some(DubinsPath {
+            start: *start,
+            radius,
+            word,
+            lengths: [sweep * radius, straight, 0.0],
+        })
+    }
 }
 
 /// Turn angles (first, last) and the straight's length for a CSC word.

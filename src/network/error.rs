@@ -22,6 +22,8 @@ pub enum Section {
     CellOffsets,
     /// The grid index's edge lists.
     CellEntries,
+    /// Terrain mode: the elevation table's grid and coding.
+    Terrain,
 }
 
 /// A scalar header parameter, named in [`LoadError::InvalidParameter`].
@@ -42,6 +44,10 @@ pub enum Parameter {
     GridDimensions,
     /// The reserved flags must be zero.
     Flags,
+    /// Terrain mode: the elevation grid must be valid (finite origin, positive cell, 1 to 2²⁴
+    /// cells per axis), the coding finite with a positive step, the widening, altitude and
+    /// safety height finite and not negative where that matters.
+    Terrain,
 }
 
 /// Why [`Network::from_bytes`](super::Network::from_bytes) rejected an image. Every variant
@@ -190,6 +196,32 @@ pub enum LoadError {
         /// A vertex outside the covered area.
         vertex: u32,
     },
+    /// Terrain mode: the planner's search-state capacity `V` is below the network's directed
+    /// edges plus [`MAX_LINKS`](crate::planner::MAX_LINKS) start links (checked by
+    /// [`Planner::load`](crate::planner::Planner::load)).
+    TooManySearchStates {
+        /// States needed.
+        needed: usize,
+        /// The capacity `V`.
+        capacity: usize,
+    },
+    /// Terrain mode: a line edge's band (its cells within the widening) reaches outside the
+    /// elevation grid.
+    EdgeOutsideTerrain {
+        /// Edge index.
+        edge: u32,
+    },
+    /// Terrain mode: a line edge's stored highest elevation code is below the highest code
+    /// among the cells its band touches (recomputed at load), so altitude pruning could keep
+    /// it over higher terrain.
+    EdgeElevationUnderstated {
+        /// Edge index.
+        edge: u32,
+        /// The stored code.
+        stored: u8,
+        /// The highest code found.
+        computed: u8,
+    },
 }
 
 impl fmt::Display for LoadError {
@@ -281,6 +313,21 @@ impl fmt::Display for LoadError {
             GridTooSmall { vertex } => {
                 write!(f, "grid index does not cover the reach of vertex {vertex}")
             }
+            TooManySearchStates { needed, capacity } => write!(
+                f,
+                "terrain search needs {needed} states (edges + start links), capacity is {capacity}"
+            ),
+            EdgeOutsideTerrain { edge } => {
+                write!(f, "edge {edge} reaches outside the elevation grid")
+            }
+            EdgeElevationUnderstated {
+                edge,
+                stored,
+                computed,
+            } => write!(
+                f,
+                "edge {edge} stores highest elevation code {stored}, but its cells reach {computed}"
+            ),
         }
     }
 }

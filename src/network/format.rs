@@ -1,4 +1,4 @@
-//! The records of network format v1 (specified in `docs/FORMAT.md`).
+//! The records of network format v2 (specified in `docs/FORMAT.md`).
 //!
 //! Every record is serialized with postcard using fixed-width little-endian integers
 //! (`postcard::fixint::le`), `f32`/`f64` as their IEEE-754 bits and `u8` as one byte, so each
@@ -12,10 +12,17 @@ use serde::{Deserialize, Serialize};
 pub const MAGIC: [u8; 4] = *b"SKYR";
 
 /// The format version this crate reads and writes.
-pub const FORMAT_VERSION: u16 = 1;
+pub const FORMAT_VERSION: u16 = 2;
 
 /// Network mode: a multi-query Dubins roadmap (Niendorf et al.).
 pub const MODE_ROADMAP: u8 = 0;
+/// Network mode: a terrain visibility graph of straight edges over an elevation table
+/// (Medeiros & da Silva); the body ends with a [`TerrainRecord`] and the table.
+pub const MODE_TERRAIN: u8 = 2;
+
+/// Edge geometry code: a straight line from the source's position to the target's
+/// (terrain mode). Its params are `[length, highest elevation code along it, 0]`.
+pub const GEOMETRY_LINE: u8 = 6;
 
 /// Obstacle kind code: a simple polygon.
 pub const OBSTACLE_POLYGON: u8 = 0;
@@ -118,9 +125,11 @@ pub struct EdgeRecord {
     pub target: u32,
     /// Cost of traversal (≥ 0), metres of flight for a roadmap.
     pub cost: f32,
-    /// Geometry kind: 0–5 a Dubins word ([`crate::DubinsWord::code`]).
+    /// Geometry kind: 0–5 a Dubins word ([`crate::DubinsWord::code`]), or [`GEOMETRY_LINE`].
     pub geometry: u8,
-    /// Geometry parameters: for a Dubins word, the lengths of its three pieces, metres.
+    /// Geometry parameters: for a Dubins word, the lengths of its three pieces, metres; for a
+    /// line, its length, the highest elevation code of the cells within
+    /// [`TerrainRecord::widen_m`] of it, and 0.
     pub params: [f32; 3],
 }
 
@@ -165,6 +174,41 @@ impl PointRecord {
     pub const SIZE: usize = 8;
 }
 
+/// Terrain mode: the elevation table's grid and coding, after the cell entries. The table
+/// follows: `cols · rows` bytes, row-major from the south (row 0 the southernmost), each an
+/// elevation code ([`crate::network::elevation`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TerrainRecord {
+    /// West edge of the elevation grid, metres.
+    pub origin_x: f32,
+    /// South edge of the elevation grid, metres.
+    pub origin_y: f32,
+    /// Side of an elevation cell, metres.
+    pub cell_m: f32,
+    /// Cells along x.
+    #[serde(with = "postcard::fixint::le")]
+    pub cols: u32,
+    /// Cells along y.
+    #[serde(with = "postcard::fixint::le")]
+    pub rows: u32,
+    /// Elevation of code 0, metres.
+    pub elevation_base_m: f32,
+    /// Metres per elevation code.
+    pub elevation_step_m: f32,
+    /// Half-width kept free of blocked cells around every edge, node and turn arc
+    /// (half the wingspan plus the horizontal clearance), metres.
+    pub widen_m: f32,
+    /// The flight altitude the network was built for, metres.
+    pub altitude_m: f32,
+    /// The safety height above the terrain the network was built for, metres.
+    pub safety_height_m: f32,
+}
+
+impl TerrainRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 40;
+}
+
 #[cfg(all(test, feature = "std"))]
 mod tests {
     use super::*;
@@ -173,7 +217,7 @@ mod tests {
     fn encoded_sizes_match_the_constants() {
         let h = Header {
             magic: MAGIC,
-            version: 1,
+            version: FORMAT_VERSION,
             mode: 0,
             flags: 0,
             origin_lat_deg: 1.0,
@@ -220,6 +264,19 @@ mod tests {
             bbox: [0.0; 4],
         };
         assert_eq!(postcard::to_stdvec(&o).unwrap().len(), ObstacleRecord::SIZE);
+        let t = TerrainRecord {
+            origin_x: 0.0,
+            origin_y: 0.0,
+            cell_m: 1.0,
+            cols: u32::MAX,
+            rows: 1,
+            elevation_base_m: 0.0,
+            elevation_step_m: 1.0,
+            widen_m: 1.0,
+            altitude_m: 1.0,
+            safety_height_m: 1.0,
+        };
+        assert_eq!(postcard::to_stdvec(&t).unwrap().len(), TerrainRecord::SIZE);
         assert_eq!(
             postcard::to_stdvec(&PointRecord { x: 1.0, y: 2.0 })
                 .unwrap()

@@ -1,4 +1,4 @@
-//! The preprocessed network: format v1, its validating loader and read-only accessors.
+//! The preprocessed network: format v2, its validating loader and read-only accessors.
 //!
 //! [`Network::from_bytes`] checks an image once (magic, version, length, checksum, counts,
 //! every index and every float) and then reads it where it lies: the network is never copied
@@ -6,6 +6,7 @@
 //! index below the corresponding count.
 
 mod crc;
+pub mod elevation;
 mod error;
 pub mod format;
 #[cfg(feature = "std")]
@@ -14,8 +15,10 @@ pub mod write;
 pub use crc::crc32;
 pub use error::{LoadError, Parameter, Section};
 
+use crate::geometry::grid::{segment_cells, CellGrid};
 use crate::geometry::predicates::PolygonView;
-use crate::geometry::{DubinsPath, DubinsWord, Pose, Vec2};
+use crate::geometry::{DubinsPath, DubinsWord, Pose, Segment, Vec2};
+use elevation::{ElevationCoding, ELEVATION_BLOCKED};
 use format::*;
 use serde::de::DeserializeOwned;
 
@@ -27,6 +30,8 @@ pub struct Network<'a> {
     bytes: Option<&'a [u8]>,
     header: Header,
     layout: Layout,
+    /// Terrain mode: the elevation table's grid and coding.
+    terrain: Option<TerrainRecord>,
 }
 
 /// Byte offsets of each section within the image.
@@ -39,6 +44,9 @@ struct Layout {
     points: usize,
     cell_offsets: usize,
     cell_entries: usize,
+    /// Terrain mode: the [`TerrainRecord`], then the elevation table (0 otherwise).
+    terrain: usize,
+    elevations: usize,
     end: usize,
 }
 
@@ -61,8 +69,19 @@ impl Layout {
             points: next(h.obstacle_point_count as usize, PointRecord::SIZE)?,
             cell_offsets: next(cells.checked_add(1)?, U32Record::SIZE)?,
             cell_entries: next(h.grid_entry_count as usize, U32Record::SIZE)?,
+            terrain: 0,
+            elevations: 0,
             end: at,
         })
+    }
+
+    /// Adds the terrain sections after the common ones, or `None` on overflow.
+    fn with_terrain(mut self, t: &TerrainRecord) -> Option<Self> {
+        let cells = (t.cols as usize).checked_mul(t.rows as usize)?;
+        self.terrain = self.end;
+        self.elevations = self.terrain.checked_add(TerrainRecord::SIZE)?;
+        self.end = self.elevations.checked_add(cells)?;
+        Some(self)
     }
 }
 
@@ -171,8 +190,11 @@ impl<'a> Network<'a> {
                 points: 0,
                 cell_offsets: 0,
                 cell_entries: 0,
+                terrain: 0,
+                elevations: 0,
                 end: 0,
             },
+            terrain: None,
         }
     }
 
@@ -210,7 +232,7 @@ impl<'a> Network<'a> {
                 supported: FORMAT_VERSION,
             });
         }
-        if header.mode != MODE_ROADMAP {
+        if header.mode != MODE_ROADMAP && header.mode != MODE_TERRAIN {
             return Err(LoadError::UnknownMode { mode: header.mode });
         }
         if header.vertex_count as usize > max_vertices {
@@ -225,7 +247,24 @@ impl<'a> Network<'a> {
                 capacity: max_edges,
             });
         }
-        let layout = Layout::from_header(&header).ok_or(LoadError::CountsTooLarge)?;
+        let mut layout = Layout::from_header(&header).ok_or(LoadError::CountsTooLarge)?;
+        let mut terrain = None;
+        if header.mode == MODE_TERRAIN {
+            // The terrain record sizes the table after it, so it is read before the lengths
+            // are compared (the checksum comes after them, as for every section).
+            let end = layout.end.saturating_add(TerrainRecord::SIZE);
+            let record = bytes.get(layout.end..end).ok_or(LoadError::Truncated {
+                needed: end,
+                available: bytes.len(),
+            })?;
+            let t: TerrainRecord =
+                postcard::from_bytes(record).map_err(|_| LoadError::Malformed {
+                    section: Section::Terrain,
+                    index: 0,
+                })?;
+            layout = layout.with_terrain(&t).ok_or(LoadError::CountsTooLarge)?;
+            terrain = Some(t);
+        }
         let expected_body = layout.end - Header::SIZE;
         if header.body_len as usize != expected_body {
             return Err(LoadError::BodyLengthMismatch {
@@ -255,6 +294,7 @@ impl<'a> Network<'a> {
             bytes: Some(bytes),
             header,
             layout,
+            terrain,
         };
         net.validate_parameters()?;
         net.validate_vertices()?;
@@ -287,6 +327,18 @@ impl<'a> Network<'a> {
         }
         if h.grid_nx == 0 || h.grid_ny == 0 {
             return bad(Parameter::GridDimensions);
+        }
+        if let Some(t) = &self.terrain {
+            let grid_ok = self.terrain_grid().is_some_and(|g| g.validate().is_ok());
+            let coding_ok = self.elevation_coding().is_some_and(|c| c.is_valid());
+            let numbers_ok = t.widen_m.is_finite()
+                && t.widen_m >= 0.0
+                && t.altitude_m.is_finite()
+                && t.safety_height_m.is_finite()
+                && t.safety_height_m >= 0.0;
+            if !(grid_ok && coding_ok && numbers_ok) {
+                return bad(Parameter::Terrain);
+            }
         }
         Ok(())
     }
@@ -344,13 +396,21 @@ impl<'a> Network<'a> {
             if r.cost < 0.0 || r.params.iter().any(|&x| x < 0.0) {
                 return Err(LoadError::NegativeValue { edge: i });
             }
-            let Some(word) = DubinsWord::from_code(r.geometry) else {
-                return Err(LoadError::UnknownGeometry {
-                    edge: i,
-                    code: r.geometry,
-                });
+            let unknown = LoadError::UnknownGeometry {
+                edge: i,
+                code: r.geometry,
             };
-            self.validate_edge_geometry(i, &r, word)?;
+            if self.terrain.is_some() {
+                if r.geometry != GEOMETRY_LINE {
+                    return Err(unknown);
+                }
+                self.validate_line_edge(i, &r)?;
+            } else {
+                let Some(word) = DubinsWord::from_code(r.geometry) else {
+                    return Err(unknown);
+                };
+                self.validate_edge_geometry(i, &r, word)?;
+            }
         }
         Ok(())
     }
@@ -393,6 +453,65 @@ impl<'a> Network<'a> {
         }
         if !(r.cost >= length * (1.0 - 1e-5)) {
             return Err(LoadError::CostBelowLength { edge: i });
+        }
+        Ok(())
+    }
+
+    /// A terrain edge: its stored length is the distance between its ends (tolerance as for
+    /// Dubins edges), its cost does not undercut it, its elevation code is a whole number no
+    /// lower than the highest code of the cells within the widening of the segment (recomputed
+    /// here with the exact traversal, so altitude pruning can trust it), and that band lies
+    /// inside the elevation grid. Work: the cells of the band.
+    fn validate_line_edge(&self, i: u32, r: &EdgeRecord) -> Result<(), LoadError> {
+        let malformed = LoadError::Malformed {
+            section: Section::Edges,
+            index: i,
+        };
+        let (Some(a), Some(b), Some(grid), Some(t)) = (
+            self.vertex(r.source),
+            self.vertex(r.target),
+            self.terrain_grid(),
+            self.terrain,
+        ) else {
+            return Err(malformed);
+        };
+        let (a, b) = (a.position, b.position);
+        let length = r.params[0];
+        let chord = a.distance(b);
+        let scale = libm::fabsf(b.x).max(libm::fabsf(b.y)) + length;
+        if !(libm::fabsf(chord - length) <= 1e-4 * scale + 0.01) {
+            return Err(LoadError::EdgeMissesTarget {
+                edge: i,
+                miss_mm: (libm::fabsf(chord - length) * 1000.0).min(u32::MAX as f32) as u32,
+            });
+        }
+        if !(r.cost >= length * (1.0 - 1e-5)) {
+            return Err(LoadError::CostBelowLength { edge: i });
+        }
+        let stored = r.params[1];
+        if !(stored <= ELEVATION_BLOCKED as f32 && stored == libm::floorf(stored))
+            || r.params[2] != 0.0
+        {
+            return Err(malformed);
+        }
+        let w = Vec2::new(t.widen_m, t.widen_m);
+        let lo = Vec2::new(a.x.min(b.x), a.y.min(b.y)) - w;
+        let hi = Vec2::new(a.x.max(b.x), a.y.max(b.y)) + w;
+        if !grid.covers(lo, hi) {
+            return Err(LoadError::EdgeOutsideTerrain { edge: i });
+        }
+        let mut highest = 0u8;
+        segment_cells(&grid, &Segment::new(a, b), t.widen_m, |c, r| {
+            highest = highest.max(self.elevation_code(c, r));
+            true
+        })
+        .map_err(|_| LoadError::EdgeOutsideTerrain { edge: i })?;
+        if (stored as u8) < highest {
+            return Err(LoadError::EdgeElevationUnderstated {
+                edge: i,
+                stored: stored as u8,
+                computed: highest,
+            });
         }
         Ok(())
     }
@@ -574,6 +693,56 @@ impl<'a> Network<'a> {
         self.bytes.map_or(0, <[u8]>::len)
     }
 
+    /// The network's mode: [`MODE_ROADMAP`] or [`MODE_TERRAIN`].
+    pub fn mode(&self) -> u8 {
+        self.header.mode
+    }
+
+    /// Terrain mode: the elevation table's grid and coding record.
+    pub fn terrain(&self) -> Option<&TerrainRecord> {
+        self.terrain.as_ref()
+    }
+
+    /// Terrain mode: the elevation table's grid.
+    pub fn terrain_grid(&self) -> Option<CellGrid> {
+        self.terrain
+            .map(|t| CellGrid::new(Vec2::new(t.origin_x, t.origin_y), t.cell_m, t.cols, t.rows))
+    }
+
+    /// Terrain mode: how elevation codes map to metres.
+    pub fn elevation_coding(&self) -> Option<ElevationCoding> {
+        self.terrain.map(|t| ElevationCoding {
+            base_m: t.elevation_base_m,
+            step_m: t.elevation_step_m,
+        })
+    }
+
+    /// Terrain mode: the elevation code of cell `(col, row)`; [`ELEVATION_BLOCKED`] outside
+    /// the grid or without terrain.
+    pub fn elevation_code(&self, col: u32, row: u32) -> u8 {
+        let Some(t) = &self.terrain else {
+            return ELEVATION_BLOCKED;
+        };
+        if col >= t.cols || row >= t.rows {
+            return ELEVATION_BLOCKED;
+        }
+        let i = row as usize * t.cols as usize + col as usize;
+        self.bytes
+            .and_then(|b| b.get(self.layout.elevations.checked_add(i)?))
+            .copied()
+            .unwrap_or(ELEVATION_BLOCKED)
+    }
+
+    /// Terrain mode: the highest elevation code within the widening of line edge `i`.
+    pub fn edge_highest_code(&self, i: u32) -> Option<u8> {
+        self.terrain?;
+        if i >= self.header.edge_count {
+            return None;
+        }
+        let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, i as usize)?;
+        Some(r.params[1] as u8)
+    }
+
     /// Number of vertices.
     pub fn vertex_count(&self) -> u32 {
         self.header.vertex_count
@@ -627,12 +796,18 @@ impl<'a> Network<'a> {
             return None;
         }
         let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, i as usize)?;
+        let (word, lengths) = if r.geometry == GEOMETRY_LINE {
+            // A straight line is the Dubins word whose two arcs are empty.
+            (DubinsWord::Lsl, [0.0, r.params[0], 0.0])
+        } else {
+            (DubinsWord::from_code(r.geometry)?, r.params)
+        };
         Some(Edge {
             source: r.source,
             target: r.target,
             cost: r.cost,
-            word: DubinsWord::from_code(r.geometry)?,
-            lengths: r.params,
+            word,
+            lengths,
         })
     }
 
@@ -644,8 +819,14 @@ impl<'a> Network<'a> {
     /// Edge `i`'s geometry as a Dubins path from its source's pose.
     pub fn edge_path(&self, i: u32) -> Option<DubinsPath> {
         let e = self.edge(i)?;
+        let mut start = self.vertex(e.source)?;
+        if self.terrain.is_some() {
+            // Terrain vertices have no heading: a line leaves towards its target.
+            let d = self.vertex(e.target)?.position - start.position;
+            start.heading = libm::atan2f(d.y, d.x);
+        }
         Some(DubinsPath {
-            start: self.vertex(e.source)?,
+            start,
             radius: self.header.turn_radius_m,
             word: e.word,
             lengths: e.lengths,

@@ -1,8 +1,10 @@
-//! The network writer (host only, feature `std`): the ground tool's half of format v1.
+//! The network writer (host only, feature `std`): the ground tool's half of format v2.
 
+use super::elevation::ElevationCoding;
 use super::format::*;
 use super::{crc32, Network};
-use crate::geometry::{points_bounding_box, DubinsPath, DubinsWord, Pose, Vec2};
+use crate::geometry::grid::{segment_cells, CellGrid};
+use crate::geometry::{points_bounding_box, DubinsPath, DubinsWord, Pose, Segment, Vec2};
 use std::vec;
 use std::vec::Vec;
 
@@ -19,6 +21,36 @@ pub struct EdgeSpec {
     pub word: DubinsWord,
     /// Lengths of the word's pieces, metres.
     pub lengths: [f32; 3],
+}
+
+impl EdgeSpec {
+    /// A straight edge of `length` metres (terrain mode): the Dubins word whose arcs are empty.
+    pub fn line(source: u32, target: u32, length: f32) -> Self {
+        EdgeSpec {
+            source,
+            target,
+            cost: length,
+            word: DubinsWord::Lsl,
+            lengths: [0.0, length, 0.0],
+        }
+    }
+}
+
+/// Terrain mode: the elevation table and what it was built for.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TerrainSpec {
+    /// The elevation grid.
+    pub grid: CellGrid,
+    /// How the codes map to metres.
+    pub coding: ElevationCoding,
+    /// One code per cell, row-major from the south.
+    pub codes: Vec<u8>,
+    /// Half-width kept free around edges, nodes and arcs, metres.
+    pub widen_m: f32,
+    /// Flight altitude the network was built for, metres.
+    pub altitude_m: f32,
+    /// Safety height the network was built for, metres.
+    pub safety_height_m: f32,
 }
 
 /// A static obstacle to write.
@@ -54,6 +86,9 @@ pub struct NetworkSpec {
     pub obstacles: Vec<ObstacleSpec>,
     /// Side of a grid-index cell, metres.
     pub grid_cell_m: f32,
+    /// Terrain mode: the elevation table (then every edge must be [`EdgeSpec::line`], and
+    /// vertex headings are ignored).
+    pub terrain: Option<TerrainSpec>,
 }
 
 /// Why a network could not be written.
@@ -68,6 +103,8 @@ pub enum WriteError {
     },
     /// The written image failed its own validation (a bug, or non-finite input).
     Invalid(super::LoadError),
+    /// Terrain mode: an edge is not a straight line, or the table does not match its grid.
+    BadTerrain(&'static str),
 }
 
 impl core::fmt::Display for WriteError {
@@ -76,6 +113,7 @@ impl core::fmt::Display for WriteError {
             WriteError::TooLarge(what) => write!(f, "too many {what} for format v1"),
             WriteError::BadEdge { edge } => write!(f, "edge {edge} names a missing vertex"),
             WriteError::Invalid(e) => write!(f, "the network does not validate: {e}"),
+            WriteError::BadTerrain(what) => write!(f, "terrain network: {what}"),
         }
     }
 }
@@ -104,6 +142,19 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     }
     let mut edges = spec.edges.clone();
     edges.sort_by_key(|e| e.source); // stable: keeps each source's order
+    if let Some(t) = &spec.terrain {
+        if t.codes.len() as u64 != t.grid.cols as u64 * t.grid.rows as u64 {
+            return Err(WriteError::BadTerrain(
+                "table size differs from cols x rows",
+            ));
+        }
+        if edges
+            .iter()
+            .any(|e| e.word != DubinsWord::Lsl || e.lengths[0] != 0.0 || e.lengths[2] != 0.0)
+        {
+            return Err(WriteError::BadTerrain("an edge is not a straight line"));
+        }
+    }
 
     let mut body = Vec::new();
     for v in &spec.vertices {
@@ -126,14 +177,27 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
         push(&mut body, &U32Record(offset));
     }
     for e in &edges {
+        let (geometry, params) = match &spec.terrain {
+            Some(t) => {
+                let (a, b) = (
+                    spec.vertices[e.source as usize].position,
+                    spec.vertices[e.target as usize].position,
+                );
+                let code = highest_code(t, a, b).ok_or(WriteError::BadTerrain(
+                    "an edge's band leaves the elevation grid",
+                ))?;
+                (GEOMETRY_LINE, [e.lengths[1], code as f32, 0.0])
+            }
+            None => (e.word.code(), e.lengths),
+        };
         push(
             &mut body,
             &EdgeRecord {
                 source: e.source,
                 target: e.target,
                 cost: e.cost,
-                geometry: e.word.code(),
-                params: e.lengths,
+                geometry,
+                params,
             },
         );
     }
@@ -181,11 +245,33 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     for e in &grid.entries {
         push(&mut body, &U32Record(*e));
     }
+    if let Some(t) = &spec.terrain {
+        push(
+            &mut body,
+            &TerrainRecord {
+                origin_x: t.grid.origin.x,
+                origin_y: t.grid.origin.y,
+                cell_m: t.grid.cell,
+                cols: t.grid.cols,
+                rows: t.grid.rows,
+                elevation_base_m: t.coding.base_m,
+                elevation_step_m: t.coding.step_m,
+                widen_m: t.widen_m,
+                altitude_m: t.altitude_m,
+                safety_height_m: t.safety_height_m,
+            },
+        );
+        body.extend_from_slice(&t.codes);
+    }
 
     let header = Header {
         magic: MAGIC,
         version: FORMAT_VERSION,
-        mode: MODE_ROADMAP,
+        mode: if spec.terrain.is_some() {
+            MODE_TERRAIN
+        } else {
+            MODE_ROADMAP
+        },
         flags: 0,
         origin_lat_deg: spec.origin_lat_deg,
         origin_lon_deg: spec.origin_lon_deg,
@@ -209,6 +295,25 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     out.extend_from_slice(&body);
     Network::from_bytes(&out).map_err(WriteError::Invalid)?;
     Ok(out)
+}
+
+/// The highest code among the cells within the widening of segment `a b`, as the loader
+/// recomputes it; `None` if the band leaves the grid.
+fn highest_code(t: &TerrainSpec, a: Vec2, b: Vec2) -> Option<u8> {
+    let w = Vec2::new(t.widen_m, t.widen_m);
+    let lo = Vec2::new(a.x.min(b.x), a.y.min(b.y)) - w;
+    let hi = Vec2::new(a.x.max(b.x), a.y.max(b.y)) + w;
+    if !t.grid.covers(lo, hi) {
+        return None;
+    }
+    let cols = t.grid.cols as usize;
+    let mut highest = 0u8;
+    segment_cells(&t.grid, &Segment::new(a, b), t.widen_m, |c, r| {
+        highest = highest.max(t.codes[r as usize * cols + c as usize]);
+        true
+    })
+    .ok()?;
+    Some(highest)
 }
 
 impl ObstacleSpec {
@@ -250,8 +355,13 @@ impl GridIndex {
         let mut cells: Vec<Vec<u32>> = vec![Vec::new(); (nx * ny) as usize];
         let margin = 1e-3 * cell + 0.01;
         for (i, e) in edges.iter().enumerate() {
+            let mut start = spec.vertices[e.source as usize];
+            if spec.terrain.is_some() {
+                let d = spec.vertices[e.target as usize].position - start.position;
+                start.heading = d.y.atan2(d.x);
+            }
             let path = DubinsPath {
-                start: spec.vertices[e.source as usize],
+                start,
                 radius: spec.turn_radius_m,
                 word: e.word,
                 lengths: e.lengths,

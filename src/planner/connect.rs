@@ -47,7 +47,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// The [`MAX_CANDIDATES`] vertices nearest to `p` within the connect radius, nearest first.
     /// Work: |V| vertex scans (each with an insertion into the sorted list of ≤ 32).
-    fn nearest_vertices(&self, p: Vec2, meter: &mut Meter) -> Result<Candidates, PlanError> {
+    pub(super) fn nearest_vertices(
+        &self,
+        p: Vec2,
+        meter: &mut Meter,
+    ) -> Result<Candidates, PlanError> {
         let k = MAX_CANDIDATES;
         let mut best = Candidates::new();
         let radius = self.config().connect_radius_m;
@@ -78,7 +82,18 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Whether every primitive of `path` keeps the network's clearance from every static
     /// obstacle and active pop-up. Exact predicates, after a bounding-box test per obstacle.
+    /// In terrain mode, also that every primitive's band is over free terrain (exact cell
+    /// traversal), so shortcuts and smoothing keep terrain routes clear too.
     pub(super) fn path_is_clear(&self, path: &DubinsPath, meter: &mut Meter) -> bool {
+        if self.network.terrain().is_some()
+            && !path
+                .primitives()
+                .into_iter()
+                .flatten()
+                .all(|p| self.primitive_over_free_terrain(&p, meter))
+        {
+            return false;
+        }
         let clearance = self.network.clearance();
         for prim in path.primitives().into_iter().flatten() {
             let (lo, hi) = prim.bounding_box();

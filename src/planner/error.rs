@@ -61,6 +61,15 @@ pub enum PlanError {
         /// The capacity `R`.
         capacity: u32,
     },
+    /// Terrain mode: the start or goal lies over a cell that is blocked at the altitude in
+    /// force (or unknown, or outside the elevation grid).
+    OverBlockedTerrain {
+        /// Start or goal.
+        field: QueryField,
+    },
+    /// [`Planner::set_altitude`](super::Planner::set_altitude) got a non-finite altitude or a
+    /// negative or non-finite safety height.
+    InvalidAltitude,
     /// An internal invariant failed (a bug; reported instead of panicking).
     Internal,
 }
@@ -75,6 +84,10 @@ impl fmt::Display for PlanError {
                 write!(f, "{field:?} lies inside obstacle {obstacle}")
             }
             InsidePopup { field, popup } => write!(f, "{field:?} lies inside pop-up {popup}"),
+            OverBlockedTerrain { field } => {
+                write!(f, "{field:?} lies over terrain blocked at this altitude")
+            }
+            InvalidAltitude => write!(f, "altitude or safety height is not a valid number"),
             StartUnconnected => write!(f, "no collision-free connection from the start"),
             GoalUnconnected => write!(f, "no collision-free connection to the goal"),
             NoRoute => write!(f, "the goal cannot be reached in the network"),

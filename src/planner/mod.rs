@@ -1,7 +1,10 @@
 //! The onboard planner: fixed memory, pop-up pruning, endpoint connection, bounded search.
 //!
 //! `Planner<'n, V, E, P, R>` holds all mutable state in arrays sized by its const generics:
-//! `V` vertices, `E` edges, `P` pop-ups (at most 16) and `R` route primitives. Its size is
+//! `V` search states, `E` edges, `P` pop-ups (at most 16) and `R` route primitives. A search
+//! state is a vertex of a roadmap, or — in terrain mode, whose search runs over (previous node,
+//! node) pairs — a directed edge or one of the [`MAX_LINKS`] start links, so a terrain planner
+//! needs `V ≥ |E| + MAX_LINKS`. Its size is
 //! about `20·V + 2·E + 140·P + 56·R + 1.5 KiB` bytes (`core::mem::size_of` gives the exact
 //! figure); place it in a `static` so the linker rejects a build whose RAM does not suffice.
 //! A new planner is all-zero, so such a `static` lands in `.bss` and costs no flash.
@@ -12,12 +15,17 @@ pub mod heap;
 mod popup;
 mod search;
 mod smooth;
+mod terrain;
 pub mod work;
 
 pub use error::{PlanError, PopupError, QueryField};
 pub use popup::{Popup, PopupSummary, MAX_POPUP_VERTICES};
 pub use smooth::SmoothSummary;
-pub use work::{plan_work_bound, popup_work_bound, Work, WorkBoundInputs};
+pub use terrain::ArcCheckStats;
+pub use work::{
+    cells_bound, plan_work_bound, popup_work_bound, terrain_plan_work_bound, TerrainBoundInputs,
+    Work, WorkBoundInputs,
+};
 
 use crate::geometry::{DubinsPath, Pose, Primitive, Vec2};
 use crate::network::{LoadError, Network};
@@ -158,6 +166,10 @@ pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: 
     /// The same route as lines and arcs.
     route: Vec<Primitive, R>,
     summary: Option<RouteSummary>,
+    /// Terrain mode: the altitude and safety height set in flight (`None`: the network's).
+    altitude: Option<(f32, f32)>,
+    /// Terrain mode: the turn-arc checks of the last query.
+    arc_stats: ArcCheckStats,
 }
 
 /// `via` values at or above this mark a vertex reached straight from start link `via − FROM_START`.
@@ -193,6 +205,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             paths: Vec::new(),
             route: Vec::new(),
             summary: None,
+            altitude: None,
+            arc_stats: ArcCheckStats {
+                arcs: 0,
+                cells: 0,
+                most_cells: 0,
+            },
         }
     }
 
@@ -200,7 +218,18 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// pop-ups and the route. On error the planner keeps its previous network and state.
     pub fn load(&mut self, bytes: &'n [u8]) -> Result<(), LoadError> {
         let network = Network::from_bytes_with_capacity(bytes, V, E)?;
+        if network.terrain().is_some() {
+            // The terrain search runs over directed edges and start links.
+            let needed = network.edge_count() as usize + MAX_LINKS;
+            if needed > V {
+                return Err(LoadError::TooManySearchStates {
+                    needed,
+                    capacity: V,
+                });
+            }
+        }
         self.network = network;
+        self.altitude = None;
         self.blocked_by = [0; E];
         self.popups.clear();
         self.paths.clear();
@@ -275,6 +304,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// The most work any query on the loaded network can count (with a free goal heading, the
     /// larger case): [`plan_work_bound`].
     pub fn worst_case_work(&self) -> u64 {
+        if self.network.terrain().is_some() {
+            return self.terrain_worst_case_work();
+        }
         plan_work_bound(&self.work_bound_inputs(false))
     }
 

@@ -43,6 +43,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 field: QueryField::Goal,
             });
         }
+        if self.network.terrain().is_some() {
+            return self.plan_terrain(query, &mut meter);
+        }
         self.check_free(query.start.position, QueryField::Start, &mut meter)?;
         self.check_free(query.goal.position, QueryField::Goal, &mut meter)?;
 

@@ -10,6 +10,7 @@
 //! | `collision_tests` | one obstacle bounding-box test, or one exact predicate against one polygon edge, containment test or circle |
 //! | `heap_steps` | one level of a heap sift (push, decrease-key or pop) |
 //! | `relaxations` | examining one out-edge or one goal link of a popped vertex |
+//! | `cells_visited` | one grid cell visited by a terrain traversal (its elevation code compared) |
 //!
 //! [`plan_work_bound`] gives the most any query can count on a network, as a function of its
 //! counts; `host-tests` checks on random queries that the count never exceeds it.
@@ -30,6 +31,8 @@ pub struct Work {
     pub heap_steps: u64,
     /// Out-edges and goal links examined.
     pub relaxations: u64,
+    /// Terrain cells visited by arc and segment checks.
+    pub cells_visited: u64,
 }
 
 impl Work {
@@ -40,6 +43,7 @@ impl Work {
             + self.collision_tests
             + self.heap_steps
             + self.relaxations
+            + self.cells_visited
     }
 }
 
@@ -50,6 +54,7 @@ impl core::ops::AddAssign for Work {
         self.collision_tests += w.collision_tests;
         self.heap_steps += w.heap_steps;
         self.relaxations += w.relaxations;
+        self.cells_visited += w.cells_visited;
     }
 }
 
@@ -109,4 +114,82 @@ pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
 /// evaluations).
 pub fn popup_work_bound(cells: u64, entries: u64, popup_vertices: u64) -> u64 {
     cells + entries * (1 + 3 * (popup_vertices + 1))
+}
+
+/// The counts that bound a terrain query's work ([`terrain_plan_work_bound`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct TerrainBoundInputs {
+    /// Vertices in the network, |V|.
+    pub vertices: u64,
+    /// Directed edges, |E|: the search states besides the start links.
+    pub edges: u64,
+    /// Turn transitions, `Σ_v indeg(v)·outdeg(v)`: the (edge in, edge out) pairs at a node.
+    pub transitions: u64,
+    /// The largest out-degree of a vertex.
+    pub max_out_degree: u64,
+    /// Most pop-ups active at once, P.
+    pub popups: u64,
+    /// Most vertices (polygon) a pop-up has.
+    pub popup_vertices: u64,
+    /// Vertices tried per endpoint, C.
+    pub candidates: u64,
+    /// Start links kept, Ks (at most [`MAX_LINKS`](super::MAX_LINKS)).
+    pub start_links: u64,
+    /// Goal links kept, Kg.
+    pub goal_links: u64,
+    /// Most cells one turn-arc check visits ([`cells_bound`] of a half-turn arc).
+    pub cells_per_turn: u64,
+    /// Most cells one connection primitive (a straight to or from the network, or an arc of up
+    /// to a full turn) visits.
+    pub cells_per_connection: u64,
+}
+
+/// The most cells [`segment_cells`](crate::geometry::grid::segment_cells) or
+/// [`arc_cells`](crate::geometry::grid::arc_cells) visits for a primitive of length
+/// `length_cells` (in cells; an arc's counted up to one full turn) widened by `widen_cells`:
+/// `N ≤ 2(ρ + √2)·L + π(ρ + √2)²` with `ρ = widen + η` (the grid module's bound; `η`, the
+/// rounding slack, is below 0.01 cells for grids under 10⁵ cells across).
+pub fn cells_bound(length_cells: f32, widen_cells: f32) -> u64 {
+    let rho = widen_cells + 0.01 + core::f32::consts::SQRT_2;
+    let n = 2.0 * rho * length_cells + core::f32::consts::PI * rho * rho;
+    if n.is_finite() && n < u64::MAX as f32 {
+        libm::ceilf(n) as u64
+    } else {
+        u64::MAX
+    }
+}
+
+/// The most work one terrain [`Planner::plan`](super::Planner::plan) can count:
+///
+/// * start and goal: 2 cells and 2P pop-up containment tests;
+/// * candidate search: 2|V| vertex scans;
+/// * connections: 2C start paths (a left and a right turn) and 2C goal paths (one straight for
+///   a free heading; a left and a right turn for a fixed one), and 2 direct paths, each one
+///   solve and ≤ 3 primitives of ≤ `cells_per_connection` cells and P·(popup_vertices + 1)
+///   pop-up tests: N·(1 + 3·(cells + P·(popup_vertices + 1))) with N = 4C + 2;
+/// * search over S = |E| + Ks states: S heap resets; ≤ S pops; relaxations: the out-edges of
+///   every popped state, at most `transitions + Ks·max_out_degree`, and Kg goal links per pop;
+///   each relaxation or goal link may check one turn arc (`cells_per_turn` cells) and push or
+///   decrease once; every heap operation ≤ L = ⌊log2 S⌋ + 1 levels;
+/// * route: ≤ 2(S + 1) state reads for the two walks back.
+pub fn terrain_plan_work_bound(n: &TerrainBoundInputs) -> u64 {
+    let s = n.edges + n.start_links;
+    let levels = heap_levels(s);
+    let connections = 4 * n.candidates + 2;
+    let per_connection = n
+        .cells_per_connection
+        .saturating_add(n.popups * (n.popup_vertices + 1))
+        .saturating_mul(3)
+        .saturating_add(1);
+    let out_relaxations = n.transitions + n.start_links * n.max_out_degree;
+    let goal_relaxations = s * n.goal_links;
+    let relaxations = out_relaxations + goal_relaxations;
+    let search = (s + s * levels)
+        .saturating_add(relaxations.saturating_mul(n.cells_per_turn.saturating_add(1 + levels)));
+    let endpoints = 2 + 2 * n.popups + 2 * n.vertices;
+    endpoints
+        .saturating_add(connections.saturating_mul(per_connection))
+        .saturating_add(search)
+        .saturating_add(2 * (s + 1))
 }

@@ -195,6 +195,7 @@ fn synthetic_network() -> Result<Vec<u8>, String> {
             .map(|p| ObstacleSpec::Polygon(p.clone()))
             .collect(),
         grid_cell_m: 100.0,
+        terrain: None,
     };
     encode(&spec).map_err(|e| format!("synthetic network: {e}"))
 }
