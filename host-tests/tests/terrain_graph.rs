@@ -3,6 +3,9 @@
 //! traversal: every edge is sampled densely across its whole clearance band, every sample mapped
 //! back to longitude/latitude with the frame and looked up in the DEM's own cells.
 
+mod raw_dem;
+
+use raw_dem::{raw_navigable, Check};
 use rayon::prelude::*;
 use skyroute_prep::dem::{self, Dem};
 use skyroute_prep::frame::LocalFrame;
@@ -20,21 +23,6 @@ fn load() -> (Scenario, Dem, LocalFrame) {
     (s, dem, frame)
 }
 
-/// The raw DEM cell holding `(lon, lat)` — `floor` of the offset from the south-west corner in
-/// cells — is navigable: inside the DEM, not NODATA, elevation below `threshold`.
-fn raw_navigable(dem: &Dem, lon: f64, lat: f64, threshold: f64) -> bool {
-    let u = (lon - dem.xllcorner) / dem.cellsize;
-    let v = (lat - dem.yllcorner) / dem.cellsize;
-    if !(u >= 0.0 && v >= 0.0) {
-        return false;
-    }
-    let (c, r) = (u.floor() as usize, v.floor() as usize);
-    match dem.elevation_at(c, r) {
-        Some(e) => (e as f64) < threshold,
-        None => false,
-    }
-}
-
 /// Sample spacing along an edge and along the ends' half circles, metres.
 const STEP: f64 = 5.0;
 /// Most distance between the lines of samples across an edge's band, metres: with the
@@ -42,26 +30,6 @@ const STEP: f64 = 5.0;
 /// half-way), closer than the smallest side of a DEM cell (74.4 m), so a blocked cell lying
 /// wholly inside the band is hit too.
 const ACROSS: f64 = 55.0;
-
-/// What [`raw_dem_violations`] found.
-#[derive(Default)]
-struct Check {
-    /// Points looked up.
-    samples: u64,
-    /// Points over a blocked (or NODATA, or outside) DEM cell.
-    violations: u64,
-    /// The first of them, in words.
-    first: Option<String>,
-}
-
-impl Check {
-    fn merge(mut self, o: Check) -> Check {
-        self.samples += o.samples;
-        self.violations += o.violations;
-        self.first = self.first.or(o.first);
-        self
-    }
-}
 
 /// Looks up points over the nodes and the first `max_edges` undirected edges of `g`, with a
 /// band of half-width `w` metres, in the raw DEM; counts those over cells not navigable below

@@ -55,6 +55,10 @@ enum Command {
         /// (default 1; more leaves room for turn arcs).
         #[arg(long)]
         node_margin: Option<f64>,
+        /// Terrain mode: further flight altitudes to place nodes for, so the aircraft can change
+        /// altitude in flight (comma-separated metres, e.g. 650,700,850).
+        #[arg(long, value_delimiter = ',')]
+        altitude_levels: Vec<f64>,
     },
     /// Plan start → waypoints in order → goal through a network with the onboard core.
     Plan {
@@ -317,6 +321,7 @@ fn run(cli: Cli) -> CliResult {
             node_spacing,
             max_edge,
             node_margin,
+            altitude_levels,
         } => {
             let options = BuildOptions {
                 sample_spacing_m: sample_spacing,
@@ -326,6 +331,7 @@ fn run(cli: Cli) -> CliResult {
                 node_spacing_m: node_spacing,
                 max_edge_m: max_edge,
                 node_margin_m: node_margin,
+                extra_altitudes_m: altitude_levels,
             };
             build_command(&path, &output, &options)
         }

@@ -22,11 +22,13 @@ pub type HostPlanner<'n> = Planner<'n, 131072, 262144, 16, 4096>;
 /// Stack for threads that hold a [`HostPlanner`] (about 1 MiB) by value.
 pub const PLANNER_STACK: usize = 64 << 20;
 
-/// The connection settings for terrain networks: 16 links within 10 km (the longest edge).
+/// The connection settings for terrain networks: 16 links to the 32 nearest nodes however far
+/// (where the terrain is low, the nearest region corner may be far away; every connection's
+/// check is bounded by the elevation grid's size).
 pub const TERRAIN_CONFIG: PlannerConfig = PlannerConfig {
     start_candidates: 16,
     goal_candidates: 16,
-    connect_radius_m: 10_000.0,
+    connect_radius_m: f32::INFINITY,
     free_goal_headings: 36,
 };
 

@@ -96,7 +96,7 @@ use std::fmt;
 use std::time::{Duration, Instant};
 
 /// Tuning of [`build_terrain_graph`].
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct TerrainParams {
     /// Side of a metric cell, metres; `None`: the smallest metric side of a DEM cell.
     pub cell_m: Option<f64>,
@@ -109,6 +109,12 @@ pub struct TerrainParams {
     /// Keep only edges whose line is tangent to the blocked region at both nodes (the reduced
     /// visibility graph; see the module documentation).
     pub tangent_edges_only: bool,
+    /// Further flight altitudes (same safety height) whose region corners also get nodes, so
+    /// that the network serves an aircraft that changes altitude in flight. Each level's nodes
+    /// are joined among themselves, tested at that level's altitude: the union holds every
+    /// level's whole graph, usable at its altitude and any higher one, and the aircraft prunes
+    /// what its altitude blocks by the edges' stored elevation codes. Empty: one altitude.
+    pub extra_altitudes_m: Vec<f64>,
 }
 
 impl Default for TerrainParams {
@@ -119,6 +125,7 @@ impl Default for TerrainParams {
             min_node_spacing_m: 0.0,
             max_edge_m: Some(10_000.0),
             tangent_edges_only: true,
+            extra_altitudes_m: Vec::new(),
         }
     }
 }
@@ -187,6 +194,9 @@ pub struct TerrainGraph {
     pub blocked: Vec<bool>,
     /// Per node: the quadrant `(±1, ±1)` its corner's blocked cell lies in, seen from the node.
     pub quadrants: Vec<[i8; 2]>,
+    /// Per node: its altitude level, 0 for the graph's altitude, `k` for
+    /// `TerrainParams::extra_altitudes_m[k − 1]`.
+    pub levels: Vec<u8>,
     /// The half-width kept free around every edge and node: `wingspan/2 + clearance`, metres.
     pub widen_m: f32,
     /// The nodes, sorted by `(x, y)`.
@@ -301,6 +311,9 @@ pub fn build_terrain_graph(
         if !(m.is_finite() && m > 0.0) {
             return bad("max_edge_m", m);
         }
+    }
+    if let Some(&a) = params.extra_altitudes_m.iter().find(|a| !a.is_finite()) {
+        return bad("extra_altitudes_m", a);
     }
     if let Some(c) = params.cell_m {
         if !(c.is_finite() && c > 0.0) {
@@ -505,44 +518,55 @@ pub fn build_terrain_graph(
     let widen = (0.5 * wingspan_m + clearance_m) as f32;
     let d = 0.5 * wingspan_m + clearance_m + params.node_margin_m;
     let mut nodes = Vec::new();
-    for vr in 0..=rows as i64 {
-        for vc in 0..=cols as i64 {
-            // The cells around the vertex and the direction from it to each.
-            let around = [
-                (vc - 1, vr - 1, -1.0, -1.0),
-                (vc, vr - 1, 1.0, -1.0),
-                (vc - 1, vr, -1.0, 1.0),
-                (vc, vr, 1.0, 1.0),
-            ];
-            let mut n_blocked = 0;
-            let mut dir = (0.0, 0.0);
-            for &(c, r, sx, sy) in &around {
-                if is_blocked(&grid, &blocked, c, r) {
-                    n_blocked += 1;
-                    dir = (sx, sy);
+    let blocked_at = |a: f64| -> Vec<bool> {
+        let b = coding.blocking_code(a as f32, safety_height_m as f32);
+        codes.iter().map(|&k| k >= b).collect()
+    };
+    let levels: Vec<Vec<bool>> = params
+        .extra_altitudes_m
+        .iter()
+        .map(|&a| blocked_at(a))
+        .collect();
+    for (level, blocked) in std::iter::once(&blocked).chain(levels.iter()).enumerate() {
+        for vr in 0..=rows as i64 {
+            for vc in 0..=cols as i64 {
+                // The cells around the vertex and the direction from it to each.
+                let around = [
+                    (vc - 1, vr - 1, -1.0, -1.0),
+                    (vc, vr - 1, 1.0, -1.0),
+                    (vc - 1, vr, -1.0, 1.0),
+                    (vc, vr, 1.0, 1.0),
+                ];
+                let mut n_blocked = 0;
+                let mut dir = (0.0, 0.0);
+                for &(c, r, sx, sy) in &around {
+                    if is_blocked(&grid, blocked, c, r) {
+                        n_blocked += 1;
+                        dir = (sx, sy);
+                    }
                 }
+                if n_blocked != 1 {
+                    continue;
+                }
+                stats.corners += 1;
+                let (x, y) = vertex_local(vc as usize, vr as usize);
+                let p = Vec2::new((x - dir.0 * d) as f32, (y - dir.1 * d) as f32);
+                let w = Vec2::new(widen, widen);
+                if !grid.covers(p - w, p + w) {
+                    stats.dropped_outside += 1;
+                    continue;
+                }
+                let mut hit = false;
+                segment_cells(&grid, &Segment::new(p, p), widen, |c, r| {
+                    hit = blocked[r as usize * cols + c as usize];
+                    !hit
+                })?;
+                if hit {
+                    stats.dropped_blocked += 1;
+                    continue;
+                }
+                nodes.push((p, [dir.0 as i8, dir.1 as i8], level as u8));
             }
-            if n_blocked != 1 {
-                continue;
-            }
-            stats.corners += 1;
-            let (x, y) = vertex_local(vc as usize, vr as usize);
-            let p = Vec2::new((x - dir.0 * d) as f32, (y - dir.1 * d) as f32);
-            let w = Vec2::new(widen, widen);
-            if !grid.covers(p - w, p + w) {
-                stats.dropped_outside += 1;
-                continue;
-            }
-            let mut hit = false;
-            segment_cells(&grid, &Segment::new(p, p), widen, |c, r| {
-                hit = blocked[r as usize * cols + c as usize];
-                !hit
-            })?;
-            if hit {
-                stats.dropped_blocked += 1;
-                continue;
-            }
-            nodes.push((p, [dir.0 as i8, dir.1 as i8]));
         }
     }
     let placed = nodes.len();
@@ -552,11 +576,14 @@ pub fn build_terrain_graph(
     nodes.sort_by(|a, b| a.0.x.total_cmp(&b.0.x).then(a.0.y.total_cmp(&b.0.y)));
     nodes.dedup_by(|a, b| a.0 == b.0);
     stats.dropped_thinned = placed - nodes.len();
-    let (nodes, quadrants): (Vec<Vec2>, Vec<[i8; 2]>) = nodes.into_iter().unzip();
+    let quadrants: Vec<[i8; 2]> = nodes.iter().map(|n| n.1).collect();
+    let node_levels: Vec<u8> = nodes.iter().map(|n| n.2).collect();
+    let nodes: Vec<Vec2> = nodes.into_iter().map(|n| n.0).collect();
     stats.nodes = nodes.len();
     stats.node_time = t1.elapsed();
 
-    // ---- 3. Edges.
+    // ---- 3. Edges: between nodes of the same altitude level, tested at that level, so that
+    // each level's graph is whole at its altitude (and usable at any higher one).
     let t2 = Instant::now();
     let max_edge = params.max_edge_m.map_or(f32::INFINITY, |m| m as f32);
     let per_node: Vec<NodeEdges> = (0..nodes.len())
@@ -578,8 +605,16 @@ pub fn build_terrain_graph(
                 {
                     continue;
                 }
+                let level = node_levels[i];
+                if node_levels[j] != level {
+                    continue;
+                }
+                let level_blocked = match level {
+                    0 => &blocked,
+                    l => &levels[l as usize - 1],
+                };
                 tested += 1;
-                let (clear, n) = segment_clear(&grid, &blocked, widen, a, b);
+                let (clear, n) = segment_clear(&grid, level_blocked, widen, a, b);
                 visited += n;
                 if clear {
                     out.push((i as u32, j as u32, len));
@@ -608,6 +643,7 @@ pub fn build_terrain_graph(
         blocking_code: blocking,
         blocked,
         quadrants,
+        levels: node_levels,
         widen_m: widen,
         nodes,
         edges,
@@ -670,7 +706,7 @@ pub fn elevation_coding(dem: &Dem) -> Result<ElevationCoding, TerrainError> {
         base_m: base,
         step_m: step,
     };
-    while coding.encode(hi) >= ELEVATION_BLOCKED {
+    while coding.encode(hi) == ELEVATION_BLOCKED {
         step *= 1.001;
         coding = ElevationCoding {
             base_m: base,
@@ -681,13 +717,13 @@ pub fn elevation_coding(dem: &Dem) -> Result<ElevationCoding, TerrainError> {
 }
 
 /// Greedy thinning in the given order: keeps a node unless a kept one lies within `spacing`.
-fn thin(nodes: &[(Vec2, [i8; 2])], spacing: f64) -> Vec<(Vec2, [i8; 2])> {
+fn thin(nodes: &[(Vec2, [i8; 2], u8)], spacing: f64) -> Vec<(Vec2, [i8; 2], u8)> {
     use std::collections::HashMap;
     let s = spacing as f32;
     let key = |p: Vec2| ((p.x / s).floor() as i64, (p.y / s).floor() as i64);
     let mut buckets: HashMap<(i64, i64), Vec<Vec2>> = HashMap::new();
     let mut kept = Vec::new();
-    for &(p, quadrant) in nodes {
+    for &(p, quadrant, level) in nodes {
         let (kx, ky) = key(p);
         let near = (-1..=1).any(|dx| {
             (-1..=1).any(|dy| {
@@ -698,7 +734,7 @@ fn thin(nodes: &[(Vec2, [i8; 2])], spacing: f64) -> Vec<(Vec2, [i8; 2])> {
         });
         if !near {
             buckets.entry((kx, ky)).or_default().push(p);
-            kept.push((p, quadrant));
+            kept.push((p, quadrant, level));
         }
     }
     kept

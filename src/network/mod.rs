@@ -118,8 +118,8 @@ pub enum Obstacle<'a> {
 /// A polygon stored in the network, read in place.
 #[derive(Clone, Copy, Debug)]
 pub struct PolygonRef<'a> {
-    network: Network<'a>,
-    first: u32,
+    /// The polygon's point records.
+    points: &'a [u8],
     count: u32,
 }
 
@@ -131,11 +131,9 @@ impl PolygonView for PolygonRef<'_> {
         if i >= self.count as usize {
             return None;
         }
-        let p: PointRecord = self.network.record(
-            self.network.layout.points,
-            PointRecord::SIZE,
-            self.first as usize + i,
-        )?;
+        let start = i.checked_mul(PointRecord::SIZE)?;
+        let p: PointRecord =
+            postcard::from_bytes(self.points.get(start..start + PointRecord::SIZE)?).ok()?;
         Some(Vec2::new(p.x, p.y))
     }
 }
@@ -845,11 +843,16 @@ impl<'a> Network<'a> {
             Vec2::new(o.bbox[2], o.bbox[3]),
         );
         let obstacle = match o.kind {
-            OBSTACLE_POLYGON => Obstacle::Polygon(PolygonRef {
-                network: *self,
-                first: o.first_point,
-                count: o.point_count,
-            }),
+            OBSTACLE_POLYGON => {
+                let start = (o.first_point as usize)
+                    .checked_mul(PointRecord::SIZE)?
+                    .checked_add(self.layout.points)?;
+                let len = (o.point_count as usize).checked_mul(PointRecord::SIZE)?;
+                Obstacle::Polygon(PolygonRef {
+                    points: self.bytes?.get(start..start.checked_add(len)?)?,
+                    count: o.point_count,
+                })
+            }
             _ => Obstacle::Circle {
                 centre: Vec2::new(o.circle[0], o.circle[1]),
                 radius: o.circle[2],

@@ -199,8 +199,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 let diagonal = libm::sqrtf(
                     (g.cols as f32) * (g.cols as f32) + (g.rows as f32) * (g.rows as f32),
                 );
-                let reach = (self.config().connect_radius_m + r) / cell;
-                let line = reach.min(diagonal);
+                // Every traversed primitive lies inside the grid (checked first), so a straight
+                // is at most its diagonal, whatever the connect radius.
+                let line = diagonal;
                 let full_turn = TAU * r / cell;
                 (
                     cells_bound(PI * r / cell, widen),
@@ -242,13 +243,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.check_free(query.goal.position, QueryField::Goal, meter)?;
         self.connect_terrain_start(&query.start, meter)?;
         self.connect_terrain_goal(&query.goal, meter)?;
-        let direct = if query.start.position.distance(query.goal.position)
-            <= self.config().connect_radius_m
-        {
-            self.direct_terrain_path(&query.start, &query.goal, meter)?
-        } else {
-            None
-        };
+        // Always tried: its check is bounded by the grid, not by the connect radius.
+        let direct = self.direct_terrain_path(&query.start, &query.goal, meter)?;
         if self.start_links.is_empty() && direct.is_none() {
             return Err(PlanError::StartUnconnected);
         }

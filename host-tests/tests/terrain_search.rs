@@ -1,0 +1,367 @@
+//! The terrain search (Dijkstra over (previous node, node) states) against a second algorithm:
+//! on small random terrain networks, a depth-first enumeration of whole walks — start turn and
+//! straight, node turns, final straight — with branch and bound, costing each walk in f64 with
+//! its own fillet formula (`r·tan(θ/2)` from the turn angle, not the planner's half-angle
+//! identity) and the same feasibility rules: every turn's cut within its share of both
+//! straights (half of each node-to-node straight, the whole start straight, half the goal
+//! straight), every edge usable at the altitude, every turn arc and connection over free cells.
+//! The cheapest walk must cost what the planner's route measures, and the planner must find a
+//! route exactly when a walk exists.
+
+mod rng64;
+
+use rng64::Rng;
+use skyroute::geometry::grid::{arc_cells, primitive_cells, CellGrid};
+use skyroute::network::elevation::ElevationCoding;
+use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, TerrainSpec};
+use skyroute::planner::{Goal, PlanError, PlannerConfig, Query, Search};
+use skyroute::{Arc, DubinsPath, Planner, Pose, Primitive, Turn, Vec2};
+
+const CELL: f32 = 50.0;
+const N: u32 = 60;
+const RADIUS: f32 = 250.0;
+const WIDEN: f32 = 20.0;
+const FREE: u8 = 10;
+const HIGH: u8 = 200;
+/// Flight altitude 150 m, safety height 0: codes ≥ 150 (coding base 0, step 1) are blocked.
+const ALTITUDE: f32 = 150.0;
+
+struct Case {
+    bytes: Vec<u8>,
+    nodes: Vec<Vec2>,
+    codes: Vec<u8>,
+    grid: CellGrid,
+}
+
+fn case(rng: &mut Rng) -> Case {
+    let grid = CellGrid::new(Vec2::new(0.0, 0.0), CELL, N, N);
+    let mut codes = vec![FREE; (N * N) as usize];
+    // Random rectangular hills.
+    for _ in 0..6 {
+        let (c0, r0) = (
+            rng.below(N as u64 - 8) as u32 + 4,
+            rng.below(N as u64 - 8) as u32 + 4,
+        );
+        let (w, h) = (rng.below(8) as u32 + 2, rng.below(8) as u32 + 2);
+        for r in r0..(r0 + h).min(N) {
+            for c in c0..(c0 + w).min(N) {
+                codes[(r * N + c) as usize] = HIGH;
+            }
+        }
+    }
+    let blocked_near = |p: Vec2| {
+        let mut hit = false;
+        primitive_cells(
+            &grid,
+            &Primitive::Line(skyroute::Segment::new(p, p)),
+            WIDEN,
+            |c, r| {
+                hit = codes[(r * N + c) as usize] >= 150;
+                !hit
+            },
+        )
+        .unwrap();
+        hit
+    };
+    let mut nodes = Vec::new();
+    while nodes.len() < 7 {
+        let p = Vec2::new(
+            rng.range(300.0, 2700.0) as f32,
+            rng.range(300.0, 2700.0) as f32,
+        );
+        if !blocked_near(p) && nodes.iter().all(|q: &Vec2| q.distance(p) > 150.0) {
+            nodes.push(p);
+        }
+    }
+    // Every ordered pair is an edge; those over blocked cells are pruned by their stored code.
+    let mut edges = Vec::new();
+    for i in 0..nodes.len() {
+        for j in 0..nodes.len() {
+            if i != j && rng.unit() < 0.8 {
+                edges.push(EdgeSpec::line(
+                    i as u32,
+                    j as u32,
+                    nodes[i].distance(nodes[j]),
+                ));
+            }
+        }
+    }
+    let spec = NetworkSpec {
+        origin_lat_deg: 36.5,
+        origin_lon_deg: -84.2,
+        turn_radius_m: RADIUS,
+        clearance_m: WIDEN,
+        vertices: nodes
+            .iter()
+            .map(|&p| Pose {
+                position: p,
+                heading: 0.0,
+            })
+            .collect(),
+        edges,
+        obstacles: Vec::new(),
+        grid_cell_m: 1000.0,
+        terrain: Some(TerrainSpec {
+            grid,
+            coding: ElevationCoding {
+                base_m: 0.0,
+                step_m: 1.0,
+            },
+            codes: codes.clone(),
+            widen_m: WIDEN,
+            altitude_m: ALTITUDE,
+            safety_height_m: 0.0,
+        }),
+    };
+    Case {
+        bytes: encode(&spec).unwrap(),
+        nodes,
+        codes,
+        grid,
+    }
+}
+
+/// The brute force's own view of feasibility: primitive over free cells (inside the grid).
+fn clear(case: &Case, prim: &Primitive) -> bool {
+    let (lo, hi) = prim.bounding_box();
+    let w = Vec2::new(WIDEN, WIDEN);
+    if !case.grid.covers(lo - w, hi + w) {
+        return false;
+    }
+    let mut ok = true;
+    primitive_cells(&case.grid, prim, WIDEN, |c, r| {
+        ok = case.codes[(r * N + c) as usize] < 150;
+        ok
+    })
+    .unwrap();
+    ok
+}
+
+fn path_clear(case: &Case, path: &DubinsPath) -> bool {
+    path.primitives()
+        .into_iter()
+        .flatten()
+        .all(|p| clear(case, &p))
+}
+
+/// A turn at `v` from direction `a` to direction `b` (unit, f64): (cut, angle, left).
+fn fillet(a: (f64, f64), b: (f64, f64), r: f64) -> (f64, f64, bool) {
+    let cross = a.0 * b.1 - a.1 * b.0;
+    let dot = a.0 * b.0 + a.1 * b.1;
+    let angle = cross.abs().atan2(dot);
+    ((angle / 2.0).tan() * r, angle, cross >= 0.0)
+}
+
+/// Whether the fillet's arc is over free cells (built from f32 like the route would be).
+fn fillet_clear(case: &Case, v: Vec2, a: (f64, f64), cut: f64, angle: f64, left: bool) -> bool {
+    if angle * RADIUS as f64 <= 1e-6 {
+        return true;
+    }
+    let entry = Vec2::new(
+        (v.x as f64 - a.0 * cut) as f32,
+        (v.y as f64 - a.1 * cut) as f32,
+    );
+    let pose = Pose {
+        position: entry,
+        heading: a.1.atan2(a.0) as f32,
+    };
+    let turn = if left { Turn::Left } else { Turn::Right };
+    let arc = Arc::from_pose(&pose, turn, RADIUS, angle as f32);
+    let (lo, hi) = Primitive::Arc(arc).bounding_box();
+    let w = Vec2::new(WIDEN, WIDEN);
+    if !case.grid.covers(lo - w, hi + w) {
+        return false;
+    }
+    let mut ok = true;
+    arc_cells(&case.grid, &arc, WIDEN, |c, r| {
+        ok = case.codes[(r * N + c) as usize] < 150;
+        ok
+    })
+    .unwrap();
+    ok
+}
+
+struct Search2<'a> {
+    case: &'a Case,
+    edge_ok: Vec<Vec<bool>>,
+    goal: Vec2,
+    goal_ok: Vec<bool>,
+    best: f64,
+    walks: u64,
+}
+
+fn dir(a: Vec2, b: Vec2) -> ((f64, f64), f64) {
+    let (dx, dy) = (b.x as f64 - a.x as f64, b.y as f64 - a.y as f64);
+    let l = dx.hypot(dy);
+    ((dx / l, dy / l), l)
+}
+
+impl Search2<'_> {
+    /// At node `v`, arrived along `a` with `share` of the straight usable, `cost` so far (the
+    /// straight counted to `v`), from node `from`; `depth` edges so far.
+    fn walk(
+        &mut self,
+        v: usize,
+        a: (f64, f64),
+        share: f64,
+        cost: f64,
+        from: Option<usize>,
+        depth: u32,
+    ) {
+        self.walks += 1;
+        if cost >= self.best || depth > 14 {
+            return;
+        }
+        let p = self.case.nodes[v];
+        if self.goal_ok[v] {
+            let (b, l) = dir(p, self.goal);
+            let (cut, angle, left) = fillet(a, b, RADIUS as f64);
+            if cut <= share && cut <= 0.5 * l && fillet_clear(self.case, p, a, cut, angle, left) {
+                let total = cost + l - 2.0 * cut + RADIUS as f64 * angle;
+                self.best = self.best.min(total);
+            }
+        }
+        for w in 0..self.case.nodes.len() {
+            if w == v || Some(w) == from || !self.edge_ok[v][w] {
+                continue;
+            }
+            let (b, l) = dir(p, self.case.nodes[w]);
+            let (cut, angle, left) = fillet(a, b, RADIUS as f64);
+            if cut > share || cut > 0.5 * l || !fillet_clear(self.case, p, a, cut, angle, left) {
+                continue;
+            }
+            let next = cost + l - 2.0 * cut + RADIUS as f64 * angle;
+            self.walk(w, b, 0.5 * l, next, Some(v), depth + 1);
+        }
+    }
+}
+
+#[test]
+fn dijkstra_over_turn_states_matches_an_exhaustive_walk_search() {
+    let mut rng = Rng(11);
+    let (mut routed, mut none) = (0, 0);
+    let mut walks = 0;
+    for k in 0..150 {
+        let c = case(&mut rng);
+        let net = skyroute::Network::from_bytes(&c.bytes).unwrap();
+        let blocking = net.elevation_coding().unwrap().blocking_code(ALTITUDE, 0.0);
+        let n = c.nodes.len();
+        let mut edge_ok = vec![vec![false; n]; n];
+        for e in 0..net.edge_count() {
+            let edge = net.edge(e).unwrap();
+            edge_ok[edge.source as usize][edge.target as usize] =
+                net.edge_highest_code(e).unwrap() < blocking;
+        }
+        // Start and goal over free cells.
+        let free_point = |rng: &mut Rng| loop {
+            let p = Vec2::new(
+                rng.range(200.0, 2800.0) as f32,
+                rng.range(200.0, 2800.0) as f32,
+            );
+            let (col, row) = c.grid.cell_of(p).unwrap();
+            if c.codes[(row * N + col) as usize] < 150 {
+                return p;
+            }
+        };
+        let start = Pose {
+            position: free_point(&mut rng),
+            heading: rng.range(0.0, std::f64::consts::TAU) as f32,
+        };
+        let goal = free_point(&mut rng);
+        // Goal links: straight from a node, its band clear.
+        let goal_ok: Vec<bool> = c
+            .nodes
+            .iter()
+            .map(|&p| {
+                p.distance(goal) > 0.0
+                    && clear(&c, &Primitive::Line(skyroute::Segment::new(p, goal)))
+            })
+            .collect();
+        let mut s = Search2 {
+            case: &c,
+            edge_ok,
+            goal,
+            goal_ok,
+            best: f64::INFINITY,
+            walks: 0,
+        };
+        // The direct path, then every start link.
+        for turn in [Turn::Left, Turn::Right] {
+            if let Some(p) = DubinsPath::turn_then_straight(&start, RADIUS, goal, turn) {
+                if path_clear(&c, &p) {
+                    s.best = s.best.min(p.length() as f64);
+                }
+            }
+        }
+        for v in 0..n {
+            for turn in [Turn::Left, Turn::Right] {
+                let Some(p) = DubinsPath::turn_then_straight(&start, RADIUS, c.nodes[v], turn)
+                else {
+                    continue;
+                };
+                if !path_clear(&c, &p) {
+                    continue;
+                }
+                let h = p.end().heading as f64;
+                s.walk(
+                    v,
+                    (h.cos(), h.sin()),
+                    p.lengths[1] as f64,
+                    p.length() as f64,
+                    None,
+                    0,
+                );
+            }
+        }
+        walks += s.walks;
+
+        let mut planner: Box<Planner<'_, 128, 128, 2, 64>> = Box::new(Planner::new());
+        planner.load(&c.bytes).unwrap();
+        planner.set_config(PlannerConfig {
+            start_candidates: 16,
+            goal_candidates: 16,
+            connect_radius_m: f32::INFINITY,
+            free_goal_headings: 36,
+        });
+        let q = Query {
+            start,
+            goal: Goal {
+                position: goal,
+                heading: None,
+            },
+            search: Search::Dijkstra,
+        };
+        match planner.plan(&q, u64::MAX) {
+            Ok(summary) => {
+                routed += 1;
+                assert!(
+                    s.best.is_finite(),
+                    "case {k}: the planner routes ({}) where no walk exists",
+                    summary.length
+                );
+                let tol = 1e-4 * s.best + 0.05;
+                assert!(
+                    (summary.length as f64 - s.best).abs() <= tol,
+                    "case {k}: planner {} vs exhaustive {}",
+                    summary.length,
+                    s.best
+                );
+                assert!(summary.work.total() <= planner.worst_case_work());
+            }
+            Err(e) => {
+                none += 1;
+                assert!(
+                    !s.best.is_finite(),
+                    "case {k}: planner {e:?} but a walk of {} exists",
+                    s.best
+                );
+                assert!(matches!(
+                    e,
+                    PlanError::NoRoute | PlanError::StartUnconnected | PlanError::GoalUnconnected
+                ));
+            }
+        }
+    }
+    eprintln!("{routed} routed, {none} without a route, {walks} walks enumerated");
+    assert!(routed >= 20 && none >= 1);
+}
