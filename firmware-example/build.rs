@@ -13,7 +13,12 @@ fn main() {
     println!("cargo:rerun-if-changed={}", memory.display());
     println!("cargo:rerun-if-changed=build.rs");
 
-    for f in ["fixture/network.bin", "fixture/query.rs"] {
+    let dir = if std::env::var_os("CARGO_FEATURE_TERRAIN").is_some() {
+        "fixture-terrain"
+    } else {
+        "fixture"
+    };
+    for f in ["network.bin", "query.rs"].map(|f| format!("{dir}/{f}")) {
         let path = manifest.join(f);
         if !path.exists() {
             panic!(

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The project's whole check, as CI runs it (.ci/run): installs what is missing, then
 #   format → clippy (host, thumbv7em, thumbv7em+defmt) → core docs → OMPL reference → tests →
-#   firmware fixture → firmware build → firmware clippy → firmware under QEMU → sizes.
+#   firmware fixture → firmware build → firmware clippy → firmware under QEMU → sizes, for the
+#   roadmap (niendorf-urban) and again for terrain (medeiros-jacksboro, feature `terrain`).
 # Runnable from any directory. Stops at the first failing step; KEEP_GOING=1 runs every step
 # and fails at the end instead.
 #
@@ -27,6 +28,14 @@ scenario=scenarios/niendorf-urban.geojson
 network_src=target/fixture/network-src.bin
 SKYROUTE_BUILD_ARGS=${SKYROUTE_BUILD_ARGS:-"build $scenario -o $network_src"}
 fixture_dir=firmware-example/fixture
+# The terrain firmware's network: medeiros-jacksboro thinned to fit the STM32F405's 128 KiB RAM
+# (the search state is ~22 B per edge): nodes 400 m apart, edges up to 5 km, nodes 60 m
+# farther out from their corners to leave room for turns among the fewer nodes.
+terrain_scenario=scenarios/medeiros-jacksboro.geojson
+terrain_src=target/fixture/terrain-src.bin
+terrain_fixture_dir=firmware-example/fixture-terrain
+# P and Q of the scenario in its local frame (heading: compass 45° with the meridian convergence).
+terrain_query="--start -3547.7197,-9893.968,0.78498753 --goal 3539.5775,9895.5724 --popup-on-route 100"
 firmware_elf=firmware-example/target/thumbv7em-none-eabihf/release/skyroute-firmware-example
 
 script_start=$SECONDS
@@ -149,6 +158,19 @@ firmware_build() {
     (cd firmware-example && cargo build --release)
 }
 
+terrain_fixture() {
+    mkdir -p "$(dirname "$terrain_src")"
+    cargo run --release -q -p skyroute-prep --bin skyroute -- build "$terrain_scenario" \
+        -o "$terrain_src" --node-spacing 400 --max-edge 5000 --node-margin 60
+    # shellcheck disable=SC2086 # the query's options are meant to split
+    cargo run --release -q -p host-tests --bin firmware_fixture -- \
+        "$terrain_src" "$terrain_fixture_dir" $terrain_query
+}
+
+terrain_firmware_build() {
+    (cd firmware-example && cargo build --release --features terrain)
+}
+
 firmware_clippy() {
     (cd firmware-example && cargo clippy --release -- -D warnings)
 }
@@ -208,6 +230,10 @@ step "firmware build (release)" firmware_build
 step "firmware clippy" firmware_clippy
 step "firmware under QEMU (netduinoplus2)" firmware_run
 step "firmware size" firmware_size
+step "terrain firmware fixture (medeiros-jacksboro)" terrain_fixture
+step "terrain firmware build (release, feature terrain)" terrain_firmware_build
+step "terrain firmware under QEMU (netduinoplus2)" firmware_run
+step "terrain firmware size" firmware_size
 
 summary
 [[ ${#failed[@]} -eq 0 ]]

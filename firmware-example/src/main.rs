@@ -1,9 +1,10 @@
 //! skyroute on a Cortex-M4F: the network image lies in flash, the planner in a `static`.
 //!
-//! Loads `fixture/network.bin`, adds the fixture's pop-up, then runs the [`autopilot`] route
-//! task for a few cycles, measuring each `plan` call with SysTick. Logs over defmt
-//! (semihosting); exits through semihosting with success only if the route's length matches
-//! the one the host computed (`fixture/query.rs`, written by host-tests' `firmware_fixture`).
+//! Loads `fixture/network.bin` (with the `terrain` feature: `fixture-terrain/network.bin`, a
+//! terrain network over the Jacksboro DEM), adds the fixture's pop-up, then runs the
+//! [`autopilot`] route task for a few cycles, measuring each `plan` call with SysTick. Logs over
+//! defmt (semihosting); exits through semihosting with success only if the route's length
+//! matches the one the host computed (`query.rs`, written by host-tests' `firmware_fixture`).
 //!
 //! Run it with `scripts/run-firmware.sh` (or `cargo run --release` here).
 #![no_std]
@@ -22,13 +23,21 @@ use skyroute::{Planner, Popup, Query, Search, Vec2};
 use static_cell::ConstStaticCell;
 
 /// The generated fixture: capacities, query, pop-up, expected route length, work budget.
+#[cfg(not(feature = "terrain"))]
 mod fixture {
     include!("../fixture/query.rs");
+}
+#[cfg(feature = "terrain")]
+mod fixture {
+    include!("../fixture-terrain/query.rs");
 }
 use fixture::*;
 
 /// The network image, in flash (`.rodata`); the planner reads it where it lies.
+#[cfg(not(feature = "terrain"))]
 static NETWORK: &[u8] = include_bytes!("../fixture/network.bin");
+#[cfg(feature = "terrain")]
+static NETWORK: &[u8] = include_bytes!("../fixture-terrain/network.bin");
 
 /// The planner's state, all of it (≈ 20·V + 2·E + 140·P + 24·R + 1.3 KiB). A network too large
 /// for the RAM fails at link time, not in flight. It lands in `.data`, not `.bss`: the value of
@@ -76,6 +85,7 @@ fn run() -> bool {
         return false;
     }
     let load_ticks = clock.now() - t;
+    planner.set_config(CONFIG);
     let net = planner.network();
     defmt::info!(
         "network: {=u32} vertices, {=u32} edges, {=u32} obstacles, {=usize} B in flash, turn radius {=f32} m, clearance {=f32} m",
@@ -91,6 +101,18 @@ fn run() -> bool {
         load_ticks,
         Clock::ticks_to_us(load_ticks)
     );
+    if let (Some(t), Some((altitude, safety))) = (net.terrain(), planner.altitude()) {
+        defmt::info!(
+            "terrain: {=u32} x {=u32} cells of {=f32} m, altitude {=f32} m, safety height {=f32} m, band +-{=f32} m, blocking code {=u8}",
+            t.cols,
+            t.rows,
+            t.cell_m,
+            altitude,
+            safety,
+            t.widen_m,
+            planner.blocking_code()
+        );
+    }
 
     let (x, y, radius) = POPUP;
     let t = clock.now();
@@ -191,6 +213,12 @@ fn run() -> bool {
             }
         },
     );
+    if task.planner().network().terrain().is_some() {
+        defmt::info!(
+            "turn arcs checked in the last query: {}",
+            task.planner().arc_check_stats()
+        );
+    }
     let (stack_used, stack_size) = stack::high_water();
     defmt::info!(
         "stack: peak {=usize} B of the {=usize} B left above .data/.bss",

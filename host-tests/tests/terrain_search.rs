@@ -365,3 +365,51 @@ fn dijkstra_over_turn_states_matches_an_exhaustive_walk_search() {
     eprintln!("{routed} routed, {none} without a route, {walks} walks enumerated");
     assert!(routed >= 20 && none >= 1);
 }
+
+/// Pop-ups on terrain networks disable exactly the line edges that come within the clearance
+/// of the disc, compared with an f64 scan of every edge (segment–point distance), and the
+/// search never uses a disabled edge.
+#[test]
+fn popups_disable_exactly_the_terrain_edges_they_reach() {
+    let mut rng = Rng(5);
+    let mut blocked_total = 0;
+    for _ in 0..40 {
+        let c = case(&mut rng);
+        let net = skyroute::Network::from_bytes(&c.bytes).unwrap();
+        let mut planner: Box<Planner<'_, 128, 128, 2, 64>> = Box::new(Planner::new());
+        planner.load(&c.bytes).unwrap();
+        let centre = Vec2::new(
+            rng.range(500.0, 2500.0) as f32,
+            rng.range(500.0, 2500.0) as f32,
+        );
+        let radius = rng.range(50.0, 400.0) as f32;
+        planner
+            .add_popup(skyroute::Popup::Circle { centre, radius })
+            .unwrap();
+        for e in 0..net.edge_count() {
+            let edge = net.edge(e).unwrap();
+            let (a, b) = (
+                net.vertex(edge.source).unwrap().position,
+                net.vertex(edge.target).unwrap().position,
+            );
+            // f64 distance from the centre to the segment.
+            let (ax, ay, bx, by) = (a.x as f64, a.y as f64, b.x as f64, b.y as f64);
+            let (px, py) = (centre.x as f64, centre.y as f64);
+            let (dx, dy) = (bx - ax, by - ay);
+            let t = (((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+            let d = (ax + t * dx - px).hypot(ay + t * dy - py);
+            let limit = (radius + WIDEN) as f64;
+            if (d - limit).abs() < 1e-2 {
+                continue; // within rounding of the boundary: either answer is right
+            }
+            assert_eq!(
+                !planner.is_edge_enabled(e),
+                d < limit,
+                "edge {e}: distance {d}, radius + clearance {limit}"
+            );
+            blocked_total += (d < limit) as u32;
+        }
+    }
+    eprintln!("{blocked_total} edges disabled by pop-ups, all as the scan says");
+    assert!(blocked_total > 20);
+}

@@ -2,7 +2,8 @@
 //! on it, with the route length the host computes with the same core code.
 //!
 //! ```text
-//! firmware_fixture NETWORK.bin OUT_DIR [--start x,y,heading] [--goal x,y[,heading]] [--popup x,y,r]
+//! firmware_fixture NETWORK.bin OUT_DIR [--start x,y,heading] [--goal x,y[,heading]]
+//!     [--popup x,y,r | --popup-on-route r]
 //! firmware_fixture --synthetic OUT_DIR [same options]
 //! ```
 //!
@@ -19,7 +20,7 @@ use skyroute::geometry::predicates::{
     conflicts_with_polygon, point_in_polygon, point_segment_distance, PolygonView,
 };
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec};
-use skyroute::planner::{PopupSummary, RouteSummary};
+use skyroute::planner::{PlannerConfig, PopupSummary, RouteSummary, MAX_LINKS};
 use skyroute::{DubinsPath, Goal, Network, Planner, Popup, Pose, Query, Search, Vec2};
 use std::f32::consts::{FRAC_PI_2, PI};
 use std::fmt::Write as _;
@@ -42,7 +43,7 @@ const FLASH_BYTES: usize = 1024 * 1024;
 type HostPlanner<'n> = Planner<'n, HOST_V, HOST_E, P_CAP, R_CAP>;
 
 const USAGE: &str = "usage: firmware_fixture (NETWORK.bin | --synthetic) OUT_DIR \
-[--start x,y,heading_rad] [--goal x,y[,heading_rad]] [--popup x,y,radius]";
+[--start x,y,heading_rad] [--goal x,y[,heading_rad]] [--popup x,y,radius | --popup-on-route radius]";
 
 #[derive(Debug, Default)]
 struct Args {
@@ -51,6 +52,9 @@ struct Args {
     start: Option<Pose>,
     goal: Option<Goal>,
     popup: Option<(f32, f32, f32)>,
+    /// Radius of a pop-up centred on the middle of the longest straight of the route planned
+    /// without it (so that it certainly changes the route).
+    popup_on_route: Option<f32>,
 }
 
 fn floats(s: &str, what: &str, counts: &[usize]) -> Result<Vec<f32>, String> {
@@ -90,6 +94,10 @@ fn parse_args() -> Result<Args, String> {
             "--popup" => {
                 let v = floats(&value("--popup")?, "--popup", &[3])?;
                 args.popup = Some((v[0], v[1], v[2]));
+            }
+            "--popup-on-route" => {
+                let v = floats(&value("--popup-on-route")?, "--popup-on-route", &[1])?;
+                args.popup_on_route = Some(v[0]);
             }
             "-h" | "--help" => return Err(USAGE.into()),
             s if s.starts_with("--") => return Err(format!("unknown option {s}\n{USAGE}")),
@@ -228,9 +236,11 @@ fn choose(
     start: Option<Pose>,
     goal: Option<Goal>,
     popup: Option<(f32, f32, f32)>,
+    popup_on_route: Option<f32>,
 ) -> Result<Chosen, String> {
     let mut planner = HostPlanner::new();
     planner.load(bytes).map_err(|e| format!("load: {e}"))?;
+    planner.set_config(config_for(planner.network()));
     let budget = planner.worst_case_work();
     let network = *planner.network();
     let starts: Vec<Pose> = match start {
@@ -264,17 +274,30 @@ fn choose(
             }
         };
         for goal in goals {
-            let popup = popup.unwrap_or_else(|| {
-                let mid = (start.position + goal.position) * 0.5;
-                let r = (0.1 * start.position.distance(goal.position)).max(1.0);
-                (mid.x, mid.y, r)
-            });
             let query = Query {
                 start,
                 goal,
                 search: Search::Dijkstra,
             };
             let before = planner.plan(&query, budget).ok().map(|s| s.length);
+            let on_route = popup_on_route.and_then(|r| {
+                before?;
+                let longest = planner
+                    .route()
+                    .iter()
+                    .filter_map(|p| match p {
+                        skyroute::Primitive::Line(s) => Some(*s),
+                        _ => None,
+                    })
+                    .max_by(|a, b| a.length().total_cmp(&b.length()))?;
+                let mid = (longest.start + longest.end) * 0.5;
+                Some((mid.x, mid.y, r))
+            });
+            let popup = popup.or(on_route).unwrap_or_else(|| {
+                let mid = (start.position + goal.position) * 0.5;
+                let r = (0.1 * start.position.distance(goal.position)).max(1.0);
+                (mid.x, mid.y, r)
+            });
             let added = planner
                 .add_popup(Popup::Circle {
                     centre: Vec2::new(popup.0, popup.1),
@@ -309,6 +332,21 @@ fn choose(
         "no route for any start/goal tried ({rejected}); last: {}",
         last_error.unwrap_or_default()
     ))
+}
+
+/// The connection settings the firmware uses: the default for a roadmap; for a terrain network,
+/// 16 links to the 32 nearest nodes however far (region corners can be kilometres away).
+fn config_for(network: &Network<'_>) -> PlannerConfig {
+    if network.terrain().is_some() {
+        PlannerConfig {
+            start_candidates: 16,
+            goal_candidates: 16,
+            connect_radius_m: f32::INFINITY,
+            ..PlannerConfig::DEFAULT
+        }
+    } else {
+        PlannerConfig::DEFAULT
+    }
 }
 
 /// The firmware planner's size for capacities known only at run time, from the sizes of a few
@@ -347,7 +385,14 @@ fn run(args: Args) -> Result<(), String> {
     if nv == 0 {
         return Err(format!("{source}: the network has no vertices"));
     }
-    let (v_cap, e_cap) = (capacity(nv, 64), capacity(ne, 256));
+    // Search states: the vertices of a roadmap; a terrain search runs over directed edges and
+    // start links.
+    let states = if network.terrain().is_some() {
+        ne + MAX_LINKS as u32
+    } else {
+        nv
+    };
+    let (v_cap, e_cap) = (capacity(states, 64), capacity(ne, 256));
     // The very check the firmware's `Planner::load` makes.
     Network::from_bytes_with_capacity(&bytes, v_cap, e_cap)
         .map_err(|e| format!("{source}: does not load with V={v_cap} E={e_cap}: {e}"))?;
@@ -364,7 +409,8 @@ fn run(args: Args) -> Result<(), String> {
         .spawn({
             let bytes = bytes.clone();
             let (start, goal, popup) = (args.start, args.goal, args.popup);
-            move || choose(&bytes, start, goal, popup)
+            let on_route = args.popup_on_route;
+            move || choose(&bytes, start, goal, popup, on_route)
         })
         .map_err(|e| format!("spawning the planning thread: {e}"))?
         .join()
@@ -419,7 +465,7 @@ fn run(args: Args) -> Result<(), String> {
     );
     let _ = writeln!(
         w,
-        "/// Vertex capacity of the planner ({nv} in the network)."
+        "/// Search-state capacity of the planner ({nv} vertices, {ne} edges in the network)."
     );
     let _ = writeln!(w, "pub const V_CAP: usize = {v_cap};");
     let _ = writeln!(w, "/// Edge capacity of the planner ({ne} in the network).");
@@ -428,6 +474,20 @@ fn run(args: Args) -> Result<(), String> {
     let _ = writeln!(w, "pub const P_CAP: usize = {P_CAP};");
     let _ = writeln!(w, "/// Route primitives the planner holds.");
     let _ = writeln!(w, "pub const R_CAP: usize = {R_CAP};");
+    let config = config_for(&network);
+    let radius = if config.connect_radius_m.is_finite() {
+        lit(config.connect_radius_m)
+    } else {
+        "f32::INFINITY".to_string()
+    };
+    let _ = writeln!(w, "/// The planner's connection settings.");
+    let _ = writeln!(
+        w,
+        "pub const CONFIG: skyroute::planner::PlannerConfig = skyroute::planner::PlannerConfig {{\n    \
+         start_candidates: {},\n    goal_candidates: {},\n    connect_radius_m: {radius},\n    \
+         free_goal_headings: {},\n}};",
+        config.start_candidates, config.goal_candidates, config.free_goal_headings
+    );
     let _ = writeln!(w, "/// The aircraft's pose when it plans.");
     let _ = writeln!(
         w,
