@@ -4,6 +4,7 @@ pub mod build;
 pub mod dem;
 pub mod export;
 pub mod frame;
+pub mod landmark;
 pub mod mission;
 pub mod render;
 pub mod roadmap;
