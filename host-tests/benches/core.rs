@@ -1,5 +1,7 @@
 //! Host timings of the onboard core: Dubins paths, the exact predicates, pop-up pruning and a
-//! planning query on the `niendorf-urban` roadmap. Run: `cargo bench -p host-tests --bench core`.
+//! planning query on the `niendorf-urban` roadmap; the terrain query P → Q on the
+//! `medeiros-jacksboro` network, the network load (validation), and an arc check against the
+//! elevation grid. Run: `cargo bench -p host-tests --bench core`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use skyroute::geometry::predicates::{
@@ -177,5 +179,65 @@ fn niendorf(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, geometry, niendorf);
+fn jacksboro(c: &mut Criterion) {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/medeiros-jacksboro.geojson");
+    let scenario = skyroute_prep::scenario::load(&path).expect("scenario");
+    let built =
+        skyroute_prep::build::build(&scenario, &Default::default(), &|_, _| {}).expect("network");
+    let bytes: &'static [u8] = Box::leak(built.bytes.into_boxed_slice());
+    // Search states: the network's directed edges and the start links.
+    let mut planner: Box<Planner<'static, 65536, 65536, 8, 1024>> = Box::new(Planner::new());
+    planner.load(bytes).expect("loads");
+    planner.set_config(skyroute_prep::mission::TERRAIN_CONFIG);
+    let frame = &built.frame;
+    let start = scenario.start.as_ref().expect("start");
+    let goal = scenario.goal.as_ref().expect("goal");
+    let query = Query {
+        start: skyroute_prep::build::local_pose(frame, start.lon, start.lat, start.heading_deg),
+        goal: Goal {
+            position: skyroute_prep::build::local(frame, goal.lon, goal.lat),
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    };
+    let s = planner.plan(&query, u64::MAX).expect("route");
+    eprintln!(
+        "medeiros-jacksboro network: {} vertices, {} edges, {} bytes; P → Q {:.1} m, work {} \
+         (bound {}), {:?}",
+        planner.network().vertex_count(),
+        planner.network().edge_count(),
+        bytes.len(),
+        s.length,
+        s.work.total(),
+        planner.worst_case_work(),
+        planner.arc_check_stats()
+    );
+    c.bench_function("plan_jacksboro_p_to_q_750m", |b| {
+        b.iter(|| black_box(planner.plan(&query, u64::MAX)))
+    });
+    planner.set_altitude(850.0, 100.0).expect("altitude");
+    c.bench_function("plan_jacksboro_p_to_q_850m_set_in_flight", |b| {
+        b.iter(|| black_box(planner.plan(&query, u64::MAX)))
+    });
+    c.bench_function("load_jacksboro_network", |b| {
+        b.iter(|| black_box(skyroute::Network::from_bytes(black_box(bytes)).is_ok()))
+    });
+    // One turn arc of 60° at the turn radius against the grid, as the search checks it.
+    let grid = planner.network().terrain_grid().expect("grid");
+    let widen = planner.network().terrain().expect("terrain").widen_m;
+    let arc = Arc {
+        centre: query.start.position + Vec2::new(0.0, 300.0),
+        radius: 300.0,
+        start_angle: -PI / 2.0,
+        sweep: PI / 3.0,
+    };
+    c.bench_function("arc_cells_60deg_r300_band_101m", |b| {
+        b.iter(|| {
+            skyroute::geometry::grid::arc_cells(&grid, black_box(&arc), widen, |_, _| true)
+        })
+    });
+}
+
+criterion_group!(benches, geometry, niendorf, jacksboro);
 criterion_main!(benches);
