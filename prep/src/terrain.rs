@@ -20,15 +20,21 @@
 //!   the projection's scale error `k − 1 ≤ 1e-5` of the smallest anywhere), as an `f32`.
 //! * **Extent**: the bounding box of the DEM's outline projected into the frame (every corner
 //!   along the outline), widened by 1 m; the origin is rounded down to whole metres.
-//! * **Blocked**: every grid vertex is mapped to `(lon, lat)` with [`LocalFrame::to_geo`]. A
-//!   metric cell's footprint on the ellipsoid is the quadrilateral of its four mapped corners
-//!   (the edges are not exactly straight in `(lon, lat)`, see below); its longitude/latitude
-//!   bounding box, widened by a pad, is intersected with the DEM's cells as *closed* rectangles
-//!   (touching counts). The metric cell is blocked if that box reaches outside the DEM or any
-//!   DEM cell it meets is not navigable. So the union of the blocked metric cells contains the
-//!   footprint of every blocked DEM cell: **conservative**, never optimistic. The price is that
-//!   blocked regions grow by up to about one metric cell plus one DEM cell (the box of a cell
-//!   rotated by γ is a little larger than the cell, and a DEM cell is blocked whole).
+//! * **Elevation and blocked cells**: every grid vertex is mapped to `(lon, lat)` with
+//!   [`LocalFrame::to_geo`]. A metric cell's footprint on the ellipsoid is the quadrilateral of
+//!   its four mapped corners (the edges are not exactly straight in `(lon, lat)`, see below);
+//!   its longitude/latitude bounding box, widened by a pad, is intersected with the DEM's cells
+//!   as *closed* rectangles (touching counts). The metric cell's elevation is the highest
+//!   elevation of the DEM cells it meets, encoded rounding **up** into one byte
+//!   ([`ElevationCoding`], base the DEM's lowest metre, 254 steps to its highest: 3.3 m on the
+//!   Jacksboro DEM); a box reaching outside the DEM, or meeting a NODATA cell, gets
+//!   [`ELEVATION_BLOCKED`]. A cell is blocked at an altitude when its code is at least the
+//!   altitude's blocking code — the very table and test the aircraft uses, so ground and air
+//!   agree cell for cell. So the union of the blocked metric cells contains the footprint of
+//!   every blocked DEM cell: **conservative**, never optimistic. The price is that blocked
+//!   regions grow by up to about one metric cell plus one DEM cell (the box of a cell rotated
+//!   by γ is a little larger than the cell, and a DEM cell is blocked whole), and cells within
+//!   one step (3.3 m) below the threshold count as blocked.
 //! * **Error of the footprint**: the only approximation is the straight-edged quadrilateral
 //!   (and its bounding box) standing for the image of a straight metric edge, which bows in
 //!   `(lon, lat)`. The bow is measured on every edge along the grid's outline (the largest
@@ -77,14 +83,32 @@
 //! trades a little path length for a smaller graph. Off by default.) The nodes are finally
 //! sorted by `(x, y)`, exact duplicates removed.
 //!
+//! With [`TerrainParams::extra_altitudes_m`], the corners of the blocked regions at each further
+//! altitude get nodes too (tagged with their level), so that an aircraft that descends in flight
+//! still finds nodes around the larger regions.
+//!
 //! # 3. Edges
 //!
-//! Every pair of nodes at most [`TerrainParams::max_edge_m`] apart (all pairs for `None`) is
-//! joined if the straight segment's capsule of radius `widen` meets no blocked cell
-//! ([`segment_cells`], stopping at the first blocked cell). Since both nodes' discs lie inside
-//! the grid, so does the capsule. Pairs are tested in parallel (rayon) and collected in a fixed
-//! order, so the result does not depend on the number of threads. Each accepted pair gives
-//! both directions, `(i, j, length)` and `(j, i, length)`, sorted by `(from, to)`.
+//! Every pair of nodes of the same level at most [`TerrainParams::max_edge_m`] apart (all pairs
+//! for `None`) is joined if the straight segment's capsule of radius `widen` meets no cell
+//! blocked at that level's altitude ([`segment_cells`], stopping at the first blocked cell).
+//! Since both nodes' discs lie inside the grid, so does the capsule.
+//!
+//! **Reduced visibility graph** ([`TerrainParams::tangent_edges_only`], on by default): a
+//! shortest path among obstacles bends only at a convex vertex it wraps around, so it uses an
+//! edge only if the edge's line is *tangent* to the obstacle at both ends — it does not enter
+//! the obstacle on either side of the node (the classical reduced visibility graph, e.g.
+//! LaValle, *Planning Algorithms* §6.2.4). At a node the grown region is the quadrant `s` of its
+//! corner's blocked cell, and the line in direction `u` stays out of it iff
+//! `(s_x u_x)(s_y u_y) ≤ 0`. On Jacksboro at 750 m this keeps 29 442 of 69 444 directed edges
+//! (and 0.73 M of 3.7 M turn transitions), the difference between a network that fits a flight
+//! computer's search state and one that does not. (A route with turns of a minimum radius can
+//! in principle need a non-tangent edge to gain room for a turn; the measured completeness is
+//! in `docs/BENCHMARKS.md` and the README.)
+//!
+//! Pairs are tested in parallel (rayon) and collected in a fixed order, so the result does not
+//! depend on the number of threads. Each accepted pair gives both directions, `(i, j, length)`
+//! and `(j, i, length)`, sorted by `(from, to)`.
 
 use crate::dem::{Dem, Units};
 use crate::frame::LocalFrame;
