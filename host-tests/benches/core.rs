@@ -233,9 +233,7 @@ fn jacksboro(c: &mut Criterion) {
         sweep: PI / 3.0,
     };
     c.bench_function("arc_cells_60deg_r300_band_101m", |b| {
-        b.iter(|| {
-            skyroute::geometry::grid::arc_cells(&grid, black_box(&arc), widen, |_, _| true)
-        })
+        b.iter(|| skyroute::geometry::grid::arc_cells(&grid, black_box(&arc), widen, |_, _| true))
     });
 }
 
