@@ -4,7 +4,7 @@
 //!
 //! The map is drawn in the network's local frame with grid north up and the same scale on both
 //! axes. Layers, bottom to top: a 100 m / 500 m grid; the clearance band around every obstacle;
-//! obstacles (grey); the network's edges (thin, light); pop-ups (red); the route, one colour per
+//! obstacles (grey); for a terrain network, the cells blocked at its altitude (grey); the network's edges (thin, light); pop-ups (red); the route, one colour per
 //! leg, with a white casing and arrowheads every so often in the direction of flight; start,
 //! waypoints and goal, labelled by name, with heading ticks where the heading is fixed. A panel
 //! on the right holds the title, a legend, the legs with their lengths, the route's smallest
@@ -557,6 +557,37 @@ pub fn render_svg(pic: &Picture) -> String {
             );
         }
 
+        // Terrain networks: the cells blocked at the altitude the network was built for, one
+        // rectangle per run of blocked cells in a row.
+        if let (Some(t), Some(grid), Some(coding)) =
+            (net.terrain(), net.terrain_grid(), net.elevation_coding())
+        {
+            let blocking = coding.blocking_code(t.altitude_m, t.safety_height_m);
+            let mut runs = String::new();
+            for r in 0..grid.rows {
+                let mut c = 0;
+                while c < grid.cols {
+                    if net.elevation_code(c, r) < blocking {
+                        c += 1;
+                        continue;
+                    }
+                    let first = c;
+                    while c < grid.cols && net.elevation_code(c, r) >= blocking {
+                        c += 1;
+                    }
+                    let (lo, _) = grid.cell_rect(first, r);
+                    let (_, hi) = grid.cell_rect(c - 1, r);
+                    let (x0, y1) = view.pv(lo);
+                    let (x1, y0) = view.pv(hi);
+                    let _ = write!(runs, "M{x0:.1} {y0:.1}H{x1:.1}V{y1:.1}H{x0:.1}Z");
+                }
+            }
+            let _ = writeln!(
+                svg,
+                r##"<path d="{runs}" fill="#9a9a9a" fill-opacity="0.55" stroke="none"/>"##
+            );
+        }
+
         // The network's edges, one path.
         if pic.edges {
             let mut d = String::new();
@@ -806,7 +837,16 @@ pub fn render_svg(pic: &Picture) -> String {
         );
         sym_y += 24.0;
     };
-    if net.is_some() {
+    if let Some(t) = net.and_then(|n| n.terrain()) {
+        symbol(
+            &mut svg,
+            r##"<g transform="translate({X} {Y})"><rect x="2" y="-8" width="28" height="16" fill="#9a9a9a" fill-opacity="0.55"/></g>"##.to_string(),
+            &format!(
+                "terrain blocked at {:.0} m (safety height {:.0} m)",
+                t.altitude_m, t.safety_height_m
+            ),
+        );
+    } else if net.is_some() {
         symbol(
             &mut svg,
             r##"<g transform="translate({X} {Y})"><rect x="-2" y="-10" width="34" height="20" fill="#e9d9c4"/><rect x="6" y="-5" width="18" height="10" fill="#8a8a8a" stroke="#555"/></g>"##.to_string(),
