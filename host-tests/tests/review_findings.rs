@@ -61,6 +61,7 @@ fn lattice_spec(n: usize, spacing: f32, origin: f32, radius: f32) -> NetworkSpec
         edges,
         obstacles: Vec::new(),
         grid_cell_m: 2.0 * radius,
+        landmark: None,
         terrain: None,
     }
 }
@@ -345,6 +346,7 @@ fn zero_and_one_capacities_never_panic() {
             radius: 10.0,
         }],
         grid_cell_m: 60.0,
+        landmark: None,
         terrain: None,
     };
     let empty = encode(&empty).unwrap();

@@ -101,6 +101,7 @@ fn case(rng: &mut Rng) -> Case {
         edges,
         obstacles: Vec::new(),
         grid_cell_m: 1000.0,
+        landmark: None,
         terrain: Some(TerrainSpec {
             grid,
             coding: ElevationCoding {

@@ -24,6 +24,16 @@ pub enum Section {
     CellEntries,
     /// Terrain mode: the elevation table's grid and coding.
     Terrain,
+    /// Landmark mode: the landmark record.
+    Landmark,
+    /// Landmark mode: the landmarks (position, `d_max`).
+    Landmarks,
+    /// Landmark mode: the rosette qualities.
+    Rosettes,
+    /// Landmark mode: the CSR offsets of the chains' line elements by edge.
+    ChainOffsets,
+    /// Landmark mode: the chains' line elements.
+    ChainElements,
 }
 
 /// A scalar header parameter, named in [`LoadError::InvalidParameter`].
@@ -48,6 +58,11 @@ pub enum Parameter {
     /// cells per axis), the coding finite with a positive step, the widening, altitude and
     /// safety height finite and not negative where that matters.
     Terrain,
+    /// Landmark mode: the landmark record's numbers must be valid: at least one direction and
+    /// one weather, a finite positive nominal speed, valid flight limits
+    /// ([`FlyLimits::is_valid`](crate::geometry::hermite::FlyLimits::is_valid)) and a finite,
+    /// non-negative start range.
+    Landmark,
 }
 
 /// Why [`Network::from_bytes`](super::Network::from_bytes) rejected an image. Every variant
@@ -222,6 +237,80 @@ pub enum LoadError {
         /// The highest code found.
         computed: u8,
     },
+    /// Landmark mode: the vertex count is not `landmarks · directions` plus one per endpoint
+    /// (start, goal) the landmark record names.
+    LandmarkVertexCount {
+        /// Vertices in the header.
+        vertices: u32,
+        /// Vertices the landmark record implies (saturating).
+        expected: u32,
+    },
+    /// Landmark mode: the start or goal vertex is not where the layout puts it (the start at
+    /// `L·D`, the goal after it).
+    EndpointVertexMismatch {
+        /// The stored index.
+        stored: u32,
+        /// The index the layout implies.
+        expected: u32,
+    },
+    /// Landmark mode: an overflight vertex does not lie at its landmark's position.
+    VertexOffLandmark {
+        /// Vertex index.
+        vertex: u32,
+    },
+    /// Landmark mode: a rosette quality is outside `[0, 1]` (or NaN).
+    QualityOutOfRange {
+        /// Index into the rosette table.
+        index: u32,
+    },
+    /// Landmark mode: a line element's speed differs from the nominal speed by more than 10⁻³
+    /// of it.
+    ElementSpeed {
+        /// Element index.
+        element: u32,
+        /// Its speed, mm/s (saturating).
+        speed_mm_s: u32,
+    },
+    /// Landmark mode: an edge's chain has fewer than two line elements.
+    ChainTooShort {
+        /// Edge index.
+        edge: u32,
+        /// Its elements.
+        elements: u32,
+    },
+    /// Landmark mode: two consecutive line elements of a chain lie at the same position (no
+    /// Hermite piece joins them).
+    CoincidentElements {
+        /// Edge index.
+        edge: u32,
+        /// The second element's index.
+        element: u32,
+    },
+    /// Landmark mode: a chain's first element is not its source vertex's line element, or its
+    /// last not its target's (position within 10⁻⁴ of the coordinate size plus 1 cm,
+    /// velocity direction within 10⁻³ rad).
+    ChainMissesVertex {
+        /// Edge index.
+        edge: u32,
+        /// The vertex it should start or end at.
+        vertex: u32,
+        /// Distance from the vertex, millimetres (saturating; a heading mismatch alone may
+        /// show a small or zero distance).
+        miss_mm: u32,
+    },
+    /// Landmark mode: a chain's stored length is shorter than the polyline through its line
+    /// elements (no curve through them can be that short).
+    ChainShorterThanChords {
+        /// Edge index.
+        edge: u32,
+    },
+    /// Landmark mode: the grid index does not cover an edge's reach (the box of half-side
+    /// `length/2` around the midpoint of its ends, which holds every curve of that length
+    /// between them), so pop-up pruning could miss it.
+    EdgeOutsideGrid {
+        /// Edge index.
+        edge: u32,
+    },
 }
 
 impl fmt::Display for LoadError {
@@ -328,6 +417,50 @@ impl fmt::Display for LoadError {
                 f,
                 "edge {edge} stores highest elevation code {stored}, but its cells reach {computed}"
             ),
+            LandmarkVertexCount { vertices, expected } => write!(
+                f,
+                "{vertices} vertices, the landmark record implies {expected}"
+            ),
+            EndpointVertexMismatch { stored, expected } => write!(
+                f,
+                "endpoint vertex {stored} should be {expected} (after the overflights)"
+            ),
+            VertexOffLandmark { vertex } => {
+                write!(f, "overflight vertex {vertex} is not at its landmark")
+            }
+            QualityOutOfRange { index } => {
+                write!(f, "rosette quality {index} is outside [0, 1]")
+            }
+            ElementSpeed {
+                element,
+                speed_mm_s,
+            } => write!(
+                f,
+                "line element {element} flies {speed_mm_s} mm/s, not the nominal speed"
+            ),
+            ChainTooShort { edge, elements } => write!(
+                f,
+                "edge {edge} has a chain of {elements} line elements (needs at least 2)"
+            ),
+            CoincidentElements { edge, element } => write!(
+                f,
+                "edge {edge}: line element {element} lies on the one before it"
+            ),
+            ChainMissesVertex {
+                edge,
+                vertex,
+                miss_mm,
+            } => write!(
+                f,
+                "edge {edge}: its chain misses vertex {vertex} by {miss_mm} mm (or a heading)"
+            ),
+            ChainShorterThanChords { edge } => write!(
+                f,
+                "edge {edge} is shorter than the polyline through its line elements"
+            ),
+            EdgeOutsideGrid { edge } => {
+                write!(f, "grid index does not cover the reach of edge {edge}")
+            }
         }
     }
 }

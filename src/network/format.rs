@@ -16,6 +16,10 @@ pub const FORMAT_VERSION: u16 = 2;
 
 /// Network mode: a multi-query Dubins roadmap (Niendorf et al.).
 pub const MODE_ROADMAP: u8 = 0;
+/// Network mode: a landmark shortest-path network (Babel 2014): vertices are landmark
+/// overflights, edges chains of quintic Hermite pieces; the body ends with a
+/// [`LandmarkRecord`] and the landmark tables (`docs/format-landmark.md`).
+pub const MODE_LANDMARK: u8 = 1;
 /// Network mode: a terrain visibility graph of straight edges over an elevation table
 /// (Medeiros & da Silva); the body ends with a [`TerrainRecord`] and the table.
 pub const MODE_TERRAIN: u8 = 2;
@@ -23,6 +27,11 @@ pub const MODE_TERRAIN: u8 = 2;
 /// Edge geometry code: a straight line from the source's position to the target's
 /// (terrain mode). Its params are `[length, highest elevation code along it, 0]`.
 pub const GEOMETRY_LINE: u8 = 6;
+
+/// Edge geometry code: a chain of quintic Hermite pieces between stored line elements
+/// (landmark mode). Its params are `[length, 0, 0]`, the length being the sum of the pieces'
+/// lengths; the elements are `chain_offsets[e] .. chain_offsets[e + 1]`.
+pub const GEOMETRY_HERMITE_CHAIN: u8 = 7;
 
 /// Obstacle kind code: a simple polygon.
 pub const OBSTACLE_POLYGON: u8 = 0;
@@ -37,7 +46,7 @@ pub struct Header {
     /// [`FORMAT_VERSION`].
     #[serde(with = "postcard::fixint::le")]
     pub version: u16,
-    /// Network mode ([`MODE_ROADMAP`]).
+    /// Network mode ([`MODE_ROADMAP`], [`MODE_LANDMARK`] or [`MODE_TERRAIN`]).
     pub mode: u8,
     /// Reserved, zero.
     pub flags: u8,
@@ -209,6 +218,98 @@ impl TerrainRecord {
     pub const SIZE: usize = 40;
 }
 
+/// Landmark mode: the counts and vehicle numbers of the landmark tables, after the cell
+/// entries. The tables follow: `landmark_count` [`LandmarkSiteRecord`]s; the rosettes,
+/// `landmark_count · weather_count · directions` [`F32Record`] qualities (landmark-major, then
+/// weather, then direction); `edge_count + 1` [`U32Record`] chain offsets; `element_count`
+/// [`ElementRecord`]s.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LandmarkRecord {
+    /// Landmarks, L.
+    #[serde(with = "postcard::fixint::le")]
+    pub landmark_count: u32,
+    /// Overflight directions per landmark, D: vertex `l·D + k` is landmark `l` crossed in
+    /// direction `k`.
+    #[serde(with = "postcard::fixint::le")]
+    pub directions: u32,
+    /// Weathers the rosettes are given for, W.
+    #[serde(with = "postcard::fixint::le")]
+    pub weather_count: u32,
+    /// Nominal speed of every line element and piece, m/s.
+    pub v_nominal: f32,
+    /// Lowest airspeed the pieces were checked against, m/s.
+    pub v_min: f32,
+    /// Highest airspeed, m/s.
+    pub v_max: f32,
+    /// Lowest longitudinal acceleration, m/s².
+    pub a_long_min: f32,
+    /// Highest longitudinal acceleration, m/s².
+    pub a_long_max: f32,
+    /// Highest lateral acceleration, m/s².
+    pub a_lat_max: f32,
+    /// The start's vertex (`L·D`), or `u32::MAX` when the network has no start.
+    #[serde(with = "postcard::fixint::le")]
+    pub start_vertex: u32,
+    /// The goal's vertex (`L·D`, or `L·D + 1` after a start), or `u32::MAX`.
+    #[serde(with = "postcard::fixint::le")]
+    pub goal_vertex: u32,
+    /// The longest start edge that may be flown (the start's `dist_m`), metres.
+    pub start_range_m: f32,
+    /// Line elements over all chains.
+    #[serde(with = "postcard::fixint::le")]
+    pub element_count: u32,
+}
+
+impl LandmarkRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 52;
+    /// The value of `start_vertex` or `goal_vertex` when there is none.
+    pub const ABSENT: u32 = u32::MAX;
+}
+
+/// Landmark mode: a landmark.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LandmarkSiteRecord {
+    /// East, metres.
+    pub x: f32,
+    /// North, metres.
+    pub y: f32,
+    /// Largest distance that may be flown after overflying it with quality 1, metres.
+    pub d_max: f32,
+}
+
+impl LandmarkSiteRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 12;
+}
+
+/// An `f32` (a rosette quality) as a fixed-width record.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct F32Record(pub f32);
+
+impl F32Record {
+    /// Encoded size.
+    pub const SIZE: usize = 4;
+}
+
+/// Landmark mode: a line element of a chain (position and velocity of nominal speed).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ElementRecord {
+    /// East, metres.
+    pub x: f32,
+    /// North, metres.
+    pub y: f32,
+    /// Velocity east, m/s.
+    pub vx: f32,
+    /// Velocity north, m/s.
+    pub vy: f32,
+}
+
+impl ElementRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 16;
+}
+
 #[cfg(all(test, feature = "std"))]
 mod tests {
     use super::*;
@@ -277,6 +378,42 @@ mod tests {
             safety_height_m: 1.0,
         };
         assert_eq!(postcard::to_stdvec(&t).unwrap().len(), TerrainRecord::SIZE);
+        let l = LandmarkRecord {
+            landmark_count: u32::MAX,
+            directions: 12,
+            weather_count: 2,
+            v_nominal: 1.0,
+            v_min: 1.0,
+            v_max: 1.0,
+            a_long_min: -1.0,
+            a_long_max: 1.0,
+            a_lat_max: 1.0,
+            start_vertex: u32::MAX,
+            goal_vertex: u32::MAX,
+            start_range_m: 1.0,
+            element_count: u32::MAX,
+        };
+        assert_eq!(postcard::to_stdvec(&l).unwrap().len(), LandmarkRecord::SIZE);
+        let site = LandmarkSiteRecord {
+            x: 1.0,
+            y: 2.0,
+            d_max: 3.0,
+        };
+        assert_eq!(
+            postcard::to_stdvec(&site).unwrap().len(),
+            LandmarkSiteRecord::SIZE
+        );
+        assert_eq!(
+            postcard::to_stdvec(&F32Record(1.0)).unwrap().len(),
+            F32Record::SIZE
+        );
+        let el = ElementRecord {
+            x: 1.0,
+            y: 2.0,
+            vx: 3.0,
+            vy: 4.0,
+        };
+        assert_eq!(postcard::to_stdvec(&el).unwrap().len(), ElementRecord::SIZE);
         assert_eq!(
             postcard::to_stdvec(&PointRecord { x: 1.0, y: 2.0 })
                 .unwrap()

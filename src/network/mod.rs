@@ -3,7 +3,8 @@
 //! [`Network::from_bytes`] checks an image once (magic, version, length, checksum, counts,
 //! every index and every float) and then reads it where it lies: the network is never copied
 //! into RAM. After a successful load no accessor can panic, and none returns `None` for an
-//! index below the corresponding count.
+//! index below the corresponding count — except the Dubins views of a Hermite chain
+//! ([`Network::edge`], [`Network::edge_path`]), which has none.
 
 mod crc;
 pub mod elevation;
@@ -16,6 +17,7 @@ pub use crc::crc32;
 pub use error::{LoadError, Parameter, Section};
 
 use crate::geometry::grid::{segment_cells, CellGrid};
+use crate::geometry::hermite::{FlyLimits, HermiteSegment, LineElement};
 use crate::geometry::predicates::PolygonView;
 use crate::geometry::{DubinsPath, DubinsWord, Pose, Segment, Vec2};
 use elevation::{ElevationCoding, ELEVATION_BLOCKED};
@@ -32,6 +34,10 @@ pub struct Network<'a> {
     layout: Layout,
     /// Terrain mode: the elevation table's grid and coding.
     terrain: Option<TerrainRecord>,
+    /// Landmark mode: the landmark record.
+    landmark: Option<LandmarkRecord>,
+    /// Landmark mode: the most pieces of any edge's chain (0 otherwise).
+    max_chain_pieces: u32,
 }
 
 /// Byte offsets of each section within the image.
@@ -47,6 +53,12 @@ struct Layout {
     /// Terrain mode: the [`TerrainRecord`], then the elevation table (0 otherwise).
     terrain: usize,
     elevations: usize,
+    /// Landmark mode: the [`LandmarkRecord`] and its tables (0 otherwise).
+    landmark: usize,
+    landmarks: usize,
+    rosettes: usize,
+    chain_offsets: usize,
+    elements: usize,
     end: usize,
 }
 
@@ -71,8 +83,34 @@ impl Layout {
             cell_entries: next(h.grid_entry_count as usize, U32Record::SIZE)?,
             terrain: 0,
             elevations: 0,
+            landmark: 0,
+            landmarks: 0,
+            rosettes: 0,
+            chain_offsets: 0,
+            elements: 0,
             end: at,
         })
+    }
+
+    /// Adds the landmark sections after the common ones, or `None` on overflow.
+    fn with_landmark(mut self, l: &LandmarkRecord, edge_count: u32) -> Option<Self> {
+        let lm = l.landmark_count as usize;
+        let qualities = lm
+            .checked_mul(l.weather_count as usize)?
+            .checked_mul(l.directions as usize)?;
+        let mut at = self.end;
+        let mut next = |count: usize, size: usize| -> Option<usize> {
+            let start = at;
+            at = at.checked_add(count.checked_mul(size)?)?;
+            Some(start)
+        };
+        self.landmark = next(1, LandmarkRecord::SIZE)?;
+        self.landmarks = next(lm, LandmarkSiteRecord::SIZE)?;
+        self.rosettes = next(qualities, F32Record::SIZE)?;
+        self.chain_offsets = next((edge_count as usize).checked_add(1)?, U32Record::SIZE)?;
+        self.elements = next(l.element_count as usize, ElementRecord::SIZE)?;
+        self.end = at;
+        Some(self)
     }
 
     /// Adds the terrain sections after the common ones, or `None` on overflow.
@@ -190,9 +228,16 @@ impl<'a> Network<'a> {
                 cell_entries: 0,
                 terrain: 0,
                 elevations: 0,
+                landmark: 0,
+                landmarks: 0,
+                rosettes: 0,
+                chain_offsets: 0,
+                elements: 0,
                 end: 0,
             },
             terrain: None,
+            landmark: None,
+            max_chain_pieces: 0,
         }
     }
 
@@ -230,7 +275,10 @@ impl<'a> Network<'a> {
                 supported: FORMAT_VERSION,
             });
         }
-        if header.mode != MODE_ROADMAP && header.mode != MODE_TERRAIN {
+        if header.mode != MODE_ROADMAP
+            && header.mode != MODE_TERRAIN
+            && header.mode != MODE_LANDMARK
+        {
             return Err(LoadError::UnknownMode { mode: header.mode });
         }
         if header.vertex_count as usize > max_vertices {
@@ -263,6 +311,24 @@ impl<'a> Network<'a> {
             layout = layout.with_terrain(&t).ok_or(LoadError::CountsTooLarge)?;
             terrain = Some(t);
         }
+        let mut landmark = None;
+        if header.mode == MODE_LANDMARK {
+            // As for terrain: the record sizes the tables after it.
+            let end = layout.end.saturating_add(LandmarkRecord::SIZE);
+            let record = bytes.get(layout.end..end).ok_or(LoadError::Truncated {
+                needed: end,
+                available: bytes.len(),
+            })?;
+            let l: LandmarkRecord =
+                postcard::from_bytes(record).map_err(|_| LoadError::Malformed {
+                    section: Section::Landmark,
+                    index: 0,
+                })?;
+            layout = layout
+                .with_landmark(&l, header.edge_count)
+                .ok_or(LoadError::CountsTooLarge)?;
+            landmark = Some(l);
+        }
         let expected_body = layout.end - Header::SIZE;
         if header.body_len as usize != expected_body {
             return Err(LoadError::BodyLengthMismatch {
@@ -288,14 +354,19 @@ impl<'a> Network<'a> {
                 computed,
             });
         }
-        let net = Network {
+        let mut net = Network {
             bytes: Some(bytes),
             header,
             layout,
             terrain,
+            landmark,
+            max_chain_pieces: 0,
         };
         net.validate_parameters()?;
         net.validate_vertices()?;
+        if net.landmark.is_some() {
+            net.max_chain_pieces = net.validate_landmark_tables()?;
+        }
         net.validate_edges()?;
         net.validate_obstacles()?;
         net.validate_grid()?;
@@ -336,6 +407,18 @@ impl<'a> Network<'a> {
                 && t.safety_height_m >= 0.0;
             if !(grid_ok && coding_ok && numbers_ok) {
                 return bad(Parameter::Terrain);
+            }
+        }
+        if let Some(l) = &self.landmark {
+            let ok = l.directions >= 1
+                && l.weather_count >= 1
+                && l.v_nominal.is_finite()
+                && l.v_nominal > 0.0
+                && self.fly_limits().is_some_and(|f| f.is_valid())
+                && l.start_range_m.is_finite()
+                && l.start_range_m >= 0.0;
+            if !ok {
+                return bad(Parameter::Landmark);
             }
         }
         Ok(())
@@ -403,6 +486,11 @@ impl<'a> Network<'a> {
                     return Err(unknown);
                 }
                 self.validate_line_edge(i, &r)?;
+            } else if self.landmark.is_some() {
+                if r.geometry != GEOMETRY_HERMITE_CHAIN {
+                    return Err(unknown);
+                }
+                self.validate_chain_edge(i, &r)?;
             } else {
                 let Some(word) = DubinsWord::from_code(r.geometry) else {
                     return Err(unknown);
@@ -512,6 +600,195 @@ impl<'a> Network<'a> {
             });
         }
         Ok(())
+    }
+
+    /// Landmark mode: the vertex layout (overflights, then start, then goal), every overflight
+    /// at its landmark, the landmarks and qualities, the chain offsets and the line elements
+    /// (finite, nominal speed). Returns the most pieces of any chain. Work: O(bytes) of these
+    /// tables.
+    fn validate_landmark_tables(&self) -> Result<u32, LoadError> {
+        let Some(l) = self.landmark else {
+            return Ok(0);
+        };
+        let v = self.header.vertex_count;
+        let overflights = l.landmark_count.checked_mul(l.directions);
+        let mut expected = overflights.unwrap_or(u32::MAX);
+        for stored in [l.start_vertex, l.goal_vertex] {
+            if stored != LandmarkRecord::ABSENT {
+                if stored != expected {
+                    return Err(LoadError::EndpointVertexMismatch { stored, expected });
+                }
+                expected = expected.saturating_add(1);
+            }
+        }
+        if overflights.is_none() || expected != v {
+            return Err(LoadError::LandmarkVertexCount {
+                vertices: v,
+                expected,
+            });
+        }
+        for i in 0..l.landmark_count {
+            let site: LandmarkSiteRecord = self.checked_record(
+                Section::Landmarks,
+                self.layout.landmarks,
+                LandmarkSiteRecord::SIZE,
+                i,
+            )?;
+            if !(site.x.is_finite() && site.y.is_finite() && site.d_max.is_finite()) {
+                return Err(LoadError::NonFinite {
+                    section: Section::Landmarks,
+                    index: i,
+                });
+            }
+            if site.d_max < 0.0 {
+                return Err(LoadError::InvalidParameter {
+                    parameter: Parameter::Landmark,
+                });
+            }
+            let at = Vec2::new(site.x, site.y);
+            for k in 0..l.directions {
+                let vertex = i * l.directions + k;
+                let p = self
+                    .vertex(vertex)
+                    .ok_or(LoadError::Malformed {
+                        section: Section::Vertices,
+                        index: vertex,
+                    })?
+                    .position;
+                if p.distance(at) > position_tolerance(at) {
+                    return Err(LoadError::VertexOffLandmark { vertex });
+                }
+            }
+        }
+        // The product fits: the layout was computed from it without overflow.
+        let qualities = (l.landmark_count as u64 * l.weather_count as u64 * l.directions as u64)
+            .min(u32::MAX as u64) as u32;
+        for i in 0..qualities {
+            let F32Record(q) =
+                self.checked_record(Section::Rosettes, self.layout.rosettes, F32Record::SIZE, i)?;
+            if !(0.0..=1.0).contains(&q) {
+                return Err(LoadError::QualityOutOfRange { index: i });
+            }
+        }
+        self.validate_offsets(
+            Section::ChainOffsets,
+            self.layout.chain_offsets,
+            self.header.edge_count,
+            l.element_count,
+        )?;
+        let mut most = 0u32;
+        for e in 0..self.header.edge_count {
+            let n = self.chain_elements(e).len() as u32;
+            if n < 2 {
+                return Err(LoadError::ChainTooShort {
+                    edge: e,
+                    elements: n,
+                });
+            }
+            most = most.max(n - 1);
+        }
+        for i in 0..l.element_count {
+            let r: ElementRecord = self.checked_record(
+                Section::ChainElements,
+                self.layout.elements,
+                ElementRecord::SIZE,
+                i,
+            )?;
+            if ![r.x, r.y, r.vx, r.vy].iter().all(|x| x.is_finite()) {
+                return Err(LoadError::NonFinite {
+                    section: Section::ChainElements,
+                    index: i,
+                });
+            }
+            let speed = Vec2::new(r.vx, r.vy).norm();
+            if !(libm::fabsf(speed - l.v_nominal) <= 1e-3 * l.v_nominal) {
+                return Err(LoadError::ElementSpeed {
+                    element: i,
+                    speed_mm_s: (speed * 1000.0).min(u32::MAX as f32) as u32,
+                });
+            }
+        }
+        Ok(most)
+    }
+
+    /// Landmark mode: a chain edge's params are `[length, 0, 0]` with the cost not below the
+    /// length and the length not below the polyline through its elements; its first element
+    /// is its source vertex's line element and its last its target's; consecutive elements are
+    /// distinct; and the grid covers its reach. Work: its elements.
+    fn validate_chain_edge(&self, i: u32, r: &EdgeRecord) -> Result<(), LoadError> {
+        let malformed = LoadError::Malformed {
+            section: Section::Edges,
+            index: i,
+        };
+        if r.params[1] != 0.0 || r.params[2] != 0.0 {
+            return Err(malformed);
+        }
+        let length = r.params[0];
+        if !(r.cost >= length * (1.0 - 1e-5)) {
+            return Err(LoadError::CostBelowLength { edge: i });
+        }
+        let range = self.chain_elements(i);
+        let mut chords = 0.0f32;
+        let mut previous: Option<LineElement> = None;
+        for k in range.clone() {
+            let el = self.chain_element(k).ok_or(LoadError::Malformed {
+                section: Section::ChainElements,
+                index: k,
+            })?;
+            if let Some(p) = previous {
+                let d = p.position.distance(el.position);
+                if !(d > 0.0) {
+                    return Err(LoadError::CoincidentElements {
+                        edge: i,
+                        element: k,
+                    });
+                }
+                chords += d;
+            }
+            previous = Some(el);
+        }
+        let (Some(first), Some(last)) = (
+            self.chain_element(range.start),
+            range.end.checked_sub(1).and_then(|k| self.chain_element(k)),
+        ) else {
+            return Err(malformed);
+        };
+        for (el, vertex) in [(first, r.source), (last, r.target)] {
+            let pose = self.vertex(vertex).ok_or(malformed)?;
+            let miss = el.position.distance(pose.position);
+            let turn = libm::fabsf(crate::geometry::wrap_to_pi(
+                el.velocity.angle() - pose.heading,
+            ));
+            if !(miss <= position_tolerance(pose.position) && turn <= 1e-3) {
+                return Err(LoadError::ChainMissesVertex {
+                    edge: i,
+                    vertex,
+                    miss_mm: (miss * 1000.0).min(u32::MAX as f32) as u32,
+                });
+            }
+        }
+        if !(length >= chords * (1.0 - 1e-5) - 0.01) {
+            return Err(LoadError::ChainShorterThanChords { edge: i });
+        }
+        let (lo, hi) = self.edge_reach(first.position, last.position, length);
+        let h = &self.header;
+        let (x1, y1) = (
+            h.grid_origin_x + h.grid_cell_m * h.grid_nx as f32,
+            h.grid_origin_y + h.grid_cell_m * h.grid_ny as f32,
+        );
+        if !(lo.x >= h.grid_origin_x && lo.y >= h.grid_origin_y && hi.x <= x1 && hi.y <= y1) {
+            return Err(LoadError::EdgeOutsideGrid { edge: i });
+        }
+        Ok(())
+    }
+
+    /// The box that holds every curve of length `length` from `a` to `b`: the ellipse
+    /// `|PA| + |PB| ≤ length` lies within `length / 2` of the midpoint (widened by 10⁻⁴ of the
+    /// length plus 1 cm against rounding).
+    pub fn edge_reach(&self, a: Vec2, b: Vec2, length: f32) -> (Vec2, Vec2) {
+        let mid = (a + b) * 0.5;
+        let r = 0.5 * length + 1e-4 * length + 0.01;
+        (mid - Vec2::new(r, r), mid + Vec2::new(r, r))
     }
 
     fn validate_obstacles(&self) -> Result<(), LoadError> {
@@ -681,6 +958,119 @@ impl<'a> Network<'a> {
             .map_or(0, |r| r.0)
     }
 
+    /// Landmark mode: the landmark record.
+    pub fn landmark(&self) -> Option<&LandmarkRecord> {
+        self.landmark.as_ref()
+    }
+
+    /// Landmark mode: the vehicle limits every piece was checked against.
+    pub fn fly_limits(&self) -> Option<FlyLimits> {
+        self.landmark.map(|l| FlyLimits {
+            v_min: l.v_min,
+            v_max: l.v_max,
+            a_long_min: l.a_long_min,
+            a_long_max: l.a_long_max,
+            a_lat_max: l.a_lat_max,
+        })
+    }
+
+    /// Landmark mode: landmark `l`'s position and `d_max` (metres).
+    pub fn landmark_site(&self, l: u32) -> Option<(Vec2, f32)> {
+        let rec = self.landmark?;
+        if l >= rec.landmark_count {
+            return None;
+        }
+        let r: LandmarkSiteRecord =
+            self.record(self.layout.landmarks, LandmarkSiteRecord::SIZE, l as usize)?;
+        Some((Vec2::new(r.x, r.y), r.d_max))
+    }
+
+    /// Landmark mode: the stored quality `q(direction, weather)` of landmark `l`, in `[0, 1]`.
+    pub fn rosette_quality(&self, l: u32, weather: u32, direction: u32) -> Option<f32> {
+        let rec = self.landmark?;
+        if l >= rec.landmark_count || weather >= rec.weather_count || direction >= rec.directions {
+            return None;
+        }
+        let i = (l as usize * rec.weather_count as usize + weather as usize)
+            * rec.directions as usize
+            + direction as usize;
+        self.record::<F32Record>(self.layout.rosettes, F32Record::SIZE, i)
+            .map(|r| r.0)
+    }
+
+    /// Landmark mode: the indices of edge `e`'s line elements (empty for other modes).
+    pub fn chain_elements(&self, e: u32) -> core::ops::Range<u32> {
+        if self.landmark.is_none() || e >= self.header.edge_count {
+            return 0..0;
+        }
+        self.offset(self.layout.chain_offsets, e)..self.offset(self.layout.chain_offsets, e + 1)
+    }
+
+    /// Landmark mode: line element `k` (an index into all chains' elements).
+    pub fn chain_element(&self, k: u32) -> Option<LineElement> {
+        if k >= self.landmark?.element_count {
+            return None;
+        }
+        let r: ElementRecord =
+            self.record(self.layout.elements, ElementRecord::SIZE, k as usize)?;
+        Some(LineElement::new(Vec2::new(r.x, r.y), Vec2::new(r.vx, r.vy)))
+    }
+
+    /// Landmark mode: the number of Hermite pieces of edge `e` (its elements minus one).
+    pub fn chain_piece_count(&self, e: u32) -> u32 {
+        (self.chain_elements(e).len() as u32).saturating_sub(1)
+    }
+
+    /// Landmark mode: the most pieces of any edge.
+    pub fn max_chain_pieces(&self) -> u32 {
+        self.max_chain_pieces
+    }
+
+    /// Landmark mode: piece `k` of edge `e`, rebuilt from its two line elements with
+    /// [`HermiteSegment::new`] at the nominal speed — bit for bit the segment the ground tool
+    /// built and checked. Work: one segment construction (a few Newton steps of adaptive
+    /// quadrature); the loader does not rebuild pieces, so a construction that fails (which the
+    /// ground tool rules out) gives `None`.
+    pub fn chain_piece(&self, e: u32, k: u32) -> Option<HermiteSegment> {
+        let range = self.chain_elements(e);
+        let i = range.start.checked_add(k)?;
+        if i.checked_add(1)? >= range.end {
+            return None;
+        }
+        let (a, b) = (self.chain_element(i)?, self.chain_element(i + 1)?);
+        HermiteSegment::new(&a, &b, self.landmark?.v_nominal).ok()
+    }
+
+    /// The length of edge `e` (its first geometry parameter for lines and Hermite chains; the
+    /// sum of the piece lengths for Dubins words).
+    pub fn edge_length(&self, e: u32) -> Option<f32> {
+        if e >= self.header.edge_count {
+            return None;
+        }
+        let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, e as usize)?;
+        Some(match r.geometry {
+            GEOMETRY_LINE | GEOMETRY_HERMITE_CHAIN => r.params[0],
+            _ => r.params.iter().sum(),
+        })
+    }
+
+    /// Edge `i`'s record as stored (any geometry).
+    pub fn edge_record(&self, i: u32) -> Option<EdgeRecord> {
+        if i >= self.header.edge_count {
+            return None;
+        }
+        self.record(self.layout.edges, EdgeRecord::SIZE, i as usize)
+    }
+
+    /// The source of edge `e`.
+    pub fn edge_source(&self, e: u32) -> Option<u32> {
+        if e >= self.header.edge_count {
+            return None;
+        }
+        let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, e as usize)?;
+        Some(r.source)
+    }
+
     /// The header.
     pub fn header(&self) -> &Header {
         &self.header
@@ -691,7 +1081,7 @@ impl<'a> Network<'a> {
         self.bytes.map_or(0, <[u8]>::len)
     }
 
-    /// The network's mode: [`MODE_ROADMAP`] or [`MODE_TERRAIN`].
+    /// The network's mode: [`MODE_ROADMAP`], [`MODE_LANDMARK`] or [`MODE_TERRAIN`].
     pub fn mode(&self) -> u8 {
         self.header.mode
     }
@@ -788,12 +1178,17 @@ impl<'a> Network<'a> {
         self.offset(self.layout.edge_offsets, v)..self.offset(self.layout.edge_offsets, v + 1)
     }
 
-    /// Edge `i`.
+    /// Edge `i` with its Dubins geometry (a line is the word whose arcs are empty). `None`
+    /// for a Hermite chain (landmark mode), which has no Dubins form: read it with
+    /// [`Network::edge_cost_target`], [`Network::edge_source`] and [`Network::chain_piece`].
     pub fn edge(&self, i: u32) -> Option<Edge> {
         if i >= self.header.edge_count {
             return None;
         }
         let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, i as usize)?;
+        if r.geometry == GEOMETRY_HERMITE_CHAIN {
+            return None;
+        }
         let (word, lengths) = if r.geometry == GEOMETRY_LINE {
             // A straight line is the Dubins word whose two arcs are empty.
             (DubinsWord::Lsl, [0.0, r.params[0], 0.0])
@@ -811,7 +1206,11 @@ impl<'a> Network<'a> {
 
     /// The cost and target of edge `i`, the two fields the search reads.
     pub fn edge_cost_target(&self, i: u32) -> Option<(f32, u32)> {
-        self.edge(i).map(|e| (e.cost, e.target))
+        if i >= self.header.edge_count {
+            return None;
+        }
+        let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, i as usize)?;
+        Some((r.cost, r.target))
     }
 
     /// Edge `i`'s geometry as a Dubins path from its source's pose.
@@ -934,4 +1333,9 @@ impl<'a> Network<'a> {
         }
         most
     }
+}
+
+/// The tolerance of a stored position against another: 10⁻⁴ of the coordinate size plus 1 cm.
+fn position_tolerance(at: Vec2) -> f32 {
+    1e-4 * libm::fabsf(at.x).max(libm::fabsf(at.y)) + 0.01
 }

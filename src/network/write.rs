@@ -4,6 +4,7 @@ use super::elevation::ElevationCoding;
 use super::format::*;
 use super::{crc32, Network};
 use crate::geometry::grid::{segment_cells, CellGrid};
+use crate::geometry::hermite::{FlyLimits, HermiteSegment, LineElement};
 use crate::geometry::{points_bounding_box, DubinsPath, DubinsWord, Pose, Segment, Vec2};
 use std::vec;
 use std::vec::Vec;
@@ -34,6 +35,57 @@ impl EdgeSpec {
             lengths: [0.0, length, 0.0],
         }
     }
+}
+
+impl EdgeSpec {
+    /// A chain of Hermite pieces of total `length` metres (landmark mode), cost = length; its
+    /// line elements go in [`LandmarkSpec::chains`] at the same index.
+    pub fn chain(source: u32, target: u32, length: f32) -> Self {
+        EdgeSpec {
+            source,
+            target,
+            cost: length,
+            word: DubinsWord::Lsl,
+            lengths: [length, 0.0, 0.0],
+        }
+    }
+}
+
+/// Landmark mode: one landmark.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LandmarkSiteSpec {
+    /// Position, metres.
+    pub position: Vec2,
+    /// Largest distance after an overflight of quality 1, metres.
+    pub d_max_m: f32,
+}
+
+/// Landmark mode: the landmark tables. The network's vertices must be the `L·D` overflights
+/// (vertex `l·D + k`: landmark `l`'s position, heading of direction `k`), then the start, then
+/// the goal; every edge an [`EdgeSpec::chain`] whose line elements are `chains[i]` (first at
+/// its source vertex, last at its target).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LandmarkSpec {
+    /// Overflight directions per landmark, D.
+    pub directions: u32,
+    /// Weathers, W.
+    pub weather_count: u32,
+    /// Nominal speed of the line elements, m/s.
+    pub v_nominal: f32,
+    /// The limits the pieces were checked against.
+    pub limits: FlyLimits,
+    /// The landmarks, L.
+    pub landmarks: Vec<LandmarkSiteSpec>,
+    /// `L·W·D` qualities in `[0, 1]`: landmark-major, then weather, then direction.
+    pub qualities: Vec<f32>,
+    /// The start's vertex (`L·D`), if any.
+    pub start_vertex: Option<u32>,
+    /// The goal's vertex (after the start), if any.
+    pub goal_vertex: Option<u32>,
+    /// The longest start edge that may be flown, metres.
+    pub start_range_m: f32,
+    /// Per edge of [`NetworkSpec::edges`] (same index): its line elements.
+    pub chains: Vec<Vec<LineElement>>,
 }
 
 /// Terrain mode: the elevation table and what it was built for.
@@ -89,6 +141,8 @@ pub struct NetworkSpec {
     /// Terrain mode: the elevation table (then every edge must be [`EdgeSpec::line`], and
     /// vertex headings are ignored).
     pub terrain: Option<TerrainSpec>,
+    /// Landmark mode: the landmark tables (then every edge must be an [`EdgeSpec::chain`]).
+    pub landmark: Option<LandmarkSpec>,
 }
 
 /// Why a network could not be written.
@@ -105,6 +159,9 @@ pub enum WriteError {
     Invalid(super::LoadError),
     /// Terrain mode: an edge is not a straight line, or the table does not match its grid.
     BadTerrain(&'static str),
+    /// Landmark mode: the tables do not match the vertices and edges, or a piece cannot be
+    /// built.
+    BadLandmark(&'static str),
 }
 
 impl core::fmt::Display for WriteError {
@@ -114,6 +171,7 @@ impl core::fmt::Display for WriteError {
             WriteError::BadEdge { edge } => write!(f, "edge {edge} names a missing vertex"),
             WriteError::Invalid(e) => write!(f, "the network does not validate: {e}"),
             WriteError::BadTerrain(what) => write!(f, "terrain network: {what}"),
+            WriteError::BadLandmark(what) => write!(f, "landmark network: {what}"),
         }
     }
 }
@@ -140,8 +198,22 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
             return Err(WriteError::BadEdge { edge: i });
         }
     }
-    let mut edges = spec.edges.clone();
-    edges.sort_by_key(|e| e.source); // stable: keeps each source's order
+    // Stable: keeps each source's order; chains follow their edges.
+    let mut order: Vec<usize> = (0..spec.edges.len()).collect();
+    order.sort_by_key(|&i| spec.edges[i].source);
+    let edges: Vec<EdgeSpec> = order.iter().map(|&i| spec.edges[i]).collect();
+    if spec.terrain.is_some() && spec.landmark.is_some() {
+        return Err(WriteError::BadLandmark(
+            "a network is terrain or landmark, not both",
+        ));
+    }
+    let chains: Vec<&[LineElement]> = match &spec.landmark {
+        Some(l) => {
+            check_landmark(spec, l, &edges)?;
+            order.iter().map(|&i| l.chains[i].as_slice()).collect()
+        }
+        None => Vec::new(),
+    };
     if let Some(t) = &spec.terrain {
         if t.codes.len() as u64 != t.grid.cols as u64 * t.grid.rows as u64 {
             return Err(WriteError::BadTerrain(
@@ -188,6 +260,7 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
                 ))?;
                 (GEOMETRY_LINE, [e.lengths[1], code as f32, 0.0])
             }
+            None if spec.landmark.is_some() => (GEOMETRY_HERMITE_CHAIN, [e.lengths[0], 0.0, 0.0]),
             None => (e.word.code(), e.lengths),
         };
         push(
@@ -238,7 +311,7 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
             }
         }
     }
-    let grid = GridIndex::build(spec, &edges);
+    let grid = GridIndex::build(spec, &edges, &chains)?;
     for o in &grid.offsets {
         push(&mut body, &U32Record(*o));
     }
@@ -263,12 +336,67 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
         );
         body.extend_from_slice(&t.codes);
     }
+    if let Some(l) = &spec.landmark {
+        let element_count = count(chains.iter().map(|c| c.len()).sum(), "line elements")?;
+        push(
+            &mut body,
+            &LandmarkRecord {
+                landmark_count: count(l.landmarks.len(), "landmarks")?,
+                directions: l.directions,
+                weather_count: l.weather_count,
+                v_nominal: l.v_nominal,
+                v_min: l.limits.v_min,
+                v_max: l.limits.v_max,
+                a_long_min: l.limits.a_long_min,
+                a_long_max: l.limits.a_long_max,
+                a_lat_max: l.limits.a_lat_max,
+                start_vertex: l.start_vertex.unwrap_or(LandmarkRecord::ABSENT),
+                goal_vertex: l.goal_vertex.unwrap_or(LandmarkRecord::ABSENT),
+                start_range_m: l.start_range_m,
+                element_count,
+            },
+        );
+        for site in &l.landmarks {
+            push(
+                &mut body,
+                &LandmarkSiteRecord {
+                    x: site.position.x,
+                    y: site.position.y,
+                    d_max: site.d_max_m,
+                },
+            );
+        }
+        for q in &l.qualities {
+            push(&mut body, &F32Record(*q));
+        }
+        let mut at = 0u32;
+        push(&mut body, &U32Record(0));
+        for c in &chains {
+            at += c.len() as u32;
+            push(&mut body, &U32Record(at));
+        }
+        for c in &chains {
+            for el in c.iter() {
+                push(
+                    &mut body,
+                    &ElementRecord {
+                        x: el.position.x,
+                        y: el.position.y,
+                        vx: el.velocity.x,
+                        vy: el.velocity.y,
+                    },
+                );
+            }
+        }
+    }
 
     let header = Header {
         magic: MAGIC,
         version: FORMAT_VERSION,
         mode: if spec.terrain.is_some() {
             MODE_TERRAIN
+        } else if spec.landmark.is_some() {
+            MODE_LANDMARK
         } else {
             MODE_ROADMAP
         },
@@ -295,6 +423,36 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     out.extend_from_slice(&body);
     Network::from_bytes(&out).map_err(WriteError::Invalid)?;
     Ok(out)
+}
+
+/// Landmark mode: the tables agree with the vertices and edges.
+fn check_landmark(
+    spec: &NetworkSpec,
+    l: &LandmarkSpec,
+    edges: &[EdgeSpec],
+) -> Result<(), WriteError> {
+    let bad = |what| Err(WriteError::BadLandmark(what));
+    let overflights = l.landmarks.len() as u64 * l.directions as u64;
+    let endpoints = l.start_vertex.is_some() as u64 + l.goal_vertex.is_some() as u64;
+    if overflights + endpoints != spec.vertices.len() as u64 {
+        return bad("vertex count is not landmarks x directions plus the endpoints");
+    }
+    if l.qualities.len() as u64 != overflights * l.weather_count as u64 {
+        return bad("quality count is not landmarks x weathers x directions");
+    }
+    if l.chains.len() != spec.edges.len() {
+        return bad("one chain per edge needed");
+    }
+    if edges
+        .iter()
+        .any(|e| e.lengths[1] != 0.0 || e.lengths[2] != 0.0)
+    {
+        return bad("an edge is not a Hermite chain (EdgeSpec::chain)");
+    }
+    if l.chains.iter().any(|c| c.len() < 2) {
+        return bad("a chain has fewer than 2 line elements");
+    }
+    Ok(())
 }
 
 /// The highest code among the cells within the widening of segment `a b`, as the loader
@@ -341,20 +499,68 @@ struct GridIndex {
 }
 
 impl GridIndex {
-    fn build(spec: &NetworkSpec, edges: &[EdgeSpec]) -> Self {
+    fn build(
+        spec: &NetworkSpec,
+        edges: &[EdgeSpec],
+        chains: &[&[LineElement]],
+    ) -> Result<Self, WriteError> {
         let cell = spec.grid_cell_m;
         let reach = 4.0 * spec.turn_radius_m + cell;
-        let (lo, hi) = if spec.vertices.is_empty() {
+        let (mut lo, mut hi) = if spec.vertices.is_empty() {
             (Vec2::default(), Vec2::default())
         } else {
             points_bounding_box(spec.vertices.iter().map(|v| v.position))
         };
+        // Landmark mode: the pieces, and every edge's reach (the box the loader checks).
+        let mut pieces: Vec<Vec<(Vec2, Vec2)>> = Vec::new();
+        if let Some(l) = &spec.landmark {
+            for (e, chain) in edges.iter().zip(chains) {
+                let mut boxes = Vec::with_capacity(chain.len().saturating_sub(1));
+                for w in chain.windows(2) {
+                    let seg = HermiteSegment::new(&w[0], &w[1], l.v_nominal)
+                        .map_err(|_| WriteError::BadLandmark("a piece cannot be built"))?;
+                    boxes.push(seg.bounding_box());
+                }
+                pieces.push(boxes);
+                if let (Some(a), Some(b)) = (chain.first(), chain.last()) {
+                    let mid = (a.position + b.position) * 0.5;
+                    let r =
+                        0.5 * e.lengths[0] * (1.0 + 1e-4) + 0.01 + reach - 4.0 * spec.turn_radius_m;
+                    lo = Vec2::new(lo.x.min(mid.x - r), lo.y.min(mid.y - r));
+                    hi = Vec2::new(hi.x.max(mid.x + r), hi.y.max(mid.y + r));
+                }
+            }
+        }
         let origin = Vec2::new(lo.x - reach, lo.y - reach);
         let nx = (((hi.x - lo.x + 2.0 * reach) / cell).ceil() as u32).max(1);
         let ny = (((hi.y - lo.y + 2.0 * reach) / cell).ceil() as u32).max(1);
         let mut cells: Vec<Vec<u32>> = vec![Vec::new(); (nx * ny) as usize];
         let margin = 1e-3 * cell + 0.01;
+        let cx = |v: f32| (((v - origin.x) / cell).floor().max(0.0) as u32).min(nx - 1);
+        let cy = |v: f32| (((v - origin.y) / cell).floor().max(0.0) as u32).min(ny - 1);
+        if spec.landmark.is_some() {
+            // Each piece's Bernstein box, widened by the clearance and the margin.
+            let w = spec.clearance_m + margin;
+            for (i, boxes) in pieces.iter().enumerate() {
+                let mut touched: Vec<u32> = Vec::new();
+                for (a, b) in boxes {
+                    for y in cy(a.y - w)..=cy(b.y + w) {
+                        for x in cx(a.x - w)..=cx(b.x + w) {
+                            touched.push(y * nx + x);
+                        }
+                    }
+                }
+                touched.sort_unstable();
+                touched.dedup();
+                for c in touched {
+                    cells[c as usize].push(i as u32);
+                }
+            }
+        }
         for (i, e) in edges.iter().enumerate() {
+            if spec.landmark.is_some() {
+                break;
+            }
             let mut start = spec.vertices[e.source as usize];
             if spec.terrain.is_some() {
                 let d = spec.vertices[e.target as usize].position - start.position;
@@ -369,8 +575,6 @@ impl GridIndex {
             let mut touched: Vec<u32> = Vec::new();
             for prim in path.primitives().into_iter().flatten() {
                 let (a, b) = prim.bounding_box();
-                let cx = |v: f32| (((v - origin.x) / cell).floor().max(0.0) as u32).min(nx - 1);
-                let cy = |v: f32| (((v - origin.y) / cell).floor().max(0.0) as u32).min(ny - 1);
                 for y in cy(a.y - margin)..=cy(b.y + margin) {
                     for x in cx(a.x - margin)..=cx(b.x + margin) {
                         touched.push(y * nx + x);
@@ -390,12 +594,12 @@ impl GridIndex {
             entries.extend_from_slice(c);
             offsets.push(entries.len() as u32);
         }
-        GridIndex {
+        Ok(GridIndex {
             origin,
             nx,
             ny,
             offsets,
             entries,
-        }
+        })
     }
 }

@@ -70,6 +70,43 @@ pub enum PlanError {
     /// [`Planner::set_altitude`](super::Planner::set_altitude) got a non-finite altitude or a
     /// negative or non-finite safety height.
     InvalidAltitude,
+    /// Landmark mode only: the operation needs a landmark network.
+    NotLandmarkNetwork,
+    /// Landmark mode: the weather index is not below the network's weather count.
+    UnknownWeather {
+        /// The index given.
+        weather: u32,
+        /// Weathers in the network.
+        count: u32,
+    },
+    /// Landmark mode: the landmark index is not below the network's landmark count.
+    UnknownLandmark {
+        /// The index given.
+        landmark: u32,
+        /// Landmarks in the network.
+        count: u32,
+    },
+    /// Landmark mode: a rosette update does not have one quality in `[0, 1]` per direction
+    /// (or the network has more than
+    /// [`MAX_ROSETTE_DIRECTIONS`](super::MAX_ROSETTE_DIRECTIONS) directions).
+    InvalidRosette {
+        /// Qualities given.
+        given: u32,
+        /// Directions of the network.
+        directions: u32,
+    },
+    /// Landmark mode: all [`MAX_ROSETTE_OVERRIDES`](super::MAX_ROSETTE_OVERRIDES) rosette
+    /// overrides are in use (by other landmarks).
+    RosetteTableFull {
+        /// The table's capacity.
+        capacity: u32,
+    },
+    /// Landmark mode: the start pose is neither the network's start nor a landmark overflight
+    /// (position within 1 m, heading within 10⁻³ rad).
+    StartNotInNetwork,
+    /// Landmark mode: the goal position is not the network's goal (within 1 m), or the network
+    /// has no goal.
+    GoalNotInNetwork,
     /// An internal invariant failed (a bug; reported instead of panicking).
     Internal,
 }
@@ -103,6 +140,25 @@ impl fmt::Display for PlanError {
                     "route needs {primitives} primitives, capacity is {capacity}"
                 )
             }
+            NotLandmarkNetwork => write!(f, "the network is not a landmark network"),
+            UnknownWeather { weather, count } => {
+                write!(f, "weather {weather} unknown: the network has {count}")
+            }
+            UnknownLandmark { landmark, count } => {
+                write!(f, "landmark {landmark} unknown: the network has {count}")
+            }
+            InvalidRosette { given, directions } => write!(
+                f,
+                "rosette of {given} qualities: needs one in [0, 1] per direction ({directions})"
+            ),
+            RosetteTableFull { capacity } => {
+                write!(f, "all {capacity} rosette overrides are in use")
+            }
+            StartNotInNetwork => write!(
+                f,
+                "start pose is neither the network's start nor a landmark overflight"
+            ),
+            GoalNotInNetwork => write!(f, "goal is not the network's goal"),
             Internal => write!(f, "internal planner invariant failed"),
         }
     }

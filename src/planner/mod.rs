@@ -12,6 +12,7 @@
 mod connect;
 mod error;
 pub mod heap;
+mod landmark;
 mod popup;
 mod search;
 mod smooth;
@@ -19,12 +20,13 @@ mod terrain;
 pub mod work;
 
 pub use error::{PlanError, PopupError, QueryField};
+pub use landmark::{MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES, POPUP_CHORDS_PER_PIECE};
 pub use popup::{Popup, PopupSummary, MAX_POPUP_VERTICES};
 pub use smooth::SmoothSummary;
 pub use terrain::ArcCheckStats;
 pub use work::{
-    cells_bound, plan_work_bound, popup_work_bound, terrain_plan_work_bound, TerrainBoundInputs,
-    Work, WorkBoundInputs,
+    cells_bound, landmark_plan_work_bound, landmark_popup_work_bound, plan_work_bound,
+    popup_work_bound, terrain_plan_work_bound, TerrainBoundInputs, Work, WorkBoundInputs,
 };
 
 use crate::geometry::{DubinsPath, Pose, Primitive, Vec2};
@@ -170,6 +172,12 @@ pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: 
     altitude: Option<(f32, f32)>,
     /// Terrain mode: the turn-arc checks of the last query.
     arc_stats: ArcCheckStats,
+    /// Landmark mode: the weather in force (an index into the network's weathers).
+    weather: u32,
+    /// Landmark mode: in-flight rosettes replacing the stored ones, per landmark.
+    rosettes: Vec<(u32, [f32; MAX_ROSETTE_DIRECTIONS]), MAX_ROSETTE_OVERRIDES>,
+    /// Landmark mode: the last route's network edges, start to goal.
+    route_edges: Vec<u32, R>,
 }
 
 /// `via` values at or above this mark a vertex reached straight from start link `via − FROM_START`.
@@ -211,6 +219,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 cells: 0,
                 most_cells: 0,
             },
+            weather: 0,
+            rosettes: Vec::new(),
+            route_edges: Vec::new(),
         }
     }
 
@@ -230,6 +241,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         self.network = network;
         self.altitude = None;
+        self.weather = 0;
+        self.rosettes.clear();
+        self.route_edges.clear();
         self.blocked_by = [0; E];
         self.popups.clear();
         self.paths.clear();
@@ -267,6 +281,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// The summary of the last route found.
     pub fn route_summary(&self) -> Option<&RouteSummary> {
         self.summary.as_ref()
+    }
+
+    /// Whether the search may use edge `e`: no pop-up blocks it and, in landmark mode, it is
+    /// navigable in the weather and rosettes in force ([`Planner::is_navigable`]). O(1).
+    pub fn is_edge_usable(&self, e: u32) -> bool {
+        self.is_edge_enabled(e) && (self.network.landmark().is_none() || self.is_navigable(e))
     }
 
     /// Whether edge `e` may be used (no active pop-up blocks it).
@@ -307,12 +327,24 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if self.network.terrain().is_some() {
             return self.terrain_worst_case_work();
         }
+        if self.network.landmark().is_some() {
+            let h = self.network.header();
+            return landmark_plan_work_bound(h.vertex_count as u64, h.edge_count as u64);
+        }
         plan_work_bound(&self.work_bound_inputs(false))
     }
 
     /// The most work [`Planner::add_popup`] can count on the loaded network.
     pub fn worst_case_popup_work(&self) -> u64 {
         let h = self.network.header();
+        if self.network.landmark().is_some() {
+            return landmark_popup_work_bound(
+                h.grid_nx as u64 * h.grid_ny as u64,
+                h.grid_entry_count as u64,
+                self.network.max_chain_pieces() as u64,
+                MAX_POPUP_VERTICES as u64,
+            );
+        }
         popup_work_bound(
             h.grid_nx as u64 * h.grid_ny as u64,
             h.grid_entry_count as u64,

@@ -41,6 +41,8 @@ pub struct PopupSummary {
     pub entries_visited: u32,
     /// Exact predicate evaluations.
     pub predicate_tests: u32,
+    /// Landmark mode: Hermite pieces rebuilt to be tested.
+    pub pieces_rebuilt: u32,
 }
 
 impl Popup {
@@ -125,6 +127,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             cells_visited: 0,
             entries_visited: 0,
             predicate_tests: 0,
+            pieces_rebuilt: 0,
         };
         let (lo, hi) = popup.bounding_box();
         let widen = Vec2::new(clearance, clearance);
@@ -143,16 +146,18 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         if mask & bit != 0 {
                             continue; // already tested through another cell
                         }
-                        let Some(path) = self.network.edge_path(e) else {
-                            continue;
-                        };
                         let mut hit = false;
-                        for prim in path.primitives().into_iter().flatten() {
-                            let (conflict, tests) = popup.conflicts(&prim, clearance);
-                            summary.predicate_tests = summary.predicate_tests.saturating_add(tests);
-                            if conflict {
-                                hit = true;
-                                break;
+                        if self.network.landmark().is_some() {
+                            hit = self.chain_conflicts(e, &popup, clearance, &mut summary);
+                        } else if let Some(path) = self.network.edge_path(e) {
+                            for prim in path.primitives().into_iter().flatten() {
+                                let (conflict, tests) = popup.conflicts(&prim, clearance);
+                                summary.predicate_tests =
+                                    summary.predicate_tests.saturating_add(tests);
+                                if conflict {
+                                    hit = true;
+                                    break;
+                                }
                             }
                         }
                         if hit {

@@ -6,11 +6,27 @@ use crate::geometry::{DubinsPath, Primitive, Vec2};
 
 /// How the best route found so far reaches the goal.
 #[derive(Clone, Copy, Debug)]
-enum Arrival {
+pub(super) enum Arrival {
     /// Straight from the start, by this path.
     Direct(DubinsPath),
     /// Through the network, leaving it at goal link `k`.
     FromVertex { link: usize },
+    /// At the target vertex (landmark mode: the goal is a vertex).
+    AtVertex,
+}
+
+/// Where a vertex search starts and what it looks for.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Ends {
+    /// From the start links to the goal links (roadmap mode).
+    Links,
+    /// From one vertex (cost 0) to another (landmark mode).
+    Vertices {
+        /// The start vertex.
+        from: u32,
+        /// The goal vertex.
+        to: u32,
+    },
 }
 
 /// A* heuristic scale: the chord to the goal shrunk by 1e-4 so that f32 rounding of stored edge
@@ -46,6 +62,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if self.network.terrain().is_some() {
             return self.plan_terrain(query, &mut meter);
         }
+        if self.network.landmark().is_some() {
+            return self.plan_landmark(query, &mut meter);
+        }
         self.check_free(query.start.position, QueryField::Start, &mut meter)?;
         self.check_free(query.goal.position, QueryField::Goal, &mut meter)?;
 
@@ -64,14 +83,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if self.goal_links.is_empty() && direct.is_none() {
             return Err(PlanError::GoalUnconnected);
         }
-        let arrival = self.search(query, direct, &mut meter)?;
+        let arrival = self.search(query, Ends::Links, direct, &mut meter)?;
         self.write_route(arrival, &mut meter)
     }
 
-    /// Dijkstra (or A*) from the start links; returns how the cheapest route arrives.
-    fn search(
+    /// Dijkstra (or A*) from the start links (or a start vertex); returns how the cheapest
+    /// route arrives. Edges are relaxed only when [`Planner::is_edge_usable`].
+    pub(super) fn search(
         &mut self,
         query: &Query,
+        ends: Ends,
         direct: Option<DubinsPath>,
         meter: &mut Meter,
     ) -> Result<Arrival, PlanError> {
@@ -85,7 +106,22 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         };
         let mut best = direct.map(|p| (p.length(), Arrival::Direct(p)));
 
-        for (k, link) in self.start_links.iter().enumerate() {
+        if let Ends::Vertices { from, .. } = ends {
+            let (Some(d), Some(via)) = (
+                self.dist.get_mut(from as usize),
+                self.via.get_mut(from as usize),
+            ) else {
+                return Err(PlanError::Internal);
+            };
+            *d = 0.0;
+            *via = FROM_START;
+            meter.work.heap_steps += self.heap.push_or_decrease(from, 0.0) as u64;
+        }
+        let links = match ends {
+            Ends::Links => self.start_links.len(),
+            Ends::Vertices { .. } => 0,
+        };
+        for (k, link) in self.start_links.iter().take(links).enumerate() {
             let v = link.vertex as usize;
             let cost = link.path.length();
             let (Some(d), Some(via)) = (self.dist.get_mut(v), self.via.get_mut(v)) else {
@@ -113,6 +149,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 .get(u as usize)
                 .copied()
                 .ok_or(PlanError::Internal)?;
+            if let Ends::Vertices { to, .. } = ends {
+                if u == to {
+                    // Popped with its final cost: no cheaper route remains.
+                    best = Some((du, Arrival::AtVertex));
+                    break;
+                }
+            }
             for (k, link) in self.goal_links.iter().enumerate() {
                 meter.work.relaxations += 1;
                 if link.vertex == u {
@@ -124,7 +167,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
             for e in self.network.out_edges(u) {
                 meter.work.relaxations += 1;
-                if !self.is_edge_enabled(e) {
+                if !self.is_edge_usable(e) {
                     continue;
                 }
                 let Some((cost, t)) = self.network.edge_cost_target(e) else {
@@ -194,6 +237,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     ) -> Result<RouteSummary, PlanError> {
         let count = |p: &DubinsPath| p.primitives().iter().flatten().count() as u32;
         let (needed, paths, network_edges) = match arrival {
+            Arrival::AtVertex => return Err(PlanError::Internal),
             Arrival::Direct(p) => (count(&p), 1, 0),
             Arrival::FromVertex { link } => {
                 let link = *self.goal_links.get(link).ok_or(PlanError::Internal)?;
@@ -221,6 +265,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let mut chain = core::mem::take(&mut self.paths);
         chain.clear();
         let walked = match arrival {
+            Arrival::AtVertex => Err(PlanError::Internal),
             Arrival::Direct(p) => chain.push(p).map(|_| 0).map_err(|_| PlanError::Internal),
             Arrival::FromVertex { link } => match self.goal_links.get(link).copied() {
                 Some(link) => {
@@ -270,8 +315,5 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 }
 
 fn path_source(network: &crate::network::Network<'_>, edge: u32) -> Result<u32, PlanError> {
-    network
-        .edge(edge)
-        .map(|e| e.source)
-        .ok_or(PlanError::Internal)
+    network.edge_source(edge).ok_or(PlanError::Internal)
 }

@@ -12,6 +12,11 @@
 //! | `relaxations` | examining one out-edge or one goal link of a popped vertex |
 //! | `cells_visited` | one grid cell visited by a terrain traversal (its elevation code compared) |
 //!
+//! Pop-ups on a landmark network also count one unit per Hermite piece rebuilt
+//! ([`PopupSummary::pieces_rebuilt`](super::PopupSummary::pieces_rebuilt)): a segment
+//! construction is a bounded computation (at most `NEWTON_MAX_STEPS` steps of bounded
+//! quadrature), but far costlier than a predicate; its time is measured separately.
+//!
 //! [`plan_work_bound`] gives the most any query can count on a network, as a function of its
 //! counts; `host-tests` checks on random queries that the count never exceeds it.
 
@@ -192,4 +197,33 @@ pub fn terrain_plan_work_bound(n: &TerrainBoundInputs) -> u64 {
         .saturating_add(connections.saturating_mul(per_connection))
         .saturating_add(search)
         .saturating_add(2 * (s + 1))
+}
+
+/// The most work one landmark [`Planner::plan`](super::Planner::plan) can count on a network
+/// of `vertices` and `edges`: matching the start against every vertex (|V| + 1 vertex scans,
+/// the goal one); the search: |V| heap resets, ≤ |V| pops and ≤ 1 + |E| pushes or decreases of
+/// ≤ L = ⌊log2|V|⌋ + 1 levels, ≤ |E| relaxations (each also reads the weather's quality or an
+/// override: O(1)); the route: ≤ 2(|V| + 1) vertex scans for the two walks back.
+pub fn landmark_plan_work_bound(vertices: u64, edges: u64) -> u64 {
+    let v = vertices;
+    let levels = heap_levels(v);
+    let matching = v + 1;
+    let search = v + (v + 1 + edges) * levels + edges;
+    let route = 2 * (v + 1);
+    matching + search + route
+}
+
+/// The most work one [`Planner::add_popup`](super::Planner::add_popup) can count on a landmark
+/// network: every grid cell once, every entry once, and for each entry each of its edge's
+/// ≤ `max_pieces` pieces rebuilt once (1 unit) and tested with
+/// [`POPUP_CHORDS_PER_PIECE`](super::POPUP_CHORDS_PER_PIECE) chords, each chord
+/// `popup_vertices + 1` predicate evaluations.
+pub fn landmark_popup_work_bound(
+    cells: u64,
+    entries: u64,
+    max_pieces: u64,
+    popup_vertices: u64,
+) -> u64 {
+    let per_piece = 1 + super::POPUP_CHORDS_PER_PIECE as u64 * (popup_vertices + 1);
+    cells.saturating_add(entries.saturating_mul(1 + max_pieces.saturating_mul(per_piece)))
 }

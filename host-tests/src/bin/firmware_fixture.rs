@@ -203,6 +203,7 @@ fn synthetic_network() -> Result<Vec<u8>, String> {
             .map(|p| ObstacleSpec::Polygon(p.clone()))
             .collect(),
         grid_cell_m: 100.0,
+        landmark: None,
         terrain: None,
     };
     encode(&spec).map_err(|e| format!("synthetic network: {e}"))

@@ -97,6 +97,7 @@ pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize
         edges: roadmap.edges,
         obstacles: obstacles.clone(),
         grid_cell_m: 2.0 * radius,
+        landmark: None,
         terrain: None,
     };
     let bytes = encode(&spec).expect("test network encodes");

@@ -1,0 +1,347 @@
+//! Landmark mode onboard (Babel 2014): navigability pruning by weather and in-flight rosette
+//! updates, evaluated lazily in the search; queries from an overflight (or the stored start)
+//! to the stored goal; routes as network edges whose Hermite pieces the autopilot samples.
+//!
+//! An edge leaving overflight `(L, α)` is navigable in weather `ω` iff its cost (its length)
+//! is at most `d_max(L)·q(α, ω)`; a start edge iff it is at most the start's range. The test
+//! reads the stored quality (or the landmark's override) when the search relaxes the edge, so
+//! [`Planner::set_weather`] and [`Planner::update_rosette`] are O(1): re-pruning a landmark's
+//! edges costs nothing until a search reads them.
+
+use super::popup::{Popup, PopupSummary};
+use super::search::{Arrival, Ends};
+use super::{Meter, PlanError, Planner, Query, RouteSummary, FROM_START};
+use crate::geometry::{wrap_to_pi, Vec2};
+use crate::network::format::LandmarkRecord;
+
+/// The most overflight directions a rosette override holds (the network may have more; then
+/// [`Planner::update_rosette`] refuses).
+pub const MAX_ROSETTE_DIRECTIONS: usize = 24;
+
+/// The most landmarks whose rosettes may be overridden at once.
+pub const MAX_ROSETTE_OVERRIDES: usize = 8;
+
+/// Chords per Hermite piece in pop-up tests
+/// ([`HermiteSegment::conflicts_with_circle`](crate::geometry::hermite::HermiteSegment::conflicts_with_circle)):
+/// each chord is tested at the clearance plus its deviation bound, so more chords prune less
+/// but cost more.
+pub const POPUP_CHORDS_PER_PIECE: usize = 16;
+
+/// How close a query's start or goal must be to a vertex, metres.
+const MATCH_DISTANCE_M: f32 = 1.0;
+/// How close a query's start heading must be to an overflight's, radians.
+const MATCH_HEADING_RAD: f32 = 1e-3;
+
+impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
+    fn landmark_record(&self) -> Result<LandmarkRecord, PlanError> {
+        self.network
+            .landmark()
+            .copied()
+            .ok_or(PlanError::NotLandmarkNetwork)
+    }
+
+    /// Landmark mode: sets the weather in force (an index into the network's weathers; 0 after
+    /// [`Planner::load`]). O(1).
+    pub fn set_weather(&mut self, weather: u32) -> Result<(), PlanError> {
+        let l = self.landmark_record()?;
+        if weather >= l.weather_count {
+            return Err(PlanError::UnknownWeather {
+                weather,
+                count: l.weather_count,
+            });
+        }
+        self.weather = weather;
+        Ok(())
+    }
+
+    /// Landmark mode: the weather in force.
+    pub fn weather(&self) -> u32 {
+        self.weather
+    }
+
+    /// Landmark mode: replaces landmark `landmark`'s rosette, in every weather, by `qualities`
+    /// (one per direction, in `[0, 1]`): a landmark found degraded (lower qualities) or lost
+    /// (all 0). Its outgoing edges are re-pruned as the next search reads them: O(1) here, and
+    /// O([`MAX_ROSETTE_OVERRIDES`]) per edge read.
+    pub fn update_rosette(&mut self, landmark: u32, qualities: &[f32]) -> Result<(), PlanError> {
+        let l = self.landmark_record()?;
+        if landmark >= l.landmark_count {
+            return Err(PlanError::UnknownLandmark {
+                landmark,
+                count: l.landmark_count,
+            });
+        }
+        let d = l.directions as usize;
+        if qualities.len() != d
+            || d > MAX_ROSETTE_DIRECTIONS
+            || !qualities.iter().all(|q| (0.0..=1.0).contains(q))
+        {
+            return Err(PlanError::InvalidRosette {
+                given: qualities.len() as u32,
+                directions: l.directions,
+            });
+        }
+        let mut row = [0.0f32; MAX_ROSETTE_DIRECTIONS];
+        for (r, q) in row.iter_mut().zip(qualities) {
+            *r = *q;
+        }
+        if let Some(entry) = self.rosettes.iter_mut().find(|(at, _)| *at == landmark) {
+            entry.1 = row;
+            return Ok(());
+        }
+        self.rosettes
+            .push((landmark, row))
+            .map_err(|_| PlanError::RosetteTableFull {
+                capacity: MAX_ROSETTE_OVERRIDES as u32,
+            })
+    }
+
+    /// Landmark mode: drops landmark `landmark`'s override (its stored rosettes apply again).
+    /// Returns whether it had one.
+    pub fn clear_rosette(&mut self, landmark: u32) -> bool {
+        match self.rosettes.iter().position(|(at, _)| *at == landmark) {
+            Some(i) => {
+                self.rosettes.swap_remove(i);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Landmark mode: the quality in force for landmark `landmark` crossed in `direction`
+    /// (its override, or the stored rosette of the weather in force).
+    pub fn quality(&self, landmark: u32, direction: u32) -> Option<f32> {
+        if let Some((_, row)) = self.rosettes.iter().find(|(at, _)| *at == landmark) {
+            return row.get(direction as usize).copied();
+        }
+        self.network
+            .rosette_quality(landmark, self.weather, direction)
+    }
+
+    /// Landmark mode: whether edge `e` is navigable in the weather and rosettes in force: an
+    /// edge from overflight `(L, α)` iff its cost ≤ `d_max(L)·q(α)`; a start edge iff its cost
+    /// ≤ the start's range; other edges (and non-landmark networks) always. O(1).
+    pub fn is_navigable(&self, e: u32) -> bool {
+        let Some(l) = self.network.landmark() else {
+            return true;
+        };
+        let Some(r) = self.network.edge_record(e) else {
+            return false;
+        };
+        if r.source == l.start_vertex {
+            return r.cost <= l.start_range_m;
+        }
+        let (landmark, direction) = (r.source / l.directions, r.source % l.directions);
+        if landmark >= l.landmark_count {
+            return true; // the goal's (if any)
+        }
+        match (
+            self.network.landmark_site(landmark),
+            self.quality(landmark, direction),
+        ) {
+            (Some((_, d_max)), Some(q)) => r.cost <= d_max * q,
+            _ => false,
+        }
+    }
+
+    /// Landmark mode: the last route's network edges, start to goal. Piece `k` of edge `e` is
+    /// [`Network::chain_piece`](crate::network::Network::chain_piece)`(e, k)`, for
+    /// `k < chain_piece_count(e)`; consecutive pieces and edges meet in line elements, so the
+    /// route is C² (nominal speed, zero acceleration at every joint).
+    pub fn route_edges(&self) -> &[u32] {
+        &self.route_edges
+    }
+
+    /// Landmark mode's [`Planner::plan`], after the query's numbers were checked.
+    pub(super) fn plan_landmark(
+        &mut self,
+        query: &Query,
+        meter: &mut Meter,
+    ) -> Result<RouteSummary, PlanError> {
+        let l = self.landmark_record()?;
+        self.start_links.clear();
+        self.goal_links.clear();
+        let from = self.match_start(&l, query, meter)?;
+        meter.work.vertex_scans += 1;
+        let to = match self.network.vertex(l.goal_vertex) {
+            Some(g) if g.position.distance(query.goal.position) <= MATCH_DISTANCE_M => {
+                l.goal_vertex
+            }
+            _ => return Err(PlanError::GoalNotInNetwork),
+        };
+        meter.check()?;
+        match self.search(query, Ends::Vertices { from, to }, None, meter)? {
+            Arrival::AtVertex => {}
+            _ => return Err(PlanError::Internal),
+        }
+        self.write_landmark_route(from, to, meter)
+    }
+
+    /// The stored start if the query starts there, else the overflight it starts at.
+    fn match_start(
+        &self,
+        l: &LandmarkRecord,
+        query: &Query,
+        meter: &mut Meter,
+    ) -> Result<u32, PlanError> {
+        let at = |v: u32| {
+            self.network.vertex(v).is_some_and(|p| {
+                p.position.distance(query.start.position) <= MATCH_DISTANCE_M
+                    && libm::fabsf(wrap_to_pi(p.heading - query.start.heading)) <= MATCH_HEADING_RAD
+            })
+        };
+        meter.work.vertex_scans += 1;
+        if l.start_vertex != LandmarkRecord::ABSENT && at(l.start_vertex) {
+            return Ok(l.start_vertex);
+        }
+        let overflights = l.landmark_count.saturating_mul(l.directions);
+        for v in 0..overflights {
+            meter.work.vertex_scans += 1;
+            if at(v) {
+                return Ok(v);
+            }
+        }
+        Err(PlanError::StartNotInNetwork)
+    }
+
+    /// Walks back from `to`: calls `visit` with each edge, goal end first; returns the count.
+    fn walk_landmark(
+        &self,
+        to: u32,
+        meter: &mut Meter,
+        mut visit: impl FnMut(u32),
+    ) -> Result<u32, PlanError> {
+        let mut v = to;
+        for edges in 0..=self.network.vertex_count() {
+            meter.work.vertex_scans += 1;
+            let via = self
+                .via
+                .get(v as usize)
+                .copied()
+                .ok_or(PlanError::Internal)?;
+            if via >= FROM_START {
+                return Ok(edges);
+            }
+            visit(via);
+            v = self.network.edge_source(via).ok_or(PlanError::Internal)?;
+        }
+        Err(PlanError::Internal)
+    }
+
+    fn write_landmark_route(
+        &mut self,
+        from: u32,
+        to: u32,
+        meter: &mut Meter,
+    ) -> Result<RouteSummary, PlanError> {
+        let (mut length, mut pieces) = (0.0f32, 0u32);
+        let net = self.network;
+        let edges = self.walk_landmark(to, meter, |e| {
+            length += net.edge_cost_target(e).map_or(0.0, |c| c.0);
+            pieces = pieces.saturating_add(net.chain_piece_count(e));
+        })?;
+        if edges as usize > R {
+            return Err(PlanError::RouteTooLong {
+                primitives: edges,
+                capacity: R as u32,
+            });
+        }
+        meter.work.vertex_scans += edges as u64 + 1;
+        meter.check()?;
+        let mut route = core::mem::take(&mut self.route_edges);
+        route.clear();
+        let mut replay = Meter::new(u64::MAX);
+        let walked = self.walk_landmark(to, &mut replay, |e| {
+            let _ = route.push(e);
+        });
+        route.reverse();
+        self.route_edges = route;
+        self.paths.clear();
+        self.route.clear();
+        if walked.is_err() || self.route_edges.len() != edges as usize {
+            self.route_edges.clear();
+            self.summary = None;
+            return Err(PlanError::Internal);
+        }
+        let _ = from;
+        let arrival_heading = self.network.vertex(to).map_or(0.0, |p| p.heading);
+        let summary = RouteSummary {
+            length,
+            primitives: pieces,
+            network_edges: edges,
+            arrival_heading,
+            work: meter.work,
+        };
+        self.summary = Some(summary);
+        Ok(summary)
+    }
+
+    /// Landmark mode: whether any piece of chain edge `e` may come within `clearance` of
+    /// `popup` (conservative: [`POPUP_CHORDS_PER_PIECE`] chords per piece at the clearance
+    /// plus their deviation bounds). A piece whose reach — the box around its chord's midpoint
+    /// of half-side half its length bound, the edge's length less the other pieces' chords —
+    /// misses the pop-up's box widened by the clearance is skipped without being rebuilt. A
+    /// piece that cannot be read or rebuilt counts as a conflict (fail safe).
+    pub(super) fn chain_conflicts(
+        &self,
+        e: u32,
+        popup: &Popup,
+        clearance: f32,
+        summary: &mut PopupSummary,
+    ) -> bool {
+        let net = &self.network;
+        let (Some(length), range) = (net.edge_length(e), net.chain_elements(e)) else {
+            return true;
+        };
+        let mut chords = 0.0f32;
+        let mut previous: Option<Vec2> = None;
+        for k in range.clone() {
+            let Some(el) = net.chain_element(k) else {
+                return true;
+            };
+            if let Some(p) = previous {
+                chords += p.distance(el.position);
+            }
+            previous = Some(el.position);
+        }
+        let (lo, hi) = popup.bounding_box();
+        let w = Vec2::new(clearance, clearance);
+        let (lo, hi) = (lo - w, hi + w);
+        let polygon_tests = match popup {
+            Popup::Circle { .. } => 1,
+            Popup::Polygon(points) => points.len() as u32 + 1,
+        };
+        for k in 0..net.chain_piece_count(e) {
+            let i = range.start + k;
+            let (Some(a), Some(b)) = (net.chain_element(i), net.chain_element(i + 1)) else {
+                return true;
+            };
+            let chord = a.position.distance(b.position);
+            // Every other piece is at least its chord long; rounding keeps it an upper bound.
+            let bound = (length - (chords - chord) * (1.0 - 1e-5)).max(chord);
+            let (rlo, rhi) = net.edge_reach(a.position, b.position, bound);
+            if rhi.x < lo.x || rhi.y < lo.y || rlo.x > hi.x || rlo.y > hi.y {
+                continue;
+            }
+            summary.pieces_rebuilt = summary.pieces_rebuilt.saturating_add(1);
+            let Some(seg) = net.chain_piece(e, k) else {
+                return true;
+            };
+            summary.predicate_tests = summary
+                .predicate_tests
+                .saturating_add(POPUP_CHORDS_PER_PIECE as u32 * polygon_tests);
+            let hit = match popup {
+                Popup::Circle { centre, radius } => {
+                    seg.conflicts_with_circle(*centre, *radius, clearance, POPUP_CHORDS_PER_PIECE)
+                }
+                Popup::Polygon(points) => {
+                    seg.conflicts_with_polygon(points.as_slice(), clearance, POPUP_CHORDS_PER_PIECE)
+                }
+            };
+            if hit {
+                return true;
+            }
+        }
+        false
+    }
+}
