@@ -2,10 +2,12 @@
 //! encode it.
 
 use crate::frame::LocalFrame;
+use crate::landmark::{build_landmark_network, LandmarkNetwork};
 use crate::roadmap::{build_roadmap, CollisionCheck, Roadmap, RoadmapInput, RoadmapParams};
 use crate::scenario::{Mode, Scenario};
 use crate::terrain::{build_terrain_graph, TerrainGraph, TerrainParams};
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec};
+use skyroute::network::write::{LandmarkSiteSpec, LandmarkSpec};
 use skyroute::{Pose, Vec2};
 use std::fmt;
 
@@ -54,6 +56,8 @@ pub enum BuildError {
     Dem(crate::dem::DemError),
     /// The terrain graph could not be built: (scenario file, why).
     Terrain(String, crate::terrain::TerrainError),
+    /// The landmark network could not be built.
+    Landmark(crate::landmark::LandmarkError),
 }
 
 impl fmt::Display for BuildError {
@@ -69,6 +73,7 @@ impl fmt::Display for BuildError {
             BuildError::Encode(file, e) => write!(f, "{file}: {e}"),
             BuildError::Dem(e) => write!(f, "{e}"),
             BuildError::Terrain(file, e) => write!(f, "{file}: terrain: {e}"),
+            BuildError::Landmark(e) => write!(f, "{e}"),
         }
     }
 }
@@ -86,6 +91,8 @@ pub struct Built {
     pub roadmap: Option<Roadmap>,
     /// Terrain mode: the grid and visibility graph and their statistics.
     pub terrain: Option<TerrainGraph>,
+    /// Landmark mode: the landmark network and its statistics.
+    pub landmark: Option<Box<LandmarkNetwork>>,
     /// The obstacles in the local frame.
     pub obstacles: Vec<ObstacleSpec>,
 }
@@ -143,7 +150,7 @@ pub fn build(
     match s.planner.mode {
         Mode::Roadmap => {}
         Mode::Terrain => return build_terrain(s, options),
-        Mode::Landmark => return Err(BuildError::UnsupportedMode(file, s.planner.mode)),
+        Mode::Landmark => return build_landmark(s, options, progress),
     }
     let p = &s.planner;
     let need = |v: Option<f64>, field: &'static str| {
@@ -194,6 +201,7 @@ pub fn build(
         edges: roadmap.edges.clone(),
         obstacles: obstacles.clone(),
         grid_cell_m: options.grid_cell_m.unwrap_or(2.0 * turn_radius),
+        landmark: None,
         terrain: None,
     };
     let bytes = encode(&spec).map_err(|e| BuildError::Encode(file, e))?;
@@ -202,6 +210,7 @@ pub fn build(
         frame,
         roadmap: Some(roadmap),
         terrain: None,
+        landmark: None,
         obstacles,
     })
 }
@@ -256,6 +265,7 @@ fn build_terrain(s: &Scenario, options: &BuildOptions) -> Result<Built, BuildErr
             .collect(),
         obstacles: Vec::new(),
         grid_cell_m: options.grid_cell_m.unwrap_or(4000.0),
+        landmark: None,
         terrain: Some(TerrainSpec {
             grid: graph.grid,
             coding: graph.coding,
@@ -271,6 +281,120 @@ fn build_terrain(s: &Scenario, options: &BuildOptions) -> Result<Built, BuildErr
         frame,
         roadmap: None,
         terrain: Some(graph),
+        landmark: None,
         obstacles: Vec::new(),
+    })
+}
+
+/// Landmark mode: the landmark shortest-path network ([`crate::landmark`]) encoded with its
+/// rosettes and chains (`docs/format-landmark.md`). The start and the goal each need one
+/// heading (a free-heading endpoint has one line element per direction, which one vertex
+/// cannot stand for). Default grid cell: 2 km.
+fn build_landmark(
+    s: &Scenario,
+    options: &BuildOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Built, BuildError> {
+    let file = s.path.display().to_string();
+    let net = build_landmark_network(s, progress).map_err(BuildError::Landmark)?;
+    let frame = net.frame.unwrap_or_else(|| s.local_frame());
+    let spec = landmark_spec(&net, options.grid_cell_m.unwrap_or(2000.0), &frame)
+        .map_err(|field| BuildError::Missing(file.clone(), field))?;
+    let bytes = encode(&spec).map_err(|e| BuildError::Encode(file, e))?;
+    Ok(Built {
+        bytes,
+        frame,
+        roadmap: None,
+        terrain: None,
+        obstacles: net.obstacles.clone(),
+        landmark: Some(Box::new(net)),
+    })
+}
+
+/// The writer's spec of a landmark network: overflights, then the start, then the goal.
+/// `Err` names what is missing (an endpoint with a single heading).
+pub fn landmark_spec(
+    net: &LandmarkNetwork,
+    grid_cell_m: f32,
+    frame: &LocalFrame,
+) -> Result<NetworkSpec, &'static str> {
+    let d = net.directions;
+    let mut vertices: Vec<Pose> = net.vertices.iter().map(|v| v.pose).collect();
+    let mut edges = Vec::new();
+    let mut chains = Vec::new();
+    for e in &net.edges {
+        edges.push(EdgeSpec::chain(e.source, e.target, e.chain.cost));
+        chains.push(e.chain.elements.clone());
+    }
+    let single = |links: &crate::landmark::EndpointLinks| -> Result<Pose, &'static str> {
+        match links.elements.as_slice() {
+            [el] => Ok(Pose {
+                position: el.position,
+                heading: el.velocity.angle(),
+            }),
+            _ => Err("heading_deg of the start and goal (landmark networks need one each)"),
+        }
+    };
+    let mut start_vertex = None;
+    let mut start_range_m = 0.0;
+    if let Some(st) = &net.start {
+        let v = vertices.len() as u32;
+        vertices.push(single(st)?);
+        start_vertex = Some(v);
+        start_range_m = st.site.dist_m.unwrap_or(0.0);
+        for e in &st.edges {
+            edges.push(EdgeSpec::chain(v, e.vertex, e.chain.cost));
+            chains.push(e.chain.elements.clone());
+        }
+    }
+    let mut goal_vertex = None;
+    if let Some(g) = &net.goal {
+        let v = vertices.len() as u32;
+        vertices.push(single(g)?);
+        goal_vertex = Some(v);
+        for e in &g.edges {
+            edges.push(EdgeSpec::chain(e.vertex, v, e.chain.cost));
+            chains.push(e.chain.elements.clone());
+        }
+    }
+    let mut qualities = Vec::new();
+    for site in &net.landmarks {
+        for r in &site.rosettes {
+            for k in 0..d {
+                qualities.push(r.quality.get(k).copied().unwrap_or(0.0));
+            }
+        }
+    }
+    let (origin_lat, origin_lon) = frame.origin();
+    let v = net.v_nominal;
+    Ok(NetworkSpec {
+        origin_lat_deg: origin_lat,
+        origin_lon_deg: origin_lon,
+        turn_radius_m: v * v / net.limits.a_lat_max.max(f32::MIN_POSITIVE),
+        clearance_m: net.clearance_m,
+        vertices,
+        edges,
+        obstacles: net.obstacles.clone(),
+        grid_cell_m,
+        terrain: None,
+        landmark: Some(LandmarkSpec {
+            directions: d as u32,
+            weather_count: net.weather.len() as u32,
+            v_nominal: v,
+            limits: net.limits,
+            landmarks: net
+                .landmarks
+                .iter()
+                .map(|l| LandmarkSiteSpec {
+                    position: l.position,
+                    d_max_m: l.d_max_m,
+                })
+                .collect(),
+            qualities,
+            start_vertex,
+            goal_vertex,
+            start_range_m,
+            chains,
+        }),
     })
 }

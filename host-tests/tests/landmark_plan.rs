@@ -1,0 +1,383 @@
+//! Landmark mode end to end (Babel 2014, onboard side): the Babel scenarios built, encoded,
+//! loaded by the core and planned in every weather; every route checked independently in f64
+//! (leg length against the scenario's own rosette numbers, speeds and accelerations sampled
+//! densely from the pieces' coefficients, clearance from every no-fly polygon, C² joints);
+//! rosette updates and pop-ups on Hermite edges.
+//!
+//! Run with `--release -- --nocapture` to see the counts, headings and figures.
+
+use skyroute::geometry::hermite::HermiteSegment;
+use skyroute::network::write::ObstacleSpec;
+use skyroute::network::Network;
+use skyroute::planner::{Goal, Query, Search};
+use skyroute::Planner;
+use skyroute_prep::build::{build, BuildOptions, Built};
+use skyroute_prep::scenario::{self, ParseOptions, Scenario};
+use std::path::PathBuf;
+use std::time::Instant;
+
+type Lp<'n> = Planner<'n, 1024, 40000, 4, 128>;
+
+fn load(name: &str) -> Scenario {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenarios")
+        .join(name);
+    let options = ParseOptions {
+        hull_self_intersecting_no_fly: true,
+    };
+    scenario::load_with(&path, &options).expect("scenario loads")
+}
+
+fn build_scenario(name: &str) -> (Scenario, Built) {
+    let s = load(&format!("{name}.geojson"));
+    let t = Instant::now();
+    let built = build(&s, &BuildOptions::default(), &|_, _| {}).expect("landmark network builds");
+    println!(
+        "{name}: built and encoded in {:.1} s, {} bytes",
+        t.elapsed().as_secs_f64(),
+        built.bytes.len()
+    );
+    (s, built)
+}
+
+// ------------------------------------------------------------------------------------------------
+// Independent f64 reference
+
+type P = (f64, f64);
+
+fn dist_point_segment(p: P, a: P, b: P) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    ((p.0 - a.0 - t * dx).powi(2) + (p.1 - a.1 - t * dy).powi(2)).sqrt()
+}
+
+fn inside(p: P, poly: &[P]) -> bool {
+    let mut c = false;
+    let n = poly.len();
+    for i in 0..n {
+        let (a, b) = (poly[i], poly[(i + 1) % n]);
+        if (a.1 > p.1) != (b.1 > p.1) && p.0 < a.0 + (p.1 - a.1) * (b.0 - a.0) / (b.1 - a.1) {
+            c = !c;
+        }
+    }
+    c
+}
+
+/// Signed-free distance from a point to a polygon: 0 inside.
+fn dist_polygon(p: P, poly: &[P]) -> f64 {
+    if inside(p, poly) {
+        return 0.0;
+    }
+    (0..poly.len())
+        .map(|i| dist_point_segment(p, poly[i], poly[(i + 1) % poly.len()]))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// A piece in f64 from its normalised coefficients.
+struct Poly64 {
+    b: [P; 6],
+    t: f64,
+}
+
+impl Poly64 {
+    fn new(seg: &HermiteSegment) -> Self {
+        Self {
+            b: seg
+                .normalized_coefficients()
+                .map(|v| (v.x as f64, v.y as f64)),
+            t: seg.t_max() as f64,
+        }
+    }
+    /// Position, velocity, acceleration at `s ∈ [0, 1]`.
+    fn eval(&self, s: f64) -> (P, P, P) {
+        let (mut p, mut v, mut a) = ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0));
+        for (k, bk) in self.b.iter().enumerate() {
+            let kf = k as f64;
+            let sk = s.powi(k as i32);
+            p.0 += bk.0 * sk;
+            p.1 += bk.1 * sk;
+            if k >= 1 {
+                let f = kf * s.powi(k as i32 - 1) / self.t;
+                v.0 += bk.0 * f;
+                v.1 += bk.1 * f;
+            }
+            if k >= 2 {
+                let f = kf * (kf - 1.0) * s.powi(k as i32 - 2) / (self.t * self.t);
+                a.0 += bk.0 * f;
+                a.1 += bk.1 * f;
+            }
+        }
+        (p, v, a)
+    }
+}
+
+fn polygons(obstacles: &[ObstacleSpec]) -> Vec<Vec<P>> {
+    obstacles
+        .iter()
+        .filter_map(|o| match o {
+            ObstacleSpec::Polygon(pts) => {
+                Some(pts.iter().map(|p| (p.x as f64, p.y as f64)).collect())
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// The scenario's own quality of landmark `l` at compass `deg`, weather `w` (linear between
+/// the 12 given headings).
+fn scenario_quality(s: &Scenario, l: usize, w: usize, deg: f64) -> f64 {
+    let q = &s.landmarks[l].quality[w].1;
+    let x = deg.rem_euclid(360.0) / 30.0;
+    let i = x.floor() as usize % 12;
+    let f = x - x.floor();
+    q[i] * (1.0 - f) + q[(i + 1) % 12] * f
+}
+
+/// Samples per piece.
+const SAMPLES: usize = 400;
+
+#[derive(Default, Debug)]
+struct RouteCheck {
+    pieces: usize,
+    min_clearance: f64,
+    min_speed: f64,
+    max_speed: f64,
+    max_lat: f64,
+    max_long: f64,
+    min_long: f64,
+    max_joint_gap: f64,
+    max_joint_acc: f64,
+}
+
+/// Checks the planner's route independently; returns the figures.
+fn check_route(
+    s: &Scenario,
+    built: &Built,
+    net: &Network,
+    edges: &[u32],
+    weather: usize,
+) -> RouteCheck {
+    let l = *net.landmark().unwrap();
+    let d = l.directions;
+    let v = &s.vehicle;
+    let clearance = s.planner.clearance_m.unwrap_or(0.0);
+    let polys = polygons(&built.obstacles);
+    let mut c = RouteCheck {
+        min_clearance: f64::INFINITY,
+        min_speed: f64::INFINITY,
+        ..Default::default()
+    };
+    let mut previous_end: Option<(P, P)> = None;
+    for &e in edges {
+        let r = net.edge_record(e).unwrap();
+        let mut leg = 0.0f64;
+        for k in 0..net.chain_piece_count(e) {
+            let seg = net.chain_piece(e, k).expect("piece rebuilds");
+            let poly = Poly64::new(&seg);
+            let (p0, v0, a0) = poly.eval(0.0);
+            let (_, _, a1) = poly.eval(1.0);
+            c.max_joint_acc = c.max_joint_acc.max(a0.0.hypot(a0.1)).max(a1.0.hypot(a1.1));
+            if let Some((pe, ve)) = previous_end {
+                let gap = (pe.0 - p0.0)
+                    .hypot(pe.1 - p0.1)
+                    .max((ve.0 - v0.0).hypot(ve.1 - v0.1));
+                c.max_joint_gap = c.max_joint_gap.max(gap);
+            }
+            let mut last = p0;
+            for i in 0..=SAMPLES {
+                let (p, vel, acc) = poly.eval(i as f64 / SAMPLES as f64);
+                leg += (p.0 - last.0).hypot(p.1 - last.1);
+                last = p;
+                let speed = vel.0.hypot(vel.1);
+                let a_long = (acc.0 * vel.0 + acc.1 * vel.1) / speed;
+                let a_lat = (vel.0 * acc.1 - vel.1 * acc.0).abs() / speed;
+                c.min_speed = c.min_speed.min(speed);
+                c.max_speed = c.max_speed.max(speed);
+                c.max_lat = c.max_lat.max(a_lat);
+                c.max_long = c.max_long.max(a_long);
+                c.min_long = c.min_long.min(a_long);
+                for poly in &polys {
+                    c.min_clearance = c.min_clearance.min(dist_polygon(p, poly));
+                }
+            }
+            let (pe, ve, _) = poly.eval(1.0);
+            previous_end = Some((pe, ve));
+            c.pieces += 1;
+        }
+        // The leg's range, from the scenario file's numbers.
+        let range = if r.source == l.start_vertex {
+            s.start.as_ref().and_then(|st| st.dist_m).unwrap()
+        } else if r.source < l.landmark_count * d {
+            let (lm, k) = ((r.source / d) as usize, r.source % d);
+            s.landmarks[lm].d_max_m * scenario_quality(s, lm, weather, 360.0 * k as f64 / d as f64)
+        } else {
+            f64::INFINITY
+        };
+        assert!(
+            leg <= range * (1.0 + 1e-4),
+            "edge {e} from vertex {}: leg {leg:.1} m beyond range {range:.1} m",
+            r.source
+        );
+    }
+    let tol = 1e-3;
+    assert!(c.min_speed >= v.v_min_mps * (1.0 - tol), "{c:?}");
+    assert!(c.max_speed <= v.v_max_mps * (1.0 + tol), "{c:?}");
+    assert!(c.max_lat <= v.a_lat_max_mps2 * (1.0 + tol), "{c:?}");
+    assert!(c.max_long <= v.a_long_max_mps2 + tol, "{c:?}");
+    assert!(c.min_long >= v.a_long_min_mps2 - tol, "{c:?}");
+    assert!(c.min_clearance >= clearance - 1e-3, "{c:?}");
+    assert!(c.max_joint_gap <= 0.05, "{c:?}");
+    assert!(c.max_joint_acc <= 0.05, "{c:?}");
+    c
+}
+
+fn query(net: &Network) -> Query {
+    let l = net.landmark().unwrap();
+    Query {
+        start: net.vertex(l.start_vertex).unwrap(),
+        goal: Goal {
+            position: net.vertex(l.goal_vertex).unwrap().position,
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    }
+}
+
+/// Overflight compass headings and the next leg's length along a route.
+fn headings(net: &Network, edges: &[u32]) -> String {
+    let l = net.landmark().unwrap();
+    let mut out = Vec::new();
+    for &e in edges {
+        let r = net.edge_record(e).unwrap();
+        if r.source < l.landmark_count * l.directions {
+            let (lm, k) = (r.source / l.directions, r.source % l.directions);
+            out.push(format!(
+                "L{lm}@{:.0}°→{:.1} km",
+                360.0 * k as f64 / l.directions as f64,
+                r.cost / 1000.0
+            ));
+        }
+    }
+    out.join(", ")
+}
+
+/// Plans start → goal in every weather and checks each route. Returns the planner's result for
+/// the last weather.
+fn plan_all_weathers(name: &str, s: &Scenario, built: &Built) {
+    let net = Network::from_bytes(&built.bytes).expect("loads");
+    let l = *net.landmark().unwrap();
+    let mut planner: Box<Lp> = Box::new(Planner::new());
+    planner.load(&built.bytes).expect("planner loads");
+    let overflights = l.landmark_count * l.directions;
+    let landmark_edges = (0..net.edge_count())
+        .filter(|&e| net.edge_record(e).unwrap().source < overflights)
+        .count();
+    println!(
+        "{name}: {} vertices ({} overflights; paper II: 240), {} edges ({} between overflights; \
+         paper II: ~6000), {} line elements, {} bytes",
+        net.vertex_count(),
+        overflights,
+        net.edge_count(),
+        landmark_edges,
+        l.element_count,
+        net.byte_len()
+    );
+    // What the stored network reaches from the start, ignoring weather: a route can only use
+    // these vertices.
+    let mut seen = vec![false; net.vertex_count() as usize];
+    let mut stack = vec![l.start_vertex];
+    seen[l.start_vertex as usize] = true;
+    while let Some(u) = stack.pop() {
+        for e in net.out_edges(u) {
+            let t = net.edge_cost_target(e).unwrap().1 as usize;
+            if !seen[t] {
+                seen[t] = true;
+                stack.push(t as u32);
+            }
+        }
+    }
+    println!(
+        "{name}: {} of {} vertices reachable from the start in the stored network (any weather); \
+         goal reachable: {}; {} edges into the goal",
+        seen.iter().filter(|x| **x).count(),
+        seen.len(),
+        seen[l.goal_vertex as usize],
+        (0..net.edge_count())
+            .filter(|&e| net.edge_cost_target(e).unwrap().1 == l.goal_vertex)
+            .count()
+    );
+    for w in 0..l.weather_count {
+        planner.set_weather(w).unwrap();
+        let pruned = (0..net.edge_count())
+            .filter(|&e| {
+                net.edge_record(e).unwrap().source < overflights && !planner.is_navigable(e)
+            })
+            .count();
+        let start_edges = net.out_edges(l.start_vertex);
+        let start_ok = start_edges
+            .clone()
+            .filter(|&e| planner.is_navigable(e))
+            .count();
+        println!(
+            "{name} weather {w} ({}): {pruned} of {landmark_edges} overflight edges pruned ({:.1} %; \
+             paper: ~60 %); start edges navigable {start_ok} of {}",
+            s.weather[w as usize],
+            100.0 * pruned as f64 / landmark_edges.max(1) as f64,
+            start_edges.len()
+        );
+        let t = Instant::now();
+        let result = planner.plan(&query(&net), planner.worst_case_work());
+        let took = t.elapsed();
+        match result {
+            Ok(summary) => {
+                let edges = planner.route_edges().to_vec();
+                let c = check_route(s, built, &net, &edges, w as usize);
+                assert!(summary.work.total() <= planner.worst_case_work());
+                println!(
+                    "{name} weather {w}: route {:.1} km, {} edges, {} pieces, work {} (bound {}), \
+                     planned in {:.2} ms; checked {} pieces: speed {:.1}..{:.1} m/s, lateral \
+                     ≤ {:.2} m/s², longitudinal {:.2}..{:.2} m/s², clearance ≥ {:.1} m, joints \
+                     ≤ {:.1e}, joint acceleration ≤ {:.1e}\n  headings: {}",
+                    summary.length / 1000.0,
+                    summary.network_edges,
+                    summary.primitives,
+                    summary.work.total(),
+                    planner.worst_case_work(),
+                    took.as_secs_f64() * 1e3,
+                    c.pieces,
+                    c.min_speed,
+                    c.max_speed,
+                    c.max_lat,
+                    c.min_long,
+                    c.max_long,
+                    c.min_clearance,
+                    c.max_joint_gap,
+                    c.max_joint_acc,
+                    headings(&net, &edges)
+                );
+            }
+            Err(e) => println!("{name} weather {w}: no route: {e}"),
+        }
+    }
+}
+
+#[test]
+fn babel_ii_n_and_s_plan_and_check() {
+    for name in ["babel-II-N", "babel-II-S"] {
+        let (s, built) = build_scenario(name);
+        plan_all_weathers(name, &s, &built);
+    }
+}
+
+#[test]
+fn babel_i_and_iii_plan_or_say_why() {
+    for name in ["babel-I", "babel-III"] {
+        let (s, built) = build_scenario(name);
+        plan_all_weathers(name, &s, &built);
+    }
+}
