@@ -9,7 +9,7 @@
 use skyroute::geometry::hermite::HermiteSegment;
 use skyroute::network::write::ObstacleSpec;
 use skyroute::network::Network;
-use skyroute::planner::{Goal, Query, Search};
+use skyroute::planner::{Goal, Popup, Query, Search};
 use skyroute::Planner;
 use skyroute_prep::build::{build, BuildOptions, Built};
 use skyroute_prep::scenario::{self, ParseOptions, Scenario};
@@ -379,5 +379,122 @@ fn babel_i_and_iii_plan_or_say_why() {
     for name in ["babel-I", "babel-III"] {
         let (s, built) = build_scenario(name);
         plan_all_weathers(name, &s, &built);
+    }
+}
+
+/// Smallest f64 distance from any piece of edge `e` (sampled densely) to `centre`.
+fn edge_min_distance(net: &Network, e: u32, centre: P) -> f64 {
+    let mut best = f64::INFINITY;
+    for k in 0..net.chain_piece_count(e) {
+        let poly = Poly64::new(&net.chain_piece(e, k).unwrap());
+        for i in 0..=SAMPLES {
+            let (p, _, _) = poly.eval(i as f64 / SAMPLES as f64);
+            best = best.min((p.0 - centre.0).hypot(p.1 - centre.1));
+        }
+    }
+    best
+}
+
+#[test]
+fn rosette_update_and_popup_on_babel_ii_s() {
+    let (_s, built) = build_scenario("babel-II-S");
+    let mut planner: Box<Lp> = Box::new(Planner::new());
+    planner.load(&built.bytes).unwrap();
+    let net = *planner.network();
+    let l = *net.landmark().unwrap();
+    let q = query(&net);
+    planner
+        .plan(&q, planner.worst_case_work())
+        .expect("II-S routes");
+    let route = planner.route_edges().to_vec();
+
+    // Rosette update: the first landmark overflown is lost (quality 0 everywhere).
+    let first = net.edge_record(route[0]).unwrap().target;
+    let lost = first / l.directions;
+    let before: Vec<bool> = (0..net.edge_count())
+        .map(|e| planner.is_navigable(e))
+        .collect();
+    planner
+        .update_rosette(lost, &vec![0.0; l.directions as usize])
+        .unwrap();
+    let mut removed = 0;
+    for e in 0..net.edge_count() {
+        let r = net.edge_record(e).unwrap();
+        let from_lost =
+            r.source / l.directions == lost && r.source < l.landmark_count * l.directions;
+        let after = planner.is_navigable(e);
+        if from_lost {
+            assert!(
+                !after || r.cost == 0.0,
+                "edge {e} from the lost landmark survives"
+            );
+            removed += before[e as usize] as usize;
+        } else {
+            assert_eq!(after, before[e as usize], "edge {e} changed");
+        }
+    }
+    match planner.plan(&q, planner.worst_case_work()) {
+        Ok(s) => {
+            let edges = planner.route_edges();
+            assert!(edges.iter().all(|&e| {
+                let src = net.edge_record(e).unwrap().source;
+                src >= l.landmark_count * l.directions || src / l.directions != lost
+            }));
+            println!(
+                "landmark {lost} lost: {removed} of its edges pruned; new route {:.1} km over {} edges \
+                 (avoids it) — {}",
+                s.length / 1000.0,
+                s.network_edges,
+                headings(&net, edges)
+            );
+        }
+        Err(e) => println!("landmark {lost} lost: {removed} edges pruned; {e}"),
+    }
+    assert!(planner.clear_rosette(lost));
+
+    // Pop-up: a 2 km disc on the middle of the route.
+    let mid_edge = route[route.len() / 2];
+    let seg = net.chain_piece(mid_edge, 0).unwrap();
+    let c = seg.position(seg.t_max() * 0.5).unwrap();
+    let radius = 2000.0f32;
+    let t = Instant::now();
+    let summary = planner
+        .add_popup(Popup::Circle { centre: c, radius })
+        .unwrap();
+    let took = t.elapsed();
+    assert!(summary.edges_blocked > 0);
+    let clearance = net.clearance() as f64;
+    let centre = (c.x as f64, c.y as f64);
+    let (mut over, mut blocked) = (0, 0);
+    for e in 0..net.edge_count() {
+        let d = edge_min_distance(&net, e, centre) - radius as f64;
+        if planner.is_edge_enabled(e) {
+            assert!(
+                d >= clearance - 1e-3,
+                "edge {e} survives at {d:.1} m from the pop-up"
+            );
+        } else {
+            blocked += 1;
+            if d > clearance {
+                over += 1;
+            }
+        }
+    }
+    println!(
+        "pop-up r = {radius} m: {blocked} edges disabled ({} predicate tests, {} pieces rebuilt, {} \
+         cells, work bound {}; {:.2} ms on the host); over-pruned (true distance > clearance) {over}",
+        summary.predicate_tests,
+        summary.pieces_rebuilt,
+        summary.cells_visited,
+        planner.worst_case_popup_work(),
+        took.as_secs_f64() * 1e3
+    );
+    match planner.plan(&q, planner.worst_case_work()) {
+        Ok(s) => println!(
+            "with the pop-up: route {:.1} km over {} edges",
+            s.length / 1000.0,
+            s.network_edges
+        ),
+        Err(e) => println!("with the pop-up: {e}"),
     }
 }
