@@ -398,6 +398,11 @@ impl<'a> Network<'a> {
             return bad(Parameter::GridDimensions);
         }
         if let Some(t) = &self.terrain {
+            // Terrain networks carry no static obstacles: their search checks terrain cells
+            // and pop-ups only, and their work bound has no obstacle term.
+            if h.obstacle_count != 0 || h.obstacle_point_count != 0 {
+                return bad(Parameter::Terrain);
+            }
             let grid_ok = self.terrain_grid().is_some_and(|g| g.validate().is_ok());
             let coding_ok = self.elevation_coding().is_some_and(|c| c.is_valid());
             let numbers_ok = t.widen_m.is_finite()
@@ -564,6 +569,10 @@ impl<'a> Network<'a> {
         let (a, b) = (a.position, b.position);
         let length = r.params[0];
         let chord = a.distance(b);
+        // A line between (nearly) coincident nodes has no direction to turn from.
+        if !(chord >= 1e-3 * self.header.turn_radius_m && chord > 0.0) {
+            return Err(malformed);
+        }
         let scale = libm::fabsf(b.x).max(libm::fabsf(b.y)) + length;
         if !(libm::fabsf(chord - length) <= 1e-4 * scale + 0.01) {
             return Err(LoadError::EdgeMissesTarget {

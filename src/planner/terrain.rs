@@ -67,7 +67,9 @@ impl Fillet {
         let cross = u_in.cross(u_out);
         let dot = u_in.dot(u_out);
         let angle = libm::atan2f(libm::fabsf(cross), dot);
-        let cut = if dot > -1.0 {
+        // A (near) reversal has no room to turn: `1 + dot` near 0 would give a cut of 0 for
+        // directions a rounding short of unit length, so turns within 10⁻³ rad of π are refused.
+        let cut = if angle < PI - 1e-3 && 1.0 + dot > 1e-6 {
             r * libm::fabsf(cross) / (1.0 + dot)
         } else {
             f32::INFINITY

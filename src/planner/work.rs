@@ -191,7 +191,16 @@ pub fn terrain_plan_work_bound(n: &TerrainBoundInputs) -> u64 {
     let goal_relaxations = s * n.goal_links;
     let relaxations = out_relaxations + goal_relaxations;
     let search = (s + s * levels)
-        .saturating_add(relaxations.saturating_mul(n.cells_per_turn.saturating_add(1 + levels)));
+        .saturating_add(
+            relaxations.saturating_mul(
+                n.cells_per_turn
+                    .saturating_add(1 + levels)
+                    // Each turn arc is also tested against every active pop-up.
+                    .saturating_add(n.popups * (n.popup_vertices + 1)),
+            ),
+        )
+        // Reading each popped state, and the start links' pushes.
+        .saturating_add(s + n.start_links * levels);
     let endpoints = 2 + 2 * n.popups + 2 * n.vertices;
     endpoints
         .saturating_add(connections.saturating_mul(per_connection))
