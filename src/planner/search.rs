@@ -284,6 +284,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             self.clear_route();
             return Err(PlanError::Internal);
         }
+        Ok(self.finish_route(network_edges, meter))
+    }
+
+    /// Rebuilds the primitives from the new chain of paths and records the route's summary.
+    pub(super) fn finish_route(&mut self, network_edges: u32, meter: &Meter) -> RouteSummary {
         self.flatten_route();
         let summary = RouteSummary {
             length: self.route.iter().map(Primitive::length).sum(),
@@ -293,7 +298,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             work: meter.work,
         };
         self.summary = Some(summary);
-        Ok(summary)
+        summary
     }
 
     /// Rebuilds the primitives from the route's paths (which fit: each path has ≤ 3 primitives

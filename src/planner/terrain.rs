@@ -743,15 +743,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             self.summary = None;
             return Err(PlanError::Internal);
         }
-        self.flatten_route();
-        let summary = RouteSummary {
-            length: self.route.iter().map(Primitive::length).sum(),
-            primitives: self.route.len() as u32,
-            network_edges,
-            arrival_heading: self.paths.last().map_or(0.0, |p| p.end().heading),
-            work: meter.work,
-        };
-        self.summary = Some(summary);
-        Ok(summary)
+        Ok(self.finish_route(network_edges, meter))
     }
 }
