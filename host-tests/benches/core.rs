@@ -1,7 +1,8 @@
 //! Host timings of the onboard core: Dubins paths, the exact predicates, pop-up pruning and a
 //! planning query on the `niendorf-urban` roadmap; the terrain query P → Q on the
 //! `medeiros-jacksboro` network, the network load (validation), and an arc check against the
-//! elevation grid. Run: `cargo bench -p host-tests --bench core`.
+//! elevation grid; the landmark query on `babel-II-N`, with an in-flight rosette update, and its
+//! load. Run: `cargo bench -p host-tests --bench core`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use skyroute::geometry::predicates::{
@@ -237,5 +238,54 @@ fn jacksboro(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, geometry, niendorf, jacksboro);
+fn babel(c: &mut Criterion) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/babel-II-N.geojson");
+    let scenario = skyroute_prep::scenario::load(&path).expect("scenario");
+    let t = std::time::Instant::now();
+    let built =
+        skyroute_prep::build::build(&scenario, &Default::default(), &|_, _| {}).expect("network");
+    eprintln!("babel-II-N build: {:.2} s", t.elapsed().as_secs_f64());
+    let bytes: &'static [u8] = Box::leak(built.bytes.into_boxed_slice());
+    let mut planner: Box<Planner<'static, 256, 8192, 8, 256>> = Box::new(Planner::new());
+    planner.load(bytes).expect("loads");
+    let net = *planner.network();
+    let l = *net.landmark().expect("landmark network");
+    let query = Query {
+        start: net.vertex(l.start_vertex).expect("start"),
+        goal: Goal {
+            position: net.vertex(l.goal_vertex).expect("goal").position,
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    };
+    let s = planner.plan(&query, u64::MAX).expect("route");
+    eprintln!(
+        "babel-II-N network: {} vertices, {} edges, {} bytes; P → Q {:.1} m, work {} (bound {})",
+        net.vertex_count(),
+        net.edge_count(),
+        bytes.len(),
+        s.length,
+        s.work.total(),
+        planner.worst_case_work()
+    );
+    c.bench_function("plan_babel_ii_n_p_to_q", |b| {
+        b.iter(|| black_box(planner.plan(&query, u64::MAX)))
+    });
+    // A landmark found lost in flight: its rosette zeroed, then the re-plan.
+    let lost = planner.route_edges()[1];
+    let lost = net.edge_record(lost).expect("edge").source / l.directions;
+    c.bench_function("update_rosette_and_replan_babel_ii_n", |b| {
+        b.iter(|| {
+            planner.update_rosette(lost, &[0.0; 12]).expect("update");
+            let r = black_box(planner.plan(&query, u64::MAX));
+            planner.clear_rosette(lost);
+            r
+        })
+    });
+    c.bench_function("load_babel_ii_n_network", |b| {
+        b.iter(|| black_box(skyroute::Network::from_bytes(black_box(bytes)).is_ok()))
+    });
+}
+
+criterion_group!(benches, geometry, niendorf, jacksboro, babel);
 criterion_main!(benches);

@@ -287,7 +287,7 @@ fn build_terrain(s: &Scenario, options: &BuildOptions) -> Result<Built, BuildErr
 }
 
 /// Landmark mode: the landmark shortest-path network ([`crate::landmark`]) encoded with its
-/// rosettes and chains (`docs/format-landmark.md`). The start and the goal each need one
+/// rosettes and chains (`docs/FORMAT.md`, landmark mode). The start and the goal each need one
 /// heading (a free-heading endpoint has one line element per direction, which one vertex
 /// cannot stand for). Default grid cell: 2 km.
 fn build_landmark(

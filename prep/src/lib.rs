@@ -5,6 +5,7 @@ pub mod dem;
 pub mod export;
 pub mod frame;
 pub mod landmark;
+pub mod landmark_mission;
 pub mod mission;
 pub mod render;
 pub mod roadmap;

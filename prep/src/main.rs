@@ -4,6 +4,7 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use skyroute_prep::build::local;
 use skyroute_prep::build::{build, BuildOptions};
+use skyroute_prep::landmark_mission::{landmark_route_json, plan_landmark};
 use skyroute_prep::mission::{plan_mission, LocalPopup};
 use skyroute_prep::scenario;
 use std::path::{Path, PathBuf};
@@ -59,6 +60,10 @@ enum Command {
         /// altitude in flight (comma-separated metres, e.g. 650,700,850).
         #[arg(long, value_delimiter = ',')]
         altitude_levels: Vec<f64>,
+        /// Replace a self-intersecting no-fly polygon by its convex hull (which forbids all it
+        /// did, and possibly more) instead of refusing the scenario; a warning names it.
+        #[arg(long)]
+        hull_repair: bool,
     },
     /// Plan start → waypoints in order → goal through a network with the onboard core.
     Plan {
@@ -70,9 +75,14 @@ enum Command {
         /// A circular pop-up obstacle, `LON,LAT,RADIUS_M` (repeatable).
         #[arg(long, value_parser = parse_popup)]
         popup: Vec<(f64, f64, f64)>,
-        /// Weather for landmark networks (roadmap networks have none).
+        /// Weather for landmark networks, a name from the scenario's `weather` (default: its
+        /// first); roadmap and terrain networks have none.
         #[arg(long)]
         weather: Option<String>,
+        /// Read the scenario with self-intersecting no-fly polygons replaced by their hulls (as
+        /// `build --hull-repair`).
+        #[arg(long)]
+        hull_repair: bool,
         /// Where to write the route (JSON).
         #[arg(short, long)]
         output: PathBuf,
@@ -159,9 +169,14 @@ fn parse_area(s: &str) -> Result<(f64, f64, f64, f64), String> {
 type CliResult = Result<(), Box<dyn std::error::Error>>;
 
 /// `skyroute build`.
-fn build_command(path: &Path, output: &Path, options: &BuildOptions) -> CliResult {
+fn build_command(
+    path: &Path,
+    output: &Path,
+    options: &BuildOptions,
+    hull_repair: bool,
+) -> CliResult {
     let t0 = Instant::now();
-    let s = scenario::load(path)?;
+    let s = load_scenario(path, hull_repair)?;
     let bar = ProgressBar::new(0).with_style(
         ProgressStyle::with_template("{msg} {bar:40} {pos}/{len} samples ({eta} left)")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
@@ -188,6 +203,30 @@ fn build_command(path: &Path, output: &Path, options: &BuildOptions) -> CliResul
             g.grid.rows,
             g.grid.cell,
             st.blocked_cells,
+            built.bytes.len(),
+            t0.elapsed().as_secs_f64(),
+            output.display()
+        );
+        return Ok(());
+    }
+    if let Some(n) = &built.landmark {
+        let st = &n.stats;
+        println!(
+            "built {}: landmark network {} overflights, {} edges between them ({} pairs, {} basic \
+             networks, {} line elements, {} searches; {} directions out of range, {} chains over \
+             range, {} unconnected), {} start and {} goal edges, {} bytes, {:.2} s -> {}",
+            path.display(),
+            n.vertices.len(),
+            n.edges.len(),
+            st.pairs,
+            st.basic_networks,
+            st.line_elements,
+            st.searches,
+            st.directions_out_of_range,
+            st.edges_over_range,
+            st.unconnected,
+            n.start.as_ref().map_or(0, |x| x.edges.len()),
+            n.goal.as_ref().map_or(0, |x| x.edges.len()),
             built.bytes.len(),
             t0.elapsed().as_secs_f64(),
             output.display()
@@ -221,20 +260,22 @@ fn plan_command(
     scenario_path: &Path,
     popup: &[(f64, f64, f64)],
     weather: Option<&str>,
+    hull_repair: bool,
     output: &Path,
 ) -> CliResult {
     let t0 = Instant::now();
     let bytes = std::fs::read(network).map_err(|e| format!("{}: {e}", network.display()))?;
     let net =
         skyroute::Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", network.display()))?;
-    if let Some(w) = weather {
+    let is_landmark = net.landmark().is_some();
+    if let (Some(w), false) = (weather, is_landmark) {
         return Err(format!(
-            "--weather {w}: {} is a roadmap network, which has no weather",
+            "--weather {w}: {} is not a landmark network, so it has no weather",
             network.display()
         )
         .into());
     }
-    let s = scenario::load(scenario_path)?;
+    let s = load_scenario(scenario_path, hull_repair)?;
     let (lat0, lon0) = net.origin_deg();
     let frame = skyroute_prep::frame::LocalFrame::new(lat0, lon0);
     let popups: Vec<LocalPopup> = popup
@@ -246,6 +287,38 @@ fn plan_command(
             radius: r as f32,
         })
         .collect();
+    if is_landmark {
+        let r = plan_landmark(&bytes, &s, weather, &popups)
+            .map_err(|e| format!("{} on {}: {e}", scenario_path.display(), network.display()))?;
+        let json = landmark_route_json(&r, &bytes, &frame, &s.name);
+        std::fs::write(output, serde_json::to_string_pretty(&json)?)
+            .map_err(|e| format!("{}: {e}", output.display()))?;
+        for o in &r.overflights {
+            println!(
+                "  over {} heading {:5.1}°: q {:.2}, range {:.1} km, next leg {:.1} km",
+                o.landmark,
+                o.heading_deg,
+                o.quality,
+                o.range_m / 1000.0,
+                o.leg_m / 1000.0
+            );
+        }
+        println!(
+            "planned {} in weather {}: {:.1} km over {} overflights, {} Hermite pieces, work {} \
+             ({} of {} edges leaving overflights not navigable), {:.3} s -> {}",
+            s.name,
+            r.weather,
+            r.summary.length / 1000.0,
+            r.overflights.len(),
+            r.summary.primitives,
+            r.summary.work.total(),
+            r.pruned.0,
+            r.pruned.1,
+            t0.elapsed().as_secs_f64(),
+            output.display()
+        );
+        return Ok(());
+    }
     let m = plan_mission(&bytes, &s, &frame, &popups)
         .map_err(|e| format!("{}: {e}", scenario_path.display()))?;
     let json = skyroute_prep::route_json::mission_json(&m, &frame, &s.name);
@@ -274,6 +347,22 @@ fn plan_command(
     Ok(())
 }
 
+/// Reads a scenario, repairing self-intersecting no-fly polygons by their hulls when asked (and
+/// saying so).
+fn load_scenario(
+    path: &Path,
+    hull_repair: bool,
+) -> Result<scenario::Scenario, Box<dyn std::error::Error>> {
+    let options = scenario::ParseOptions {
+        hull_self_intersecting_no_fly: hull_repair,
+    };
+    let s = scenario::load_with(path, &options)?;
+    for w in &s.warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(s)
+}
+
 /// The scenario `skyroute demo` runs, built into the binary.
 const DEMO_SCENARIO: &str = include_str!("../../scenarios/niendorf-urban.geojson");
 
@@ -288,8 +377,8 @@ fn demo_command(dir: &Path) -> CliResult {
         dir.join("route.json"),
         dir.join("niendorf-urban.png"),
     );
-    build_command(&scenario_path, &network, &BuildOptions::default())?;
-    plan_command(&network, &scenario_path, &[], None, &route)?;
+    build_command(&scenario_path, &network, &BuildOptions::default(), false)?;
+    plan_command(&network, &scenario_path, &[], None, false, &route)?;
     let request = skyroute_prep::render::RenderRequest {
         network,
         route: Some(route),
@@ -322,6 +411,7 @@ fn run(cli: Cli) -> CliResult {
             max_edge,
             node_margin,
             altitude_levels,
+            hull_repair,
         } => {
             let options = BuildOptions {
                 sample_spacing_m: sample_spacing,
@@ -333,19 +423,21 @@ fn run(cli: Cli) -> CliResult {
                 node_margin_m: node_margin,
                 extra_altitudes_m: altitude_levels,
             };
-            build_command(&path, &output, &options)
+            build_command(&path, &output, &options, hull_repair)
         }
         Command::Plan {
             network,
             scenario: scenario_path,
             popup,
             weather,
+            hull_repair,
             output,
         } => plan_command(
             &network,
             &scenario_path,
             &popup,
             weather.as_deref(),
+            hull_repair,
             &output,
         ),
         Command::Demo { output } => demo_command(&output),

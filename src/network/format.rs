@@ -18,7 +18,7 @@ pub const FORMAT_VERSION: u16 = 2;
 pub const MODE_ROADMAP: u8 = 0;
 /// Network mode: a landmark shortest-path network (Babel 2014): vertices are landmark
 /// overflights, edges chains of quintic Hermite pieces; the body ends with a
-/// [`LandmarkRecord`] and the landmark tables (`docs/format-landmark.md`).
+/// [`LandmarkRecord`] and the landmark tables (`docs/FORMAT.md`, landmark mode).
 pub const MODE_LANDMARK: u8 = 1;
 /// Network mode: a terrain visibility graph of straight edges over an elevation table
 /// (Medeiros & da Silva); the body ends with a [`TerrainRecord`] and the table.
