@@ -808,9 +808,13 @@ fn guide_elements(
     stats: &mut JobStats,
 ) {
     let e = if into { negate(t) } else { *t };
-    let pose = Pose { position: e.position, heading: e.velocity.angle() };
+    let pose = Pose {
+        position: e.position,
+        heading: e.velocity.angle(),
+    };
     for turn in [skyroute::Turn::Left, skyroute::Turn::Right] {
-        let Some(path) = skyroute::DubinsPath::turn_then_straight(&pose, radius, toward, turn) else {
+        let Some(path) = skyroute::DubinsPath::turn_then_straight(&pose, radius, toward, turn)
+        else {
             continue;
         };
         let arc = path.lengths[0];
@@ -828,7 +832,10 @@ fn guide_elements(
                 continue;
             }
             let p = path.sample(s);
-            if ctx.obstacles.point_blocked(p.position, ctx.params.clearance_m) {
+            if ctx
+                .obstacles
+                .point_blocked(p.position, ctx.params.clearance_m)
+            {
                 stats.rejected += 1;
                 continue;
             }
@@ -892,7 +899,15 @@ fn run_job(job: &Job, ctx: &Ctx) -> JobResult {
     if ctx.params.guide_radius_factor > 0.0 {
         let radius = ctx.params.guide_radius_factor * ctx.v_nominal * ctx.v_nominal / ctx.a_lat_max;
         for t in &job.a.elements {
-            guide_elements(t, job.focus_b, radius, false, &mut elements, ctx, &mut stats);
+            guide_elements(
+                t,
+                job.focus_b,
+                radius,
+                false,
+                &mut elements,
+                ctx,
+                &mut stats,
+            );
         }
         for t in &job.b.elements {
             guide_elements(t, job.focus_a, radius, true, &mut elements, ctx, &mut stats);
