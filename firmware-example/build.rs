@@ -13,10 +13,13 @@ fn main() {
     println!("cargo:rerun-if-changed={}", memory.display());
     println!("cargo:rerun-if-changed=build.rs");
 
-    let dir = if std::env::var_os("CARGO_FEATURE_TERRAIN").is_some() {
-        "fixture-terrain"
-    } else {
-        "fixture"
+    let terrain = std::env::var_os("CARGO_FEATURE_TERRAIN").is_some();
+    let landmark = std::env::var_os("CARGO_FEATURE_LANDMARK").is_some();
+    let dir = match (terrain, landmark) {
+        (true, true) => panic!("the features `terrain` and `landmark` exclude each other"),
+        (true, false) => "fixture-terrain",
+        (false, true) => "fixture-landmark",
+        (false, false) => "fixture",
     };
     for f in ["network.bin", "query.rs"].map(|f| format!("{dir}/{f}")) {
         let path = manifest.join(f);
@@ -24,7 +27,8 @@ fn main() {
             panic!(
                 "{} is missing: generate the fixture first, e.g.\n  \
                  cargo run --release -p host-tests --bin firmware_fixture -- --synthetic \
-                 firmware-example/fixture\n(from the repository root; scripts/test.sh does this)",
+                 firmware-example/fixture\n(from the repository root; scripts/test.sh does this \
+                 for {dir}/)",
                 path.display()
             );
         }

@@ -20,9 +20,10 @@ there (B is 3.5 km away, K's range 2.5 km); in haze K is out of A's range, greed
 arrives heading east and is stuck (range ~1.7 km).  The best-guess chain A, B, C overflies B
 heading east at C (range ~1.8 km for a 6 km leg) and flies C -> G through Z1.  The network
 overflies B in a good heading (north-ish or south-ish), turns to C, and goes round Z1.
-The ground tool's Hermite chains are 10-40 % longer than the straight legs (random line
-elements, turns, the detour round Z1), so the ranges leave that much margin.  Seed 1: the
-build is random; with seed 4 (1 of 8 seeds tried) no chain from C reached the goal.
+The ground tool's Hermite chains are longer than the straight legs (turns, the detour round
+Z1), so the ranges leave margin.  Seed 1.  (Seed 4 once left C unconnected to the goal; the
+density-scaled neighbour radius in prep/src/landmark.rs fixed that, also with C's range at
+13 km.)
 
 Run: python3 scenarios/landmark-figure4.py > scenarios/landmark-figure4.geojson
 """

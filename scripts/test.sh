@@ -2,7 +2,8 @@
 # The project's whole check, as CI runs it (.ci/run): installs what is missing, then
 #   format → clippy (host, thumbv7em, thumbv7em+defmt) → core docs → OMPL reference → tests →
 #   firmware fixture → firmware build → firmware clippy → firmware under QEMU → sizes, for the
-#   roadmap (niendorf-urban) and again for terrain (medeiros-jacksboro, feature `terrain`).
+#   roadmap (niendorf-urban), again for terrain (medeiros-jacksboro, feature `terrain`) and for
+#   landmarks (babel-II-N, feature `landmark`: plan, lose a landmark in flight, re-plan).
 # Runnable from any directory. Stops at the first failing step; KEEP_GOING=1 runs every step
 # and fails at the end instead.
 #
@@ -20,6 +21,10 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 
+# Each workspace builds into its own target/ (the firmware ELF's path below relies on it; an
+# exported CARGO_TARGET_DIR would leave QEMU running a stale ELF).
+unset CARGO_TARGET_DIR
+
 cargo_bin=${CARGO_HOME:-$HOME/.cargo}/bin
 export PATH="$cargo_bin:$PATH"
 
@@ -36,6 +41,12 @@ terrain_src=target/fixture/terrain-src.bin
 terrain_fixture_dir=firmware-example/fixture-terrain
 # P and Q of the scenario in its local frame (heading: compass 45° with the meridian convergence).
 terrain_query="--start -3547.7197,-9893.968,0.78498753 --goal 3539.5775,9895.5724 --popup-on-route 100"
+# The landmark firmware's network: babel-II-N as built, except for an 8 km pop-up grid cell (with
+# the default 2 km index the image, ~926-972 KB, overflows the 1 MiB flash beside the ~125 KB of
+# firmware; the coarser index only shrinks the index: same edges and chains, so the same routes).
+landmark_scenario=scenarios/babel-II-N.geojson
+landmark_src=target/fixture/landmark-src.bin
+landmark_fixture_dir=firmware-example/fixture-landmark
 firmware_elf=firmware-example/target/thumbv7em-none-eabihf/release/skyroute-firmware-example
 
 script_start=$SECONDS
@@ -175,6 +186,24 @@ firmware_clippy() {
     (cd firmware-example && cargo clippy --release -- -D warnings)
 }
 
+# The babel-II-N landmark network and the fixture: the host plans stored start → stored goal in
+# weather 0, loses the first landmark overflown and plans again, as the firmware will.
+landmark_fixture() {
+    mkdir -p "$(dirname "$landmark_src")"
+    cargo run --release -q -p skyroute-prep --bin skyroute -- build "$landmark_scenario" \
+        -o "$landmark_src" --grid-cell 8000
+    cargo run --release -q -p host-tests --bin firmware_fixture -- \
+        "$landmark_src" "$landmark_fixture_dir"
+}
+
+landmark_firmware_build() {
+    (cd firmware-example && cargo build --release --features landmark)
+}
+
+landmark_firmware_clippy() {
+    (cd firmware-example && cargo clippy --release --features landmark -- -D warnings)
+}
+
 firmware_run() {
     FIRMWARE_TIMEOUT=${FIRMWARE_TIMEOUT:-300} bash scripts/run-firmware.sh "$firmware_elf"
 }
@@ -234,6 +263,11 @@ step "terrain firmware fixture (medeiros-jacksboro)" terrain_fixture
 step "terrain firmware build (release, feature terrain)" terrain_firmware_build
 step "terrain firmware under QEMU (netduinoplus2)" firmware_run
 step "terrain firmware size" firmware_size
+step "landmark firmware fixture (babel-II-N)" landmark_fixture
+step "landmark firmware build (release, feature landmark)" landmark_firmware_build
+step "landmark firmware clippy" landmark_firmware_clippy
+step "landmark firmware under QEMU (netduinoplus2)" firmware_run
+step "landmark firmware size" firmware_size
 
 summary
 [[ ${#failed[@]} -eq 0 ]]

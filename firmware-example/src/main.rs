@@ -6,24 +6,39 @@
 //! defmt (semihosting); exits through semihosting with success only if the route's length
 //! matches the one the host computed (`query.rs`, written by host-tests' `firmware_fixture`).
 //!
+//! With the `landmark` feature it loads `fixture-landmark/network.bin` (a Babel landmark
+//! network) and runs [`landmark::run`] instead: plan from the stored start to the stored goal,
+//! lose a landmark in flight (`update_rosette`), plan again; both lengths must equal the host's.
+//!
 //! Run it with `scripts/run-firmware.sh` (or `cargo run --release` here).
 #![no_std]
 #![no_main]
 
+#[cfg(all(feature = "terrain", feature = "landmark"))]
+compile_error!("the features `terrain` and `landmark` exclude each other");
+
+// The landmark mission uses only part of the task's API (one cycle at a time, no primitives).
+#[cfg_attr(feature = "landmark", allow(dead_code))]
 mod autopilot;
 mod clock;
+#[cfg(feature = "landmark")]
+mod landmark;
 mod stack;
 
+#[cfg(not(feature = "landmark"))]
 use autopilot::{Cycle, Next, RouteTask};
 use clock::Clock;
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::debug::{self, ExitStatus};
 use defmt_semihosting as _; // the defmt transport: semihosting writes to QEMU's stdout
-use skyroute::{Planner, Popup, Query, Search, Vec2};
+use skyroute::Planner;
+#[cfg(not(feature = "landmark"))]
+use skyroute::{Popup, Query, Search, Vec2};
 use static_cell::ConstStaticCell;
 
-/// The generated fixture: capacities, query, pop-up, expected route length, work budget.
-#[cfg(not(feature = "terrain"))]
+/// The generated fixture: capacities, query, pop-up, expected route length, work budget (for
+/// a landmark network: capacities, weather, the landmark to lose, both expected answers).
+#[cfg(not(any(feature = "terrain", feature = "landmark")))]
 mod fixture {
     include!("../fixture/query.rs");
 }
@@ -31,25 +46,32 @@ mod fixture {
 mod fixture {
     include!("../fixture-terrain/query.rs");
 }
+#[cfg(feature = "landmark")]
+mod fixture {
+    include!("../fixture-landmark/query.rs");
+}
 use fixture::*;
 
 /// The network image, in flash (`.rodata`); the planner reads it where it lies.
-#[cfg(not(feature = "terrain"))]
+#[cfg(not(any(feature = "terrain", feature = "landmark")))]
 static NETWORK: &[u8] = include_bytes!("../fixture/network.bin");
 #[cfg(feature = "terrain")]
 static NETWORK: &[u8] = include_bytes!("../fixture-terrain/network.bin");
+#[cfg(feature = "landmark")]
+static NETWORK: &[u8] = include_bytes!("../fixture-landmark/network.bin");
 
 /// The planner's state, all of it (≈ 20·V + 2·E + 140·P + 24·R + 1.3 KiB). A network too large
-/// for the RAM fails at link time, not in flight. It lands in `.data`, not `.bss`: the value of
-/// `Planner::new()` is not all zero bytes (default config, empty-network header), so its initial
-/// image costs as much flash as the planner takes RAM.
+/// for the RAM fails at link time, not in flight. `Planner::new()` is all zero bytes, so it lands
+/// in `.bss` and costs no flash (the size step reports `.data` and `.bss` separately).
 type FlightPlanner = Planner<'static, V_CAP, E_CAP, P_CAP, R_CAP>;
 static PLANNER: ConstStaticCell<FlightPlanner> = ConstStaticCell::new(Planner::new());
 
 /// Plan cycles to run, and their period.
+#[cfg(not(feature = "landmark"))]
 const CYCLES: u32 = 3;
 const PERIOD_MS: u32 = 20;
 /// Largest accepted relative difference between the target's and the host's route length.
+#[cfg(not(feature = "landmark"))]
 const TOLERANCE: f32 = 1e-4;
 
 #[entry]
@@ -85,6 +107,7 @@ fn run() -> bool {
         return false;
     }
     let load_ticks = clock.now() - t;
+    #[cfg(not(feature = "landmark"))]
     planner.set_config(CONFIG);
     let net = planner.network();
     defmt::info!(
@@ -114,6 +137,19 @@ fn run() -> bool {
         );
     }
 
+    mission(planner, clock)
+}
+
+/// What the firmware does with the loaded network.
+#[cfg(feature = "landmark")]
+use landmark::run as mission;
+#[cfg(not(feature = "landmark"))]
+use popup_and_plan as mission;
+
+/// Roadmap and terrain: adds the fixture's pop-up, then plans [`CYCLES`] times with the
+/// [`RouteTask`]; true only if every route's length matches the host's.
+#[cfg(not(feature = "landmark"))]
+fn popup_and_plan(planner: &'static mut FlightPlanner, clock: Clock) -> bool {
     let (x, y, radius) = POPUP;
     let t = clock.now();
     let popup = planner.add_popup(Popup::Circle {

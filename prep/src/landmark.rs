@@ -57,9 +57,11 @@
 //! up with that turn. So each terminal also gets, for both turn directions, the line elements
 //! of the turn-then-straight path (radius `guide_radius_factor · v_nominal²/a_lat`, 1.5 by
 //! default so a quintic between them stays within `a_lat`) towards the other site: every 45° of
-//! turn, at the tangent point and halfway along the straight; a sink terminal gets those of the
-//! path flown backwards from it, negated. With them (and the chord lean) the median is 6 %
-//! above the bound, the 90th percentile 19 %, 631 chains exceed their range and every
+//! turn, at the tangent point and every half `neighbour_radius_m` along the straight (so the
+//! guides of a path are always candidates of one another, however sparse the random elements
+//! are in a long ellipse); a sink terminal gets those of the path flown backwards from it,
+//! negated. With them (and the chord lean) the median is 6 %
+//! above the bound, the 90th percentile 19 %, about 630 chains exceed their range and every
 //! overflight is reachable (`prep/examples` measured this; numbers in `docs/BENCHMARKS.md`).
 //! Guide elements in an obstacle's clearance are dropped; they are deterministic, so the build
 //! stays reproducible.
@@ -71,8 +73,14 @@
 //!   segment whose start or end velocity points away from the other end must turn through more
 //!   than 90° between two points; such curves are rarely flyable, and when they are, a chain
 //!   through other elements does the same) — the rule is symmetric under reversal, see below;
-//! * the chord is at most `neighbour_radius_m` long (default 20 turn radii `v²/a_lat`: a
-//!   quintic needs a chord of a few turn radii to turn through large angles), and
+//! * the chord is at most the basic network's neighbour radius long: `neighbour_radius_m`
+//!   (default 20 turn radii `v²/a_lat`: a quintic needs a chord of a few turn radii to turn
+//!   through large angles), or, where the random elements are sparser, the radius of a disc
+//!   expected to hold `4·max_neighbours` of them, `√(4k·area/(π·N))` (about a quarter of them
+//!   pass the velocity rule). Without it a slow aircraft with long ranges (babel-I's 45 m turn
+//!   radius, 900 m, in a 13 km ellipse) kept about three candidates per element and whole
+//!   basic networks fell apart; the cost stays at most `max_neighbours` segments per element;
+//!   and
 //! * `w` is among the `max_neighbours` (default 48) nearest such targets of `u` — or, for a
 //!   landmark overflight `w` (a sink only), `u` is among the `max_neighbours` nearest such
 //!   sources of `w`, so every overflight gets its own share of candidates (ties by index).
@@ -795,13 +803,21 @@ struct Ctx<'a> {
     params: &'a LandmarkParams,
 }
 
+/// How guide elements are laid out.
+struct Guide {
+    /// Turn radius, metres.
+    radius: f32,
+    /// Spacing along the straight, metres (half the basic network's neighbour radius).
+    spacing: f32,
+}
+
 /// Guide line elements for terminal `t`: along the two turn-then-straight paths (radius
-/// `radius`) from `t` towards `toward`, every 45° of turn and at the tangent point, heading
+/// `guide.radius`) from `t` towards `toward`, every 45° of turn and at the tangent point, heading
 /// along the path; for a sink (`into`), along the paths from `−t`, negated, so they lead into it.
 fn guide_elements(
     t: &LineElement,
     toward: Vec2,
-    radius: f32,
+    guide: &Guide,
     into: bool,
     out: &mut Vec<LineElement>,
     ctx: &Ctx,
@@ -813,12 +829,13 @@ fn guide_elements(
         heading: e.velocity.angle(),
     };
     for turn in [skyroute::Turn::Left, skyroute::Turn::Right] {
-        let Some(path) = skyroute::DubinsPath::turn_then_straight(&pose, radius, toward, turn)
+        let Some(path) =
+            skyroute::DubinsPath::turn_then_straight(&pose, guide.radius, toward, turn)
         else {
             continue;
         };
         let arc = path.lengths[0];
-        let step = radius * core::f32::consts::FRAC_PI_4;
+        let step = guide.radius * core::f32::consts::FRAC_PI_4;
         let mut marks: Vec<f32> = Vec::new();
         let mut s = step;
         while s < arc - 0.25 * step {
@@ -826,7 +843,15 @@ fn guide_elements(
             s += step;
         }
         marks.push(arc);
-        marks.push(arc + 0.5 * path.lengths[1]);
+        // Along the straight, every half neighbour radius (so consecutive guides are always
+        // candidates of each other), stopping half a spacing short of the other site.
+        let straight = path.lengths[1];
+        let spacing = guide.spacing;
+        let mut s = arc + spacing;
+        while spacing > 0.0 && s < arc + straight - 0.5 * spacing {
+            marks.push(s);
+            s += spacing;
+        }
         for s in marks {
             if s <= 0.0 {
                 continue;
@@ -896,13 +921,29 @@ fn run_job(job: &Job, ctx: &Ctx) -> JobResult {
         let v = Vec2::new(heading.cos() as f32, heading.sin() as f32) * ctx.v_nominal;
         elements.push(LineElement::new(p, v));
     }
+    // The neighbour radius of this basic network: the parameter, or, where the random elements
+    // are sparser, the radius of a disc expected to hold 4·max_neighbours of them (about a
+    // quarter pass the velocity rule), so each element keeps candidates in a long ellipse
+    // (see *Neighbour rule*). Its cost stays max_neighbours segments per element.
+    let density_radius = if elements.is_empty() {
+        0.0
+    } else {
+        let area = std::f64::consts::PI * sa * sb;
+        let k = ctx.params.max_neighbours as f64;
+        (4.0 * k * area / (std::f64::consts::PI * elements.len() as f64)).sqrt() as f32
+    };
+    let radius = ctx.params.neighbour_radius_m.max(density_radius);
     if ctx.params.guide_radius_factor > 0.0 {
-        let radius = ctx.params.guide_radius_factor * ctx.v_nominal * ctx.v_nominal / ctx.a_lat_max;
+        let turn = ctx.params.guide_radius_factor * ctx.v_nominal * ctx.v_nominal / ctx.a_lat_max;
+        let guide = Guide {
+            radius: turn,
+            spacing: 0.5 * radius,
+        };
         for t in &job.a.elements {
             guide_elements(
                 t,
                 job.focus_b,
-                radius,
+                &guide,
                 false,
                 &mut elements,
                 ctx,
@@ -910,7 +951,7 @@ fn run_job(job: &Job, ctx: &Ctx) -> JobResult {
             );
         }
         for t in &job.b.elements {
-            guide_elements(t, job.focus_a, radius, true, &mut elements, ctx, &mut stats);
+            guide_elements(t, job.focus_a, &guide, true, &mut elements, ctx, &mut stats);
         }
     }
     stats.line_elements = elements.len();
@@ -924,7 +965,6 @@ fn run_job(job: &Job, ctx: &Ctx) -> JobResult {
     let is_target = |i: usize| i >= na;
 
     // Candidates by the neighbour rule.
-    let radius = ctx.params.neighbour_radius_m;
     let k = ctx.params.max_neighbours;
     let admissible = |i: usize, j: usize| -> Option<f32> {
         if i == j || !is_source(i) || !is_target(j) {

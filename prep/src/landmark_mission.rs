@@ -172,7 +172,8 @@ pub fn plan_landmark(
 
 /// The route file of a landmark route: overflights, and every Hermite piece as its two line
 /// elements (local metres and m/s) with the piece's parameter range, so an autopilot can
-/// rebuild and sample it ([`skyroute::geometry::hermite::HermiteSegment::new`]).
+/// rebuild and sample it ([`skyroute::geometry::hermite::HermiteSegment::new`]); `legs` holds
+/// each edge as a 50 m polyline for `skyroute render`, `geometry` the route for GIS tools.
 pub fn landmark_route_json(
     r: &LandmarkRoute,
     bytes: &[u8],
@@ -182,7 +183,43 @@ pub fn landmark_route_json(
     let net = Network::from_bytes(bytes).ok();
     let mut pieces = Vec::new();
     let mut line = Vec::new();
+    let mut legs = Vec::new();
     if let Some(net) = &net {
+        // Leg names: the start, the overflown landmarks in order, the goal.
+        let mut names = vec!["start".to_string()];
+        names.extend(r.overflights.iter().map(|o| o.landmark.clone()));
+        names.push("goal".to_string());
+        for (i, &e) in r.edges.iter().enumerate() {
+            // For drawing (`skyroute render`): the pieces as a polyline through points 50 m
+            // apart along the parameter; the exact curves are in `pieces`.
+            let mut polyline: Vec<Value> = Vec::new();
+            let mut last: Option<skyroute::Vec2> = None;
+            for k in 0..net.chain_piece_count(e) {
+                let Some(seg) = net.chain_piece(e, k) else {
+                    continue;
+                };
+                let n = (seg.length() / 50.0).ceil().max(1.0) as usize;
+                for j in 0..=n {
+                    let Some(q) = seg.position(seg.t_max() * j as f32 / n as f32) else {
+                        continue;
+                    };
+                    if let Some(a) = last {
+                        if a.distance(q) > 0.0 {
+                            polyline.push(
+                                json!({"type": "line", "start": [a.x, a.y], "end": [q.x, q.y]}),
+                            );
+                        }
+                    }
+                    last = Some(q);
+                }
+            }
+            legs.push(json!({
+                "from": names.get(i).cloned().unwrap_or_default(),
+                "to": names.get(i + 1).cloned().unwrap_or_default(),
+                "length_m": net.edge_length(e).unwrap_or(0.0),
+                "primitives": polyline,
+            }));
+        }
         for &e in &r.edges {
             for k in 0..net.chain_piece_count(e) {
                 let Some(seg) = net.chain_piece(e, k) else {
@@ -207,9 +244,11 @@ pub fn landmark_route_json(
             }
         }
     }
+    let (lat0, lon0) = frame.origin();
     json!({
         "scenario": scenario_name,
         "mode": "landmark",
+        "frame": {"origin_lat_deg": lat0, "origin_lon_deg": lon0, "method": "transverse Mercator on WGS-84 centred on the origin (prep/src/frame.rs)"},
         "weather": r.weather,
         "length_m": r.summary.length,
         "network_edges": r.summary.network_edges,
@@ -224,6 +263,7 @@ pub fn landmark_route_json(
             "next_leg_m": o.leg_m,
         })).collect::<Vec<_>>(),
         "pieces": pieces,
+        "legs": legs,
         "geometry": {"type": "LineString", "coordinates": line},
     })
 }

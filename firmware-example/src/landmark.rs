@@ -1,0 +1,282 @@
+//! Landmark mode (Babel) on the flight computer: plan from the network's stored start to its
+//! stored goal in the fixture's weather, then lose a landmark in flight and plan again.
+//!
+//! 1. `set_weather(WEATHER)`; the query is the stored start vertex's pose → the stored goal
+//!    vertex's position with a free heading, Dijkstra, budget `Planner::worst_case_work()`;
+//!    one [`RouteTask`] cycle plans it (timed with SysTick) and the route's overflights are
+//!    logged (landmark, compass direction, the leg's cost from `route_edges` + `edge_record`);
+//! 2. `update_rosette(LOST_LANDMARK, &[0.0; D])` — the fixture's landmark (the first one the
+//!    route overflies) is lost — through [`RouteTask::planner`] between cycles, as a navigation
+//!    monitor would, then one more cycle re-plans;
+//! 3. the verdict: both answers equal the host's exactly (`EXPECTED_*` in `query.rs`: length,
+//!    edges, pieces, work; or the re-plan fails on both), and the new route avoids the lost
+//!    landmark.
+
+use crate::autopilot::{Cycle, Next, RouteTask};
+use crate::clock::{self, Clock};
+use crate::fixture::*;
+use crate::{stack, FlightPlanner, PERIOD_MS};
+use skyroute::planner::{RouteSummary, MAX_ROSETTE_DIRECTIONS};
+use skyroute::{Goal, Network, PlanError, Query, Search};
+
+/// The task type: the planner in its `static`, SysTick as delay and clock.
+type Task = RouteTask<'static, 'static, Clock, Clock, V_CAP, E_CAP, P_CAP, R_CAP>;
+
+/// Plans from the stored start to the stored goal, loses [`LOST_LANDMARK`], plans again; true
+/// only if both answers equal the host's.
+pub fn run(planner: &'static mut FlightPlanner, clock: Clock) -> bool {
+    let net = *planner.network();
+    let Some(l) = net.landmark().copied() else {
+        defmt::error!("the fixture's network is not a landmark network");
+        return false;
+    };
+    defmt::info!(
+        "landmark network: {=u32} landmarks x {=u32} directions, {=u32} weathers, {=u32} line elements, start vertex {=u32} (range {=f32} m), goal vertex {=u32}",
+        l.landmark_count,
+        l.directions,
+        l.weather_count,
+        l.element_count,
+        l.start_vertex,
+        l.start_range_m,
+        l.goal_vertex
+    );
+    let (Some(start), Some(goal)) = (net.vertex(l.start_vertex), net.vertex(l.goal_vertex)) else {
+        defmt::error!("the network has no stored start or goal");
+        return false;
+    };
+
+    let t = clock.now();
+    let weather = planner.set_weather(WEATHER);
+    let weather_ticks = clock.now() - t;
+    if let Err(e) = weather {
+        defmt::error!("set_weather({=u32}) failed: {}", WEATHER, e);
+        return false;
+    }
+    defmt::info!(
+        "set_weather({=u32}) took {=u64} ticks",
+        WEATHER,
+        weather_ticks
+    );
+
+    let query = Query {
+        start,
+        goal: Goal {
+            position: goal.position,
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    };
+    defmt::info!("query: {}", query);
+    let budget = planner.worst_case_work();
+    defmt::info!(
+        "worst-case work bound {=u64} (host {=u64}): the budget",
+        budget,
+        BUDGET
+    );
+    if budget != BUDGET {
+        defmt::warn!("the host computed a different bound: fixture out of date?");
+    }
+
+    let mut task: Task = RouteTask::new(planner, clock, clock, PERIOD_MS, budget);
+
+    // 1. The planned route.
+    let (first, plan_ticks) = plan_once(&mut task, query);
+    let mut verdict = match first {
+        Ok(s) => {
+            log_route(&net, "plan", &s, plan_ticks, task.planner().route_edges());
+            let same = s.length == EXPECTED_LENGTH
+                && s.network_edges == EXPECTED_NETWORK_EDGES
+                && s.primitives == EXPECTED_PRIMITIVES
+                && s.work.total() == EXPECTED_WORK;
+            if !same {
+                defmt::error!(
+                    "route {=f32} m, {=u32} edges, {=u32} pieces, work {=u64}; host: {=f32} m, {=u32} edges, {=u32} pieces, work {=u64}",
+                    s.length,
+                    s.network_edges,
+                    s.primitives,
+                    s.work.total(),
+                    EXPECTED_LENGTH,
+                    EXPECTED_NETWORK_EDGES,
+                    EXPECTED_PRIMITIVES,
+                    EXPECTED_WORK
+                );
+            }
+            same
+        }
+        Err(e) => {
+            defmt::error!("plan failed after {=u64} ticks: {}", plan_ticks, e);
+            false
+        }
+    };
+    let overflown = task.planner().route_edges().iter().any(|&e| {
+        net.edge_record(e).is_some_and(|r| {
+            r.target < l.landmark_count * l.directions && r.target / l.directions == LOST_LANDMARK
+        })
+    });
+    if !overflown {
+        defmt::warn!(
+            "landmark {=u32} (the fixture's) is not on the route",
+            LOST_LANDMARK
+        );
+    }
+
+    // 2. A landmark lost in flight: all its qualities 0, in every weather.
+    let zeros = [0.0f32; MAX_ROSETTE_DIRECTIONS];
+    let Some(lost) = zeros.get(..l.directions as usize) else {
+        defmt::error!(
+            "{=u32} directions: more than a rosette override holds ({=usize})",
+            l.directions,
+            MAX_ROSETTE_DIRECTIONS
+        );
+        return false;
+    };
+    let t = clock.now();
+    let updated = task.planner().update_rosette(LOST_LANDMARK, lost);
+    let update_ticks = clock.now() - t;
+    if let Err(e) = updated {
+        defmt::error!("update_rosette({=u32}) failed: {}", LOST_LANDMARK, e);
+        return false;
+    }
+    defmt::info!(
+        "landmark {=u32} lost: update_rosette took {=u64} ticks = {=u64} us",
+        LOST_LANDMARK,
+        update_ticks,
+        Clock::ticks_to_us(update_ticks)
+    );
+    let (second, replan_ticks) = plan_once(&mut task, query);
+    let replan_ok = match (second, EXPECTED_REPLAN) {
+        (Ok(s), Some((length, edges, work))) => {
+            let route = task.planner().route_edges();
+            log_route(&net, "re-plan", &s, replan_ticks, route);
+            let avoids = route.iter().all(|&e| {
+                net.edge_record(e).is_some_and(|r| {
+                    r.source >= l.landmark_count * l.directions
+                        || r.source / l.directions != LOST_LANDMARK
+                })
+            });
+            if !avoids {
+                defmt::error!(
+                    "the new route still overflies landmark {=u32}",
+                    LOST_LANDMARK
+                );
+            }
+            let same = s.length == length && s.network_edges == edges && s.work.total() == work;
+            if !same {
+                defmt::error!(
+                    "re-plan {=f32} m, {=u32} edges, work {=u64}; host: {=f32} m, {=u32} edges, work {=u64}",
+                    s.length,
+                    s.network_edges,
+                    s.work.total(),
+                    length,
+                    edges,
+                    work
+                );
+            }
+            avoids && same
+        }
+        (Err(e), None) => {
+            defmt::info!(
+                "re-plan: no route ({}) in {=u64} ticks, as on the host; the previous route is kept",
+                e,
+                replan_ticks
+            );
+            true
+        }
+        (Ok(s), None) => {
+            defmt::error!("re-plan found {=f32} m; the host found no route", s.length);
+            false
+        }
+        (Err(e), Some((length, _, _))) => {
+            defmt::error!("re-plan failed ({}); the host found {=f32} m", e, length);
+            false
+        }
+    };
+    verdict &= replan_ok;
+
+    let (stack_used, stack_size) = stack::high_water();
+    defmt::info!(
+        "stack: peak {=usize} B of the {=usize} B left above .data/.bss",
+        stack_used,
+        stack_size
+    );
+    if verdict {
+        defmt::info!(
+            "PASS: route {=f32} m and, landmark {=u32} lost, {=f32} m: equal to the host's",
+            EXPECTED_LENGTH,
+            LOST_LANDMARK,
+            EXPECTED_REPLAN.map_or(f32::NAN, |r| r.0)
+        );
+    }
+    verdict
+}
+
+/// One [`RouteTask`] cycle: plans `query`, returns the outcome and the ticks `plan` took.
+fn plan_once(task: &mut Task, query: Query) -> (Result<RouteSummary, PlanError>, u64) {
+    let mut result = (Err(PlanError::Internal), 0);
+    task.run(
+        |_| query,
+        |cycle: &Cycle<'_>| {
+            result = (cycle.outcome, cycle.plan_ticks);
+            Next::Stop
+        },
+    );
+    result
+}
+
+/// Logs a route: summary, ticks, and each edge (the start leg, then one line per overflight:
+/// landmark, compass direction, the next leg's cost and pieces).
+fn log_route(net: &Network<'_>, what: &str, s: &RouteSummary, ticks: u64, edges: &[u32]) {
+    defmt::info!(
+        "{=str}: route {=f32} m, {=u32} network edges, {=u32} Hermite pieces, work {=u64}: {}",
+        what,
+        s.length,
+        s.network_edges,
+        s.primitives,
+        s.work.total(),
+        s.work
+    );
+    defmt::info!(
+        "{=str}: took {=u64} SysTick ticks = {=u64} us at {=u32} Hz",
+        what,
+        ticks,
+        Clock::ticks_to_us(ticks),
+        clock::CORE_HZ
+    );
+    let Some(l) = net.landmark() else {
+        return;
+    };
+    let overflights = l.landmark_count * l.directions;
+    for &e in edges {
+        let Some(r) = net.edge_record(e) else {
+            continue;
+        };
+        let pieces = net.chain_piece_count(e);
+        if r.source == l.start_vertex {
+            defmt::info!(
+                "  start -> leg {=f32} m ({=u32} pieces, edge {=u32})",
+                r.cost,
+                pieces,
+                e
+            );
+        } else if r.source < overflights {
+            let (landmark, direction) = (r.source / l.directions, r.source % l.directions);
+            defmt::info!(
+                "  overflight L{=u32} direction {=u32} (compass {=u32} deg) -> leg {=f32} m ({=u32} pieces, edge {=u32}){=str}",
+                landmark,
+                direction,
+                360 * direction / l.directions,
+                r.cost,
+                pieces,
+                e,
+                if r.target == l.goal_vertex { " -> goal" } else { "" }
+            );
+        } else {
+            defmt::info!(
+                "  vertex {=u32} -> leg {=f32} m (edge {=u32})",
+                r.source,
+                r.cost,
+                e
+            );
+        }
+    }
+}
