@@ -1,4 +1,4 @@
-//! Landmark networks (format v2, mode 1) as bad input: each targeted damage of the landmark
+//! Landmark networks (format v3, mode 1) as bad input: each targeted damage of the landmark
 //! sections gets its own `LoadError` (with a valid CRC, so the field checks decide); random
 //! mutations never panic the loader or a planner using what it accepted; bad onboard calls
 //! (unknown weather or landmark, NaN or out-of-range qualities, a full override table) are
@@ -7,8 +7,8 @@
 mod common;
 
 use common::Rng;
-use skyroute::network::crc32;
-use skyroute::network::format::Header;
+use skyroute::network::format::{Header, ProvenanceRecord};
+use skyroute::network::image_checksum;
 use skyroute::planner::{Goal, PlanError, Popup, Query, Search};
 use skyroute::{LoadError, Network, Planner, Vec2};
 use skyroute_prep::build::build;
@@ -31,8 +31,8 @@ fn network() -> Vec<u8> {
 }
 
 fn fix_crc(bytes: &mut [u8]) {
-    let crc = crc32(&bytes[Header::SIZE..]);
-    bytes[Header::SIZE - 4..Header::SIZE].copy_from_slice(&crc.to_le_bytes());
+    let crc = image_checksum(bytes);
+    bytes[Header::CHECKED_SIZE..Header::SIZE].copy_from_slice(&crc.to_le_bytes());
 }
 
 /// Where the landmark record starts: found by its leading counts and nominal speed (10
@@ -69,7 +69,9 @@ fn each_landmark_damage_has_its_own_error() {
     let rec = landmark_record_at(&good);
     let landmarks = rec + 52;
     let rosettes = landmarks + 12 * l.landmark_count as usize;
-    let elements = good.len() - 16 * l.element_count as usize;
+    // The elements come last but for the provenance records that close every body.
+    let provenance = ProvenanceRecord::SIZE * net.provenance_count() as usize;
+    let elements = good.len() - provenance - 16 * l.element_count as usize;
     let damaged = |f: &dyn Fn(&mut Vec<u8>)| {
         let mut b = good.clone();
         f(&mut b);

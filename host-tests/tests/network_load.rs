@@ -4,8 +4,10 @@
 mod common;
 
 use common::{world, Rng};
-use skyroute::network::format::{EdgeRecord, Header, U32Record, VertexRecord};
-use skyroute::network::{crc32, LoadError, Section};
+use skyroute::network::format::{
+    EdgeRecord, Header, ProvenanceRecord, U32Record, VertexRecord, FORMAT_VERSION,
+};
+use skyroute::network::{image_checksum, LoadError, Section};
 use skyroute::planner::{Goal, Popup, Query, Search};
 use skyroute::{Network, Planner, Vec2};
 
@@ -13,8 +15,8 @@ type TestPlanner<'n> = Planner<'n, 2048, 65536, 4, 512>;
 
 /// Rewrites the header's CRC so that a deliberate body change reaches the field checks.
 fn fix_crc(bytes: &mut [u8]) {
-    let crc = crc32(&bytes[Header::SIZE..]);
-    bytes[Header::SIZE - 4..Header::SIZE].copy_from_slice(&crc.to_le_bytes());
+    let crc = image_checksum(bytes);
+    bytes[Header::CHECKED_SIZE..Header::SIZE].copy_from_slice(&crc.to_le_bytes());
 }
 
 fn vertices_at(_bytes: &[u8]) -> usize {
@@ -46,6 +48,59 @@ fn valid_image_round_trips() {
     assert_eq!(stored, w.spec.edges.len());
     assert!(net.vertex(net.vertex_count()).is_none());
     assert!(net.edge(net.edge_count()).is_none());
+}
+
+/// The checksum covers the whole image, header included: CRC-32 detects every single-bit
+/// error, so no flipped bit anywhere may load (before the header was covered, a flip in the
+/// origin, the clearance or the grid cell loaded and moved the map under the route).
+#[test]
+fn every_single_bit_flip_of_the_header_and_of_a_body_sample_is_refused() {
+    let w = world(5, 600.0, 60.0, 40.0, 3);
+    let mut spec = w.spec.clone();
+    spec.provenance = (0..5u8)
+        .map(|kind| ProvenanceRecord {
+            kind,
+            digest: 0x0123_4567_89ab_cdef ^ kind as u64,
+        })
+        .collect();
+    let good = skyroute::network::write::encode(&spec).unwrap();
+    let net = Network::from_bytes(&good).unwrap();
+    assert_eq!(net.provenance_count(), 5);
+    assert_eq!(net.provenance(4), Some(spec.provenance[4]));
+    assert_eq!(net.provenance(5), None);
+    let provenance_at = good.len() - 5 * ProvenanceRecord::SIZE;
+    let bytes = (0..Header::SIZE)
+        .chain((Header::SIZE..good.len()).step_by(7))
+        .chain(provenance_at..good.len());
+    let mut tried = 0;
+    for byte in bytes {
+        for bit in 0..8 {
+            let mut b = good.clone();
+            b[byte] ^= 1 << bit;
+            tried += 1;
+            if let Ok(n) = Network::from_bytes(&b) {
+                panic!(
+                    "byte {byte} bit {bit} flipped loads (origin {:?}, clearance {})",
+                    n.origin_deg(),
+                    n.clearance()
+                );
+            }
+        }
+    }
+    assert!(tried > 8 * (Header::SIZE + 45), "{tried}");
+
+    // An image of an older version is refused as such, with what to do about it.
+    let mut old = good.clone();
+    old[4..6].copy_from_slice(&(FORMAT_VERSION - 1).to_le_bytes());
+    let e = Network::from_bytes(&old).unwrap_err();
+    assert_eq!(
+        e,
+        LoadError::UnsupportedVersion {
+            found: FORMAT_VERSION - 1,
+            supported: FORMAT_VERSION
+        }
+    );
+    assert!(e.to_string().contains("rebuild"), "{e}");
 }
 
 #[test]
@@ -201,10 +256,11 @@ fn each_damage_has_its_own_error() {
         Err(LoadError::BodyLengthMismatch { .. })
     ));
 
-    // A NaN turn radius in the header.
+    // A NaN turn radius in the header (the checksum, which covers the header, fixed).
     let mut b = good.clone();
     let r_at = 4 + 2 + 1 + 1 + 8 + 8;
     b[r_at..r_at + 4].copy_from_slice(&f32::NAN.to_le_bytes());
+    fix_crc(&mut b);
     assert!(matches!(
         Network::from_bytes(&b),
         Err(LoadError::InvalidParameter { .. })

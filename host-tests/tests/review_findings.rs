@@ -4,7 +4,7 @@
 
 use skyroute::network::format::{EdgeRecord, Header, ObstacleRecord, U32Record, VertexRecord};
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec};
-use skyroute::network::{crc32, LoadError};
+use skyroute::network::{image_checksum, LoadError};
 use skyroute::planner::{Goal, PlanError, PlannerConfig, Popup, Query, Search};
 use skyroute::{DubinsPath, Network, Planner, Pose, Vec2};
 use std::f32::consts::{FRAC_PI_2, PI};
@@ -63,6 +63,7 @@ fn lattice_spec(n: usize, spacing: f32, origin: f32, radius: f32) -> NetworkSpec
         grid_cell_m: 2.0 * radius,
         landmark: None,
         terrain: None,
+        provenance: Vec::new(),
     }
 }
 
@@ -101,9 +102,9 @@ fn splice_obstacles(image: &[u8], obstacles: &[Vec<u8>], points: &[Vec2]) -> Vec
     put_u32(&mut out, 40, obstacles.len() as u32);
     put_u32(&mut out, 44, points.len() as u32);
     let body_len = (out.len() - Header::SIZE) as u32;
-    put_u32(&mut out, 72, body_len);
-    let crc = crc32(&out[Header::SIZE..]);
-    put_u32(&mut out, 76, crc);
+    put_u32(&mut out, Header::SIZE - 8, body_len);
+    let crc = image_checksum(&out);
+    put_u32(&mut out, Header::CHECKED_SIZE, crc);
     out
 }
 
@@ -310,8 +311,8 @@ fn loader_rejects_edge_geometry_that_misses_its_target() {
         let at = edge0 + 13 + 4 * k;
         bytes[at..at + 4].copy_from_slice(&x.to_le_bytes());
     }
-    let crc = crc32(&bytes[Header::SIZE..]);
-    put_u32(&mut bytes, 76, crc);
+    let crc = image_checksum(&bytes);
+    put_u32(&mut bytes, Header::CHECKED_SIZE, crc);
     match Network::from_bytes(&bytes) {
         Err(_) => {}
         Ok(net) => {
@@ -348,6 +349,7 @@ fn zero_and_one_capacities_never_panic() {
         grid_cell_m: 60.0,
         landmark: None,
         terrain: None,
+        provenance: Vec::new(),
     };
     let empty = encode(&empty).unwrap();
     let one = NetworkSpec {

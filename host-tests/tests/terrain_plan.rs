@@ -11,6 +11,7 @@ mod rng64;
 
 use raw_dem::{raw_navigable, route_violations};
 use rng64::Rng;
+use skyroute::network::format::ProvenanceRecord;
 use skyroute::planner::{Goal, PlanError, Query, QueryField, Search};
 use skyroute::{LoadError, Network, Planner, Pose, Primitive, Vec2};
 use skyroute_prep::build::{build, local, local_heading, BuildOptions, Built};
@@ -501,7 +502,9 @@ fn damaged_terrain_networks_are_refused() {
     let net = Network::from_bytes(&bytes).unwrap();
     let t = *net.terrain().unwrap();
     let grid = net.terrain_grid().unwrap();
-    let table = bytes.len() - (t.cols * t.rows) as usize;
+    // The table comes last but for the provenance records that close every body.
+    let provenance = ProvenanceRecord::SIZE * net.provenance_count() as usize;
+    let table = bytes.len() - provenance - (t.cols * t.rows) as usize;
     // The cell under the middle of edge 0's segment, lowered to 0.
     let e = net.edge(0).unwrap();
     let (a, z) = (
@@ -516,8 +519,9 @@ fn damaged_terrain_networks_are_refused() {
     let stored = net.edge_highest_code(0).unwrap();
     let mut damaged = bytes.clone();
     damaged[table + (r * t.cols + c) as usize] = stored.saturating_add(1);
-    let body_crc = skyroute::network::crc32(&damaged[skyroute::network::format::Header::SIZE..]);
-    damaged[76..80].copy_from_slice(&body_crc.to_le_bytes());
+    let crc = skyroute::network::image_checksum(&damaged);
+    let at = skyroute::network::format::Header::CHECKED_SIZE;
+    damaged[at..at + 4].copy_from_slice(&crc.to_le_bytes());
     match Network::from_bytes(&damaged) {
         Err(LoadError::EdgeElevationUnderstated {
             stored: s,

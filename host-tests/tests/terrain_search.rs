@@ -113,6 +113,7 @@ fn case(rng: &mut Rng) -> Case {
             altitude_m: ALTITUDE,
             safety_height_m: 0.0,
         }),
+        provenance: Vec::new(),
     };
     Case {
         bytes: encode(&spec).unwrap(),

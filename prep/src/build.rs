@@ -6,6 +6,7 @@ use crate::landmark::{build_landmark_network, LandmarkNetwork};
 use crate::roadmap::{build_roadmap, CollisionCheck, Roadmap, RoadmapInput, RoadmapParams};
 use crate::scenario::{Mode, Scenario};
 use crate::terrain::{build_terrain_graph, TerrainGraph, TerrainParams};
+use skyroute::network::format::ProvenanceRecord;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec};
 use skyroute::network::write::{LandmarkSiteSpec, LandmarkSpec};
 use skyroute::{Pose, Vec2};
@@ -58,6 +59,11 @@ pub enum BuildError {
     Terrain(String, crate::terrain::TerrainError),
     /// The landmark network could not be built.
     Landmark(crate::landmark::LandmarkError),
+    /// The scenario's digests could not be computed (its DEM could not be read).
+    Provenance(String),
+    /// Terrain mode: the scenario has a no-fly zone or threat, which terrain networks cannot
+    /// hold: (scenario file, the feature's label).
+    ZoneInTerrain(String, String),
 }
 
 impl fmt::Display for BuildError {
@@ -74,6 +80,13 @@ impl fmt::Display for BuildError {
             BuildError::Dem(e) => write!(f, "{e}"),
             BuildError::Terrain(file, e) => write!(f, "{file}: terrain: {e}"),
             BuildError::Landmark(e) => write!(f, "{e}"),
+            BuildError::Provenance(e) => write!(f, "{e}"),
+            BuildError::ZoneInTerrain(file, what) => write!(
+                f,
+                "{file}: {what}: terrain networks hold no no-fly zones or threats, and a \
+                 network that left it out would fly through it; remove it from the scenario or \
+                 give it as a `popup` feature"
+            ),
         }
     }
 }
@@ -118,6 +131,26 @@ pub fn local_obstacles(s: &Scenario, frame: &LocalFrame) -> Vec<ObstacleSpec> {
     out
 }
 
+/// The name of the scenario's no-fly zone or threat disc that contains the local point `p`
+/// (as `no-fly zone "B12"` or `threat "T3"`), if any.
+pub fn obstacle_containing(s: &Scenario, frame: &LocalFrame, p: Vec2) -> Option<String> {
+    let names = s
+        .no_fly
+        .iter()
+        .map(|z| format!("no-fly zone {:?}", z.name))
+        .chain(s.threats.iter().map(|t| format!("threat {:?}", t.name)));
+    local_obstacles(s, frame)
+        .iter()
+        .zip(names)
+        .find(|(o, _)| match o {
+            ObstacleSpec::Polygon(ring) => {
+                skyroute::geometry::predicates::point_in_polygon(p, ring.as_slice())
+            }
+            ObstacleSpec::Circle { centre, radius } => p.distance(*centre) <= *radius,
+        })
+        .map(|(_, name)| name)
+}
+
 /// A lon/lat point in the local frame, as the core's f32 vector.
 pub fn local(frame: &LocalFrame, lon: f64, lat: f64) -> Vec2 {
     let (x, y) = frame.to_local(lon, lat);
@@ -147,10 +180,13 @@ pub fn build(
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Built, BuildError> {
     let file = s.path.display().to_string();
+    let provenance = crate::provenance::scenario_items(s)
+        .map(|items| crate::provenance::records(&items))
+        .map_err(|e| BuildError::Provenance(e.to_string()))?;
     match s.planner.mode {
         Mode::Roadmap => {}
-        Mode::Terrain => return build_terrain(s, options),
-        Mode::Landmark => return build_landmark(s, options, progress),
+        Mode::Terrain => return build_terrain(s, options, provenance),
+        Mode::Landmark => return build_landmark(s, options, progress, provenance),
     }
     let p = &s.planner;
     let need = |v: Option<f64>, field: &'static str| {
@@ -203,6 +239,7 @@ pub fn build(
         grid_cell_m: options.grid_cell_m.unwrap_or(2.0 * turn_radius),
         landmark: None,
         terrain: None,
+        provenance,
     };
     let bytes = encode(&spec).map_err(|e| BuildError::Encode(file, e))?;
     Ok(Built {
@@ -218,12 +255,23 @@ pub fn build(
 /// Terrain mode: the visibility graph over the scenario's DEM at its altitude
 /// ([`crate::terrain`]), encoded with the elevation table so that the aircraft can change
 /// altitude in flight.
-fn build_terrain(s: &Scenario, options: &BuildOptions) -> Result<Built, BuildError> {
+fn build_terrain(
+    s: &Scenario,
+    options: &BuildOptions,
+    provenance: Vec<ProvenanceRecord>,
+) -> Result<Built, BuildError> {
     let file = s.path.display().to_string();
     let t = s
         .terrain
         .as_ref()
         .ok_or_else(|| BuildError::Missing(file.clone(), "terrain"))?;
+    let zone = s
+        .no_fly
+        .first()
+        .map(|z| format!("no-fly zone {:?}", z.name));
+    if let Some(what) = zone.or_else(|| s.threats.first().map(|t| format!("threat {:?}", t.name))) {
+        return Err(BuildError::ZoneInTerrain(file, what));
+    }
     let dem = crate::dem::load(&t.dem).map_err(BuildError::Dem)?;
     let frame = s.local_frame();
     let clearance = s.planner.clearance_m.unwrap_or(0.0);
@@ -274,6 +322,7 @@ fn build_terrain(s: &Scenario, options: &BuildOptions) -> Result<Built, BuildErr
             altitude_m: t.altitude_m as f32,
             safety_height_m: t.safety_height_m as f32,
         }),
+        provenance,
     };
     let bytes = encode(&spec).map_err(|e| BuildError::Encode(file, e))?;
     Ok(Built {
@@ -294,12 +343,14 @@ fn build_landmark(
     s: &Scenario,
     options: &BuildOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
+    provenance: Vec<ProvenanceRecord>,
 ) -> Result<Built, BuildError> {
     let file = s.path.display().to_string();
     let net = build_landmark_network(s, progress).map_err(BuildError::Landmark)?;
     let frame = net.frame.unwrap_or_else(|| s.local_frame());
-    let spec = landmark_spec(&net, options.grid_cell_m.unwrap_or(2000.0), &frame)
+    let mut spec = landmark_spec(&net, options.grid_cell_m.unwrap_or(2000.0), &frame)
         .map_err(|field| BuildError::Missing(file.clone(), field))?;
+    spec.provenance = provenance;
     let bytes = encode(&spec).map_err(|e| BuildError::Encode(file, e))?;
     Ok(Built {
         bytes,
@@ -396,5 +447,6 @@ pub fn landmark_spec(
             start_range_m,
             chains,
         }),
+        provenance: Vec::new(),
     })
 }

@@ -8,7 +8,8 @@
 //!   "frame": {"origin_lat_deg", "origin_lon_deg", "method"},
 //!   "turn_radius_m", "clearance_m",
 //!   "vertices":  [{"id", "x", "y", "heading_rad", "heading_compass_deg", "lon", "lat"}],
-//!   "edges":     [{"id", "from", "to", "cost", "word", "lengths", "primitives": [...]}],
+//!   "edges":     [{"id", "from", "to", "cost", "word", "lengths", "primitives": [...]}
+//!               | {"id", "from", "to", "cost", "word": "hermite_chain", "length", "pieces": [...]}],
 //!   "obstacles": [{"id", "kind": "polygon", "points": [[x, y], ...]}
 //!               | {"id", "kind": "circle", "centre": [x, y], "radius"}]
 //! }
@@ -20,11 +21,13 @@
 //! same direction as a compass heading (clockwise from *true* north, corrected for the
 //! projection's meridian convergence at the vertex). `lon`/`lat` are WGS-84 degrees. Edge
 //! primitives are written by [`crate::route_json::primitive_json`] and fly the edge from the
-//! `from` vertex's pose to the `to` vertex's pose. Numbers are the network's f32 values, written
-//! exactly (as f64).
+//! `from` vertex's pose to the `to` vertex's pose. A landmark network's edges are chains of
+//! quintic Hermite pieces, written by [`crate::route_json::hermite_piece_json`]. `provenance`
+//! lists the digests of what the network was built from (`prep/src/provenance.rs`). Numbers are
+//! the network's f32 values, written exactly (as f64).
 
 use crate::frame::LocalFrame;
-use crate::route_json::primitive_json;
+use crate::route_json::{hermite_piece_json, primitive_json};
 use serde_json::{json, Value};
 use skyroute::geometry::compass_deg_from_heading;
 use skyroute::geometry::predicates::PolygonView;
@@ -72,18 +75,7 @@ pub fn network_json(net: &Network) -> Value {
         })
         .collect();
     let edges: Vec<Value> = (0..net.edge_count())
-        .filter_map(|i| Some((i, net.edge(i)?, net.edge_path(i)?)))
-        .map(|(i, e, path)| {
-            json!({
-                "id": i,
-                "from": e.source,
-                "to": e.target,
-                "cost": e.cost,
-                "word": e.word.name(),
-                "lengths": e.lengths,
-                "primitives": path.primitives().iter().flatten().map(primitive_json).collect::<Vec<_>>(),
-            })
-        })
+        .filter_map(|i| edge_json(net, i))
         .collect();
     let obstacles: Vec<Value> = (0..net.obstacle_count())
         .filter_map(|i| net.obstacle(i).map(|(o, _)| (i, o)))
@@ -114,12 +106,47 @@ pub fn network_json(net: &Network) -> Value {
         "vertices": vertices,
         "edges": edges,
         "obstacles": obstacles,
+        "provenance": (0..net.provenance_count())
+            .filter_map(|i| net.provenance(i))
+            .map(|r| json!({"kind": r.kind, "digest": format!("{:016x}", r.digest)}))
+            .collect::<Vec<_>>(),
     })
+}
+
+/// Edge `i` as JSON: a Dubins word (or a terrain line) with its primitives, or a landmark
+/// network's Hermite chain with its pieces. `None` only past the edge count.
+fn edge_json(net: &Network, i: u32) -> Option<Value> {
+    let r = net.edge_record(i)?;
+    if let (Some(e), Some(path)) = (net.edge(i), net.edge_path(i)) {
+        return Some(json!({
+            "id": i,
+            "from": e.source,
+            "to": e.target,
+            "cost": e.cost,
+            "word": e.word.name(),
+            "lengths": e.lengths,
+            "primitives": path.primitives().iter().flatten().map(primitive_json).collect::<Vec<_>>(),
+        }));
+    }
+    let pieces: Vec<Value> = (0..net.chain_piece_count(i))
+        .filter_map(|k| net.chain_piece(i, k))
+        .map(|seg| hermite_piece_json(&seg))
+        .collect();
+    Some(json!({
+        "id": i,
+        "from": r.source,
+        "to": r.target,
+        "cost": r.cost,
+        "word": "hermite_chain",
+        "length": net.edge_length(i).unwrap_or(0.0),
+        "pieces": pieces,
+    }))
 }
 
 /// Reads the network image `input` and writes it as JSON to `output` (indented when `pretty`).
 /// Returns the numbers of vertices, edges and obstacles. Errors name the file concerned.
 pub fn export_file(input: &Path, output: &Path, pretty: bool) -> Result<(u32, u32, u32), String> {
+    crate::output::refuse_overwriting_inputs(output, &[input])?;
     let bytes = read_network(input)?;
     let net = Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", input.display()))?;
     let json = network_json(&net);
@@ -130,6 +157,6 @@ pub fn export_file(input: &Path, output: &Path, pretty: bool) -> Result<(u32, u3
     }
     .map_err(|e| format!("{}: {e}", output.display()))?;
     text.push('\n');
-    std::fs::write(output, text).map_err(|e| format!("{}: {e}", output.display()))?;
+    crate::output::write_atomically(output, text.as_bytes())?;
     Ok((net.vertex_count(), net.edge_count(), net.obstacle_count()))
 }

@@ -225,14 +225,9 @@ pub fn landmark_route_json(
                 let Some(seg) = net.chain_piece(e, k) else {
                     continue;
                 };
-                let (a, b) = (seg.start(), seg.end());
-                pieces.push(json!({
-                    "edge": e,
-                    "from": {"position": [a.position.x, a.position.y], "velocity": [a.velocity.x, a.velocity.y]},
-                    "to": {"position": [b.position.x, b.position.y], "velocity": [b.velocity.x, b.velocity.y]},
-                    "t_max": seg.t_max(),
-                    "length": seg.length(),
-                }));
+                let mut piece = crate::route_json::hermite_piece_json(&seg);
+                piece["edge"] = json!(e);
+                pieces.push(piece);
                 let n = (seg.length() / 200.0).ceil().max(1.0) as usize;
                 for i in usize::from(!line.is_empty())..=n {
                     let Some(q) = seg.position(seg.t_max() * i as f32 / n as f32) else {

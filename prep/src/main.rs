@@ -4,16 +4,31 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use skyroute_prep::build::local;
 use skyroute_prep::build::{build, BuildOptions};
-use skyroute_prep::landmark_mission::{landmark_route_json, plan_landmark};
-use skyroute_prep::mission::{plan_mission, LocalPopup};
+use skyroute_prep::landmark_mission::{landmark_route_json, plan_landmark, LandmarkPlanError};
+use skyroute_prep::landmark_reach::no_route_proof;
+use skyroute_prep::mission::{plan_mission_with, LocalPopup, MissionOptions};
+use skyroute_prep::output::{refuse_overwriting_inputs, write_atomically};
+use skyroute_prep::plan_checks::{check_query, gather_popups, PopupInput, PopupSource};
+use skyroute_prep::provenance::check_binding;
 use skyroute_prep::scenario;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+/// Exit codes, for `--help` and the README.
+const EXIT_CODES: &str = "Exit codes:
+  0  success
+  1  bad input: the message names the file, and for scenarios the feature and the field
+     (a corrupt network, a scenario that does not match its network, an endpoint or pop-up
+     off the network's map, a start inside a no-fly zone, an output path naming an input)
+  2  usage: an unknown option or a malformed value (clap's message)
+  3  no route exists: the message names the leg and why (for a landmark scenario, the proof
+     when the scenario's numbers alone rule every route out)
+Outputs are written to a temporary file and renamed, so a failure leaves no partial file.";
+
 /// Scenarios in, preprocessed networks out.
 #[derive(Parser)]
-#[command(name = "skyroute", version, about)]
+#[command(name = "skyroute", version, about, after_help = EXIT_CODES)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -66,15 +81,31 @@ enum Command {
         hull_repair: bool,
     },
     /// Plan start → waypoints in order → goal through a network with the onboard core.
+    ///
+    /// Before planning it checks that the scenario is the one the network was built from (the
+    /// mode, and digests of the vehicle, clearance, every no-fly zone and threat, the
+    /// landmarks and weathers, the DEM: anything changed is named), that the start, waypoints,
+    /// goal and every pop-up lie on the network's map, and it applies the scenario's `popup`
+    /// features and every `--popup`, recorded in the route file.
+    #[command(after_help = EXIT_CODES)]
     Plan {
         /// The network image.
         network: PathBuf,
-        /// The scenario whose start, waypoints and goal to visit.
+        /// The scenario the network was built from, whose start, waypoints and goal to visit.
         #[arg(long)]
         scenario: PathBuf,
         /// A circular pop-up obstacle, `LON,LAT,RADIUS_M` (repeatable).
         #[arg(long, value_parser = parse_popup)]
         popup: Vec<(f64, f64, f64)>,
+        /// Leave the scenario's `popup` features out (plan the nominal route); the route file
+        /// says so.
+        #[arg(long)]
+        no_scenario_popups: bool,
+        /// Connect each leg's start and goal only to vertices within this many metres. By
+        /// default the network's radius (1000 m for roadmaps, unbounded for terrain) is
+        /// widened to the 32 nearest vertices however far when an end does not connect.
+        #[arg(long, value_parser = parse_radius)]
+        connect_radius: Option<f32>,
         /// Weather for landmark networks, a name from the scenario's `weather` (default: its
         /// first); roadmap and terrain networks have none.
         #[arg(long)]
@@ -151,6 +182,13 @@ fn parse_popup(s: &str) -> Result<(f64, f64, f64), String> {
     }
 }
 
+fn parse_radius(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(r) if r.is_finite() && r > 0.0 => Ok(r),
+        _ => Err(format!("expected a positive number of metres, got {s:?}")),
+    }
+}
+
 fn parse_area(s: &str) -> Result<(f64, f64, f64, f64), String> {
     let v: Vec<f64> = s
         .split(',')
@@ -177,6 +215,9 @@ fn build_command(
 ) -> CliResult {
     let t0 = Instant::now();
     let s = load_scenario(path, hull_repair)?;
+    let mut inputs = vec![path];
+    inputs.extend(skyroute_prep::provenance::dem_path(&s));
+    refuse_overwriting_inputs(output, &inputs)?;
     let bar = ProgressBar::new(0).with_style(
         ProgressStyle::with_template("{msg} {bar:40} {pos}/{len} samples ({eta} left)")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
@@ -188,7 +229,7 @@ fn build_command(
     };
     let built = build(&s, options, &progress)?;
     bar.finish_and_clear();
-    std::fs::write(output, &built.bytes).map_err(|e| format!("{}: {e}", output.display()))?;
+    write_atomically(output, &built.bytes)?;
     if let Some(g) = &built.terrain {
         let st = &g.stats;
         println!(
@@ -254,85 +295,194 @@ fn build_command(
     Ok(())
 }
 
-/// `skyroute plan`.
-fn plan_command(
-    network: &Path,
-    scenario_path: &Path,
-    popup: &[(f64, f64, f64)],
-    weather: Option<&str>,
+/// A planning failure in which no route exists (exit code 3), as opposed to bad input.
+#[derive(Debug)]
+struct NoRoute(String);
+
+impl std::fmt::Display for NoRoute {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for NoRoute {}
+
+/// What `skyroute plan` was asked.
+struct PlanRequest<'a> {
+    network: &'a Path,
+    scenario: &'a Path,
+    popups: &'a [(f64, f64, f64)],
+    scenario_popups: bool,
+    connect_radius_m: Option<f32>,
+    weather: Option<&'a str>,
     hull_repair: bool,
-    output: &Path,
-) -> CliResult {
+    output: &'a Path,
+}
+
+/// The route file's record of the pop-ups a plan applied.
+fn popups_json(
+    popups: &[PopupInput],
+    frame: &skyroute_prep::frame::LocalFrame,
+) -> serde_json::Value {
+    popups
+        .iter()
+        .map(|p| {
+            let c = local(frame, p.lon, p.lat);
+            serde_json::json!({
+                "name": p.name,
+                "source": match p.source {
+                    PopupSource::Scenario => "scenario",
+                    PopupSource::CommandLine => "--popup",
+                },
+                "lon": p.lon,
+                "lat": p.lat,
+                "radius_m": p.radius_m,
+                "probability": p.probability,
+                "centre": [c.x, c.y],
+            })
+        })
+        .collect()
+}
+
+/// `skyroute plan`.
+fn plan_command(req: &PlanRequest) -> CliResult {
     let t0 = Instant::now();
-    let bytes = std::fs::read(network).map_err(|e| format!("{}: {e}", network.display()))?;
-    let net =
-        skyroute::Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", network.display()))?;
+    refuse_overwriting_inputs(req.output, &[req.network, req.scenario])?;
+    let bytes =
+        std::fs::read(req.network).map_err(|e| format!("{}: {e}", req.network.display()))?;
+    let net = skyroute::Network::from_bytes(&bytes)
+        .map_err(|e| format!("{}: {e}", req.network.display()))?;
     let is_landmark = net.landmark().is_some();
-    if let (Some(w), false) = (weather, is_landmark) {
+    if let (Some(w), false) = (req.weather, is_landmark) {
         return Err(format!(
             "--weather {w}: {} is not a landmark network, so it has no weather",
-            network.display()
+            req.network.display()
         )
         .into());
     }
-    let s = load_scenario(scenario_path, hull_repair)?;
-    let (lat0, lon0) = net.origin_deg();
-    let frame = skyroute_prep::frame::LocalFrame::new(lat0, lon0);
-    let popups: Vec<LocalPopup> = popup
-        .iter()
-        .enumerate()
-        .map(|(i, &(lon, lat, r))| LocalPopup {
-            name: format!("--popup #{}", i + 1),
-            centre: local(&frame, lon, lat),
-            radius: r as f32,
-        })
-        .collect();
-    if is_landmark {
-        let r = plan_landmark(&bytes, &s, weather, &popups)
-            .map_err(|e| format!("{} on {}: {e}", scenario_path.display(), network.display()))?;
-        let json = landmark_route_json(&r, &bytes, &frame, &s.name);
-        std::fs::write(output, serde_json::to_string_pretty(&json)?)
-            .map_err(|e| format!("{}: {e}", output.display()))?;
-        for o in &r.overflights {
-            println!(
-                "  over {} heading {:5.1}°: q {:.2}, range {:.1} km, next leg {:.1} km",
-                o.landmark,
-                o.heading_deg,
-                o.quality,
-                o.range_m / 1000.0,
-                o.leg_m / 1000.0
-            );
-        }
+    let s = load_scenario(req.scenario, req.hull_repair)?;
+    let on = || format!("{} on {}", req.scenario.display(), req.network.display());
+    check_binding(&s, &net).map_err(|e| format!("{}: {e}", on()))?;
+    let frame = skyroute_prep::export::network_frame(&net);
+    let popups = gather_popups(&s, req.popups, req.scenario_popups);
+    check_query(&s, &net, &frame, &popups).map_err(|e| format!("{}: {e}", on()))?;
+    for p in &popups {
         println!(
-            "planned {} in weather {}: {:.1} km over {} overflights, {} Hermite pieces, work {} \
-             ({} of {} edges leaving overflights not navigable), {:.3} s -> {}",
-            s.name,
-            r.weather,
-            r.summary.length / 1000.0,
-            r.overflights.len(),
-            r.summary.primitives,
-            r.summary.work.total(),
-            r.pruned.0,
-            r.pruned.1,
-            t0.elapsed().as_secs_f64(),
-            output.display()
+            "  {} (lon {}, lat {}, radius {} m{}) applied",
+            p.name,
+            p.lon,
+            p.lat,
+            p.radius_m,
+            p.probability
+                .map_or(String::new(), |q| format!(", appears with p = {q}"))
         );
-        return Ok(());
     }
-    let m = plan_mission(&bytes, &s, &frame, &popups)
-        .map_err(|e| format!("{}: {e}", scenario_path.display()))?;
-    let json = skyroute_prep::route_json::mission_json(&m, &frame, &s.name);
-    std::fs::write(output, serde_json::to_string_pretty(&json)?)
-        .map_err(|e| format!("{}: {e}", output.display()))?;
+    let local_popups: Vec<LocalPopup> = popups.iter().map(|p| p.local(&frame)).collect();
+    let mut json = if is_landmark {
+        plan_landmark_route(req, &s, &bytes, &frame, &local_popups, t0)?
+    } else {
+        plan_mission_route(req, &s, &bytes, &frame, &local_popups, t0)?
+    };
+    json["popups"] = popups_json(&popups, &frame);
+    json["scenario_popups_applied"] = serde_json::json!(req.scenario_popups);
+    write_atomically(req.output, serde_json::to_string_pretty(&json)?.as_bytes())?;
+    Ok(())
+}
+
+/// `skyroute plan` on a landmark network: the route file's JSON.
+fn plan_landmark_route(
+    req: &PlanRequest,
+    s: &scenario::Scenario,
+    bytes: &[u8],
+    frame: &skyroute_prep::frame::LocalFrame,
+    popups: &[LocalPopup],
+    t0: Instant,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    let on = format!("{} on {}", req.scenario.display(), req.network.display());
+    let r = match plan_landmark(bytes, s, req.weather, popups) {
+        Ok(r) => r,
+        Err(LandmarkPlanError::Plan(e)) => {
+            let w = req
+                .weather
+                .and_then(|name| s.weather.iter().position(|x| x == name))
+                .unwrap_or(0);
+            let why = match no_route_proof(s, w, frame) {
+                Some(proof) => format!("no route can exist: {proof}"),
+                None => format!(
+                    "straight legs within range could connect the start to the goal, but no \
+                     flyable chain of the network does ({e})"
+                ),
+            };
+            let weather = s.weather.get(w).map_or("?", String::as_str);
+            return Err(Box::new(NoRoute(format!(
+                "{on}: no navigable route from the start to the goal in weather {weather}: {why}"
+            ))));
+        }
+        Err(e) => return Err(format!("{on}: {e}").into()),
+    };
+    for o in &r.overflights {
+        println!(
+            "  over {} heading {:5.1}°: q {:.2}, range {:.1} km, next leg {:.1} km",
+            o.landmark,
+            o.heading_deg,
+            o.quality,
+            o.range_m / 1000.0,
+            o.leg_m / 1000.0
+        );
+    }
+    println!(
+        "planned {} in weather {}: {:.1} km over {} overflights, {} Hermite pieces, work {} \
+         ({} of {} edges leaving overflights not navigable), {:.3} s -> {}",
+        s.name,
+        r.weather,
+        r.summary.length / 1000.0,
+        r.overflights.len(),
+        r.summary.primitives,
+        r.summary.work.total(),
+        r.pruned.0,
+        r.pruned.1,
+        t0.elapsed().as_secs_f64(),
+        req.output.display()
+    );
+    Ok(landmark_route_json(&r, bytes, frame, &s.name))
+}
+
+/// `skyroute plan` on a roadmap or terrain network: the route file's JSON.
+fn plan_mission_route(
+    req: &PlanRequest,
+    s: &scenario::Scenario,
+    bytes: &[u8],
+    frame: &skyroute_prep::frame::LocalFrame,
+    popups: &[LocalPopup],
+    t0: Instant,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    let options = MissionOptions {
+        connect_radius_m: req.connect_radius_m,
+    };
+    let m = plan_mission_with(bytes, s, frame, popups, &options).map_err(
+        |e| -> Box<dyn std::error::Error> {
+            let message = format!("{}: {e}", req.scenario.display());
+            if e.is_bad_input() {
+                message.into()
+            } else {
+                Box::new(NoRoute(message))
+            }
+        },
+    )?;
     for l in &m.legs {
         println!(
-            "  {} -> {}: {:.1} m ({:.1} m before post-processing), {} network edges, work {}",
+            "  {} -> {}: {:.1} m ({:.1} m before post-processing), {} network edges, work {}{}",
             l.from,
             l.to,
             l.summary.length,
             l.planned_length,
             l.summary.network_edges,
-            l.summary.work.total()
+            l.summary.work.total(),
+            if l.widened {
+                "; connected beyond the network's radius to the nearest vertices"
+            } else {
+                ""
+            }
         );
     }
     println!(
@@ -342,9 +492,9 @@ fn plan_command(
         m.legs.len(),
         m.queries,
         t0.elapsed().as_secs_f64(),
-        output.display()
+        req.output.display()
     );
-    Ok(())
+    Ok(skyroute_prep::route_json::mission_json(&m, frame, &s.name))
 }
 
 /// Reads a scenario, repairing self-intersecting no-fly polygons by their hulls when asked (and
@@ -378,7 +528,16 @@ fn demo_command(dir: &Path) -> CliResult {
         dir.join("niendorf-urban.png"),
     );
     build_command(&scenario_path, &network, &BuildOptions::default(), false)?;
-    plan_command(&network, &scenario_path, &[], None, false, &route)?;
+    plan_command(&PlanRequest {
+        network: &network,
+        scenario: &scenario_path,
+        popups: &[],
+        scenario_popups: true,
+        connect_radius_m: None,
+        weather: None,
+        hull_repair: false,
+        output: &route,
+    })?;
     let request = skyroute_prep::render::RenderRequest {
         network,
         route: Some(route),
@@ -429,17 +588,21 @@ fn run(cli: Cli) -> CliResult {
             network,
             scenario: scenario_path,
             popup,
+            no_scenario_popups,
+            connect_radius,
             weather,
             hull_repair,
             output,
-        } => plan_command(
-            &network,
-            &scenario_path,
-            &popup,
-            weather.as_deref(),
+        } => plan_command(&PlanRequest {
+            network: &network,
+            scenario: &scenario_path,
+            popups: &popup,
+            scenario_popups: !no_scenario_popups,
+            connect_radius_m: connect_radius,
+            weather: weather.as_deref(),
             hull_repair,
-            &output,
-        ),
+            output: &output,
+        }),
         Command::Demo { output } => demo_command(&output),
         Command::Export {
             network,
@@ -500,7 +663,11 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("skyroute: {e}");
-            ExitCode::FAILURE
+            if e.downcast_ref::<NoRoute>().is_some() {
+                ExitCode::from(3)
+            } else {
+                ExitCode::from(1)
+            }
         }
     }
 }

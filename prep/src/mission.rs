@@ -11,7 +11,9 @@ use crate::build::{local, local_heading};
 use crate::frame::LocalFrame;
 use crate::scenario::{Endpoint, Scenario};
 use rayon::prelude::*;
-use skyroute::planner::{Goal, PlanError, PlannerConfig, Query, RouteSummary, Search, Work};
+use skyroute::planner::{
+    Goal, PlanError, PlannerConfig, Query, QueryField, RouteSummary, Search, Work,
+};
 use skyroute::{Planner, Pose, Primitive, Vec2};
 use std::fmt;
 
@@ -51,6 +53,8 @@ pub struct Leg {
     pub planned_length: f32,
     /// The leg's lines and arcs.
     pub primitives: Vec<Primitive>,
+    /// Whether its connections needed the widened radius ([`MissionOptions`]).
+    pub widened: bool,
 }
 
 /// A planned mission.
@@ -80,10 +84,33 @@ pub enum MissionError {
     InevitableCollision(String),
     /// The stage named cannot be reached from the previous one.
     Unreachable {
+        /// The stage left.
         from: String,
+        /// The stage not reached.
         to: String,
+        /// The core's reason.
         error: PlanError,
+        /// What the host found out about it (which zone, how far the nearest vertex is), or
+        /// empty.
+        detail: String,
     },
+}
+
+impl MissionError {
+    /// Whether the mission's input is at fault (a start in a no-fly zone, a bad number, a
+    /// pop-up the core refuses) rather than the absence of a route.
+    pub fn is_bad_input(&self) -> bool {
+        match self {
+            MissionError::Missing(_) | MissionError::Load(_) | MissionError::Popup(..) => true,
+            MissionError::InevitableCollision(_) => false,
+            MissionError::Unreachable { error, .. } => matches!(
+                error,
+                PlanError::NonFinite { .. }
+                    | PlanError::OutOfRange { .. }
+                    | PlanError::InsideObstacle { .. }
+            ),
+        }
+    }
 }
 
 impl fmt::Display for MissionError {
@@ -95,8 +122,17 @@ impl fmt::Display for MissionError {
             MissionError::InevitableCollision(name) => {
                 write!(f, "{name} is an inevitable-collision state: no heading it can be reached with has a collision-free way out")
             }
-            MissionError::Unreachable { from, to, error } => {
-                write!(f, "no route from {from} to {to}: {error}")
+            MissionError::Unreachable {
+                from,
+                to,
+                error,
+                detail,
+            } => {
+                write!(f, "no route from {from} to {to}: {error}")?;
+                if !detail.is_empty() {
+                    write!(f, " ({detail})")?;
+                }
+                Ok(())
             }
         }
     }
@@ -113,6 +149,99 @@ pub struct LocalPopup {
     pub centre: Vec2,
     /// Radius, metres.
     pub radius: f32,
+}
+
+/// How the mission connects its stages to the network.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MissionOptions {
+    /// `Some(r)`: connect the start and goal of every leg to vertices within `r` metres only.
+    /// `None`: the network's usual radius (1 km for roadmaps, unbounded for terrain), widened
+    /// to the nearest [`skyroute::planner::MAX_CANDIDATES`] vertices however far for a leg
+    /// whose start or goal does not connect within it.
+    pub connect_radius_m: Option<f32>,
+}
+
+/// Plans `q`, and when `adaptive` and an end did not connect, plans it again with the connect
+/// radius unbounded (the nearest candidates however far). Returns whether it widened.
+fn plan_query(
+    p: &mut HostPlanner,
+    q: &Query,
+    budget: u64,
+    adaptive: bool,
+) -> (Result<RouteSummary, PlanError>, bool) {
+    let first = p.plan(q, budget);
+    let unconnected = matches!(
+        first,
+        Err(PlanError::StartUnconnected | PlanError::GoalUnconnected)
+    );
+    let config = p.config();
+    if !(adaptive && unconnected && config.connect_radius_m.is_finite()) {
+        return (first, false);
+    }
+    p.set_config(PlannerConfig {
+        connect_radius_m: f32::INFINITY,
+        ..config
+    });
+    let second = p.plan(q, budget);
+    p.set_config(config);
+    (second, second.is_ok())
+}
+
+/// What the host can add to the core's reason: the zone an end lies in, or how far the
+/// vertices the connection tried lie.
+fn explain(
+    error: PlanError,
+    from: Vec2,
+    to: Vec2,
+    bytes: &[u8],
+    scenario: &Scenario,
+    frame: &LocalFrame,
+    options: &MissionOptions,
+) -> String {
+    let at = |field| match field {
+        QueryField::Start => from,
+        QueryField::Goal => to,
+    };
+    match error {
+        PlanError::InsideObstacle { field, obstacle } => {
+            match crate::build::obstacle_containing(scenario, frame, at(field)) {
+                Some(name) => format!("{name} contains it"),
+                None => format!("network obstacle {obstacle} contains it"),
+            }
+        }
+        PlanError::StartUnconnected | PlanError::GoalUnconnected => {
+            let p = if error == PlanError::StartUnconnected {
+                from
+            } else {
+                to
+            };
+            let Ok(net) = skyroute::Network::from_bytes(bytes) else {
+                return String::new();
+            };
+            let nearest = (0..net.vertex_count())
+                .filter_map(|v| net.vertex(v))
+                .map(|v| v.position.distance(p))
+                .fold(f32::INFINITY, f32::min);
+            let end = if error == PlanError::StartUnconnected {
+                "the start"
+            } else {
+                "the goal"
+            };
+            match options.connect_radius_m {
+                Some(r) if nearest > r => format!(
+                    "no vertex lies within --connect-radius {r} m of {end}: the nearest is \
+                     {nearest:.0} m away"
+                ),
+                radius => format!(
+                    "no collision-free Dubins path joins {end} to any of the {} nearest \
+                     vertices{}, the nearest {nearest:.0} m away",
+                    skyroute::planner::MAX_CANDIDATES,
+                    radius.map_or(", however far".to_string(), |r| format!(" within {r} m"))
+                ),
+            }
+        }
+        _ => String::new(),
+    }
 }
 
 /// One stage of the mission: its name and the poses (or the free-heading goal) to reach.
@@ -138,16 +267,25 @@ fn stage(frame: &LocalFrame, e: &Endpoint, last: bool) -> Stage {
     }
 }
 
-/// Loads `bytes` into a fresh boxed planner with the pop-ups added.
+/// Loads `bytes` into a fresh boxed planner with the pop-ups added and the connect radius of
+/// `options`.
 fn planner<'n>(
     bytes: &'n [u8],
     popups: &[LocalPopup],
+    options: &MissionOptions,
 ) -> Result<Box<HostPlanner<'n>>, MissionError> {
     let mut p: Box<HostPlanner<'n>> = Box::new(Planner::new());
     p.load(bytes).map_err(MissionError::Load)?;
     if p.network().terrain().is_some() {
         // Terrain nodes sit at region corners, often kilometres from a valley's start or goal.
         p.set_config(TERRAIN_CONFIG);
+    }
+    if let Some(r) = options.connect_radius_m {
+        let config = p.config();
+        p.set_config(PlannerConfig {
+            connect_radius_m: r,
+            ..config
+        });
     }
     for pop in popups {
         p.add_popup(skyroute::Popup::Circle {
@@ -159,19 +297,31 @@ fn planner<'n>(
     Ok(p)
 }
 
-/// Plans start → waypoints → goal through the network `bytes` with the onboard core.
-/// Runs on a thread pool with stacks large enough for the host planner.
+/// Plans start → waypoints → goal through the network `bytes` with the onboard core, with the
+/// default [`MissionOptions`]. Runs on a thread pool with stacks large enough for the host
+/// planner.
 pub fn plan_mission(
     bytes: &[u8],
     scenario: &Scenario,
     frame: &LocalFrame,
     popups: &[LocalPopup],
 ) -> Result<Mission, MissionError> {
+    plan_mission_with(bytes, scenario, frame, popups, &MissionOptions::default())
+}
+
+/// [`plan_mission`] with the connection settings of `options`.
+pub fn plan_mission_with(
+    bytes: &[u8],
+    scenario: &Scenario,
+    frame: &LocalFrame,
+    popups: &[LocalPopup],
+    options: &MissionOptions,
+) -> Result<Mission, MissionError> {
     let pool = rayon::ThreadPoolBuilder::new()
         .stack_size(PLANNER_STACK)
         .build()
         .map_err(|_| MissionError::Missing("thread pool"))?;
-    pool.install(|| plan_mission_in_pool(bytes, scenario, frame, popups))
+    pool.install(|| plan_mission_in_pool(bytes, scenario, frame, popups, options))
 }
 
 fn plan_mission_in_pool(
@@ -179,7 +329,9 @@ fn plan_mission_in_pool(
     scenario: &Scenario,
     frame: &LocalFrame,
     popups: &[LocalPopup],
+    options: &MissionOptions,
 ) -> Result<Mission, MissionError> {
+    let adaptive = options.connect_radius_m.is_none();
     let start = scenario
         .start
         .as_ref()
@@ -219,7 +371,7 @@ fn plan_mission_in_pool(
         let costs: Vec<(usize, usize, Result<RouteSummary, PlanError>)> = pairs
             .par_iter()
             .map_init(
-                || planner(bytes, popups),
+                || planner(bytes, popups, options),
                 |p, &(a, b)| {
                     let Ok(p) = p else {
                         return (a, b, Err(PlanError::Internal));
@@ -235,12 +387,12 @@ fn plan_mission_in_pool(
                         },
                         search: Search::AStar,
                     };
-                    (a, b, p.plan(&q, budget))
+                    (a, b, plan_query(p, &q, budget, adaptive).0)
                 },
             )
             .collect();
         // A failure to load or add pop-ups shows up identically in every pair: report it.
-        planner(bytes, popups)?;
+        planner(bytes, popups, options)?;
         queries += costs.len();
         let mut stage_best: Vec<Option<(f64, usize)>> = vec![None; next.headings.len()];
         let mut last_error = PlanError::NoRoute;
@@ -268,6 +420,15 @@ fn plan_mission_in_pool(
                 from: prev.name.clone(),
                 to: next.name.clone(),
                 error: last_error,
+                detail: explain(
+                    last_error,
+                    prev.position,
+                    next.position,
+                    bytes,
+                    scenario,
+                    frame,
+                    options,
+                ),
             });
         }
         best.push(stage_best);
@@ -287,13 +448,14 @@ fn plan_mission_in_pool(
             from: stages[last - 1].name.clone(),
             to: stages[last].name.clone(),
             error: PlanError::NoRoute,
+            detail: String::new(),
         })?;
     let mut chosen = vec![0usize; stages.len()];
     for i in (1..stages.len()).rev() {
         chosen[i] = k;
         k = best[i][k].map(|v| v.1).unwrap_or(0);
     }
-    let mut p = planner(bytes, popups)?;
+    let mut p = planner(bytes, popups, options)?;
     let mut legs = Vec::new();
     let mut length = 0.0;
     for i in 1..stages.len() {
@@ -310,19 +472,15 @@ fn plan_mission_in_pool(
             },
             search: Search::AStar,
         };
-        let planned = p
-            .plan(&q, budget)
-            .map_err(|error| MissionError::Unreachable {
-                from: prev.name.clone(),
-                to: next.name.clone(),
-                error,
-            })?;
-        // Post-processing (Niendorf et al. §V): both passes keep the route collision-free.
         let unreachable = |error| MissionError::Unreachable {
             from: prev.name.clone(),
             to: next.name.clone(),
             error,
+            detail: String::new(),
         };
+        let (planned, widened) = plan_query(&mut p, &q, budget, adaptive);
+        let planned = planned.map_err(unreachable)?;
+        // Post-processing (Niendorf et al. §V): both passes keep the route collision-free.
         p.shortcut(budget).map_err(unreachable)?;
         p.smooth_headings(SMOOTHING_HEADINGS, budget)
             .map_err(unreachable)?;
@@ -334,6 +492,7 @@ fn plan_mission_in_pool(
             summary,
             planned_length: planned.length,
             primitives: p.route().to_vec(),
+            widened,
         });
     }
     Ok(Mission {

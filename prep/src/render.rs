@@ -46,6 +46,8 @@ pub struct Route {
     pub origin_deg: (f64, f64),
     /// Its legs, in order.
     pub legs: Vec<RouteLeg>,
+    /// The pop-ups it was planned round (its `popups` member; empty in older files).
+    pub popups: Vec<PopupMark>,
 }
 
 fn num(v: &Value, field: &str) -> Result<f64, String> {
@@ -130,7 +132,27 @@ pub fn parse_route(text: &str) -> Result<Route, String> {
             primitives,
         });
     }
+    let mut popups = Vec::new();
+    for (i, p) in v
+        .get("popups")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .enumerate()
+    {
+        let centre = point(p, "centre").map_err(|e| format!("popups[{i}].{e}"))?;
+        popups.push(PopupMark {
+            name: p
+                .get("name")
+                .and_then(Value::as_str)
+                .unwrap_or("?")
+                .to_string(),
+            centre: (centre.x as f64, centre.y as f64),
+            radius: num(p, "radius_m").map_err(|e| format!("popups[{i}].{e}"))?,
+        });
+    }
     Ok(Route {
+        popups,
         scenario: v
             .get("scenario")
             .and_then(Value::as_str)
@@ -1096,10 +1118,25 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
         }
     }
     let s = req.scenario.as_deref().map(scenario::load).transpose()?;
+    if let Some(s) = &s {
+        // Drawn over a network it does not match, a scenario's zones would be missing from
+        // the picture and from its clearance figures.
+        crate::provenance::check_binding(s, &net)
+            .map_err(|e| format!("{} on {}: {e}", s.path.display(), req.network.display()))?;
+    }
     let (endpoints, mut popups) = s
         .as_ref()
         .map(|s| scenario_marks(s, &frame))
         .unwrap_or_default();
+    // The pop-ups the route was planned round, unless the scenario already drew them.
+    for p in route.iter().flat_map(|r| r.popups.iter()) {
+        if !popups
+            .iter()
+            .any(|q| q.centre == p.centre && q.radius == p.radius)
+        {
+            popups.push(p.clone());
+        }
+    }
     popups.extend(
         req.popups
             .iter()
@@ -1141,12 +1178,18 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
         if png.is_none() {
             png = Some(svg_to_png(&svg).map_err(|e| format!("{}: {e}", path.display()))?);
         }
-        std::fs::write(path, png.as_ref().unwrap()).map_err(|e| format!("{}: {e}", path.display()))
+        crate::output::write_atomically(path, png.as_deref().unwrap_or_default())
     };
+    let mut inputs = vec![req.network.as_path()];
+    inputs.extend(req.route.as_deref());
+    inputs.extend(req.scenario.as_deref());
+    for out in std::iter::once(&req.output).chain(req.png.iter()) {
+        crate::output::refuse_overwriting_inputs(out, &inputs)?;
+    }
     if is_png(&req.output) {
         write_png(&req.output)?;
     } else {
-        std::fs::write(&req.output, &svg).map_err(|e| format!("{}: {e}", req.output.display()))?;
+        crate::output::write_atomically(&req.output, svg.as_bytes())?;
     }
     written.push(req.output.clone());
     if let Some(p) = &req.png {

@@ -3,6 +3,7 @@
 use crate::frame::LocalFrame;
 use crate::mission::Mission;
 use serde_json::{json, Value};
+use skyroute::geometry::hermite::HermiteSegment;
 use skyroute::planner::Work;
 use skyroute::{Primitive, Turn};
 
@@ -22,6 +23,19 @@ pub fn primitive_json(p: &Primitive) -> Value {
             "turn": if a.turn() == Turn::Left { "left" } else { "right" },
         }),
     }
+}
+
+/// A quintic Hermite piece as JSON: its two line elements (position, metres; velocity, m/s, in
+/// the local frame), its parameter range and length, enough to rebuild it with
+/// [`skyroute::geometry::hermite::HermiteSegment::new`] and sample it.
+pub fn hermite_piece_json(seg: &HermiteSegment) -> Value {
+    let (a, b) = (seg.start(), seg.end());
+    json!({
+        "from": {"position": [a.position.x, a.position.y], "velocity": [a.velocity.x, a.velocity.y]},
+        "to": {"position": [b.position.x, b.position.y], "velocity": [b.velocity.x, b.velocity.y]},
+        "t_max": seg.t_max(),
+        "length": seg.length(),
+    })
 }
 
 /// Work counters as JSON.

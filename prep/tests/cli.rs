@@ -2,76 +2,11 @@
 //! on every command, and the one-line errors for a truncated network and a self-intersecting
 //! no-fly polygon.
 
+mod common;
+
+use common::{niendorf, ok, one_line_error, skyroute, stdout, TempDir};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn skyroute(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_skyroute"))
-        .args(args)
-        .output()
-        .expect("run skyroute")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn ok(o: Output, what: &str) -> Output {
-    assert!(
-        o.status.success(),
-        "{what} failed: {}\n{}",
-        stdout(&o),
-        stderr(&o)
-    );
-    o
-}
-
-/// A fresh directory under the system's temporary directory, removed when dropped.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new(name: &str) -> Self {
-        let p = std::env::temp_dir().join(format!("skyroute-cli-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&p);
-        std::fs::create_dir_all(&p).unwrap();
-        TempDir(p)
-    }
-    fn file(&self, name: &str) -> String {
-        self.0.join(name).display().to_string()
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn niendorf() -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios/niendorf-urban.geojson")
-        .display()
-        .to_string()
-}
-
-/// The single line of a failure's stderr.
-fn one_line_error(o: &Output) -> String {
-    assert!(
-        !o.status.success(),
-        "expected a failure, got success: {}",
-        stdout(o)
-    );
-    let e = stderr(o);
-    let lines: Vec<&str> = e.lines().filter(|l| !l.trim().is_empty()).collect();
-    assert_eq!(lines.len(), 1, "expected one line of error, got {e:?}");
-    assert!(lines[0].starts_with("skyroute: "), "{e:?}");
-    lines[0].to_string()
-}
+use std::path::Path;
 
 #[test]
 fn build_plan_export_render_end_to_end() {

@@ -329,7 +329,13 @@ impl fmt::Display for LoadError {
                 write!(
                     f,
                     "network format version {found}, this build reads {supported}"
-                )
+                )?;
+                if found < supported {
+                    // Older images may carry checksums that leave the header uncovered and
+                    // record nothing of their scenario.
+                    write!(f, "; rebuild the network with this version's ground tool")?;
+                }
+                Ok(())
             }
             UnknownMode { mode } => write!(f, "unknown network mode {mode}"),
             TooManyVertices { count, capacity } => {

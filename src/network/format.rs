@@ -1,4 +1,4 @@
-//! The records of network format v2 (specified in `docs/FORMAT.md`).
+//! The records of network format v3 (specified in `docs/FORMAT.md`).
 //!
 //! Every record is serialized with postcard using fixed-width little-endian integers
 //! (`postcard::fixint::le`), `f32`/`f64` as their IEEE-754 bits and `u8` as one byte, so each
@@ -11,8 +11,10 @@ use serde::{Deserialize, Serialize};
 /// The four bytes every network starts with.
 pub const MAGIC: [u8; 4] = *b"SKYR";
 
-/// The format version this crate reads and writes.
-pub const FORMAT_VERSION: u16 = 2;
+/// The format version this crate reads and writes. Version 2 images (whose checksum left the
+/// header uncovered, and which record nothing of their scenario) are refused by
+/// [`LoadError::UnsupportedVersion`](crate::LoadError::UnsupportedVersion).
+pub const FORMAT_VERSION: u16 = 3;
 
 /// Network mode: a multi-query Dubins roadmap (Niendorf et al.).
 pub const MODE_ROADMAP: u8 = 0;
@@ -85,17 +87,43 @@ pub struct Header {
     /// Number of (cell, edge) entries in the grid index.
     #[serde(with = "postcard::fixint::le")]
     pub grid_entry_count: u32,
+    /// Number of [`ProvenanceRecord`]s at the end of the body.
+    #[serde(with = "postcard::fixint::le")]
+    pub provenance_count: u32,
     /// Bytes in the body that follows the header.
     #[serde(with = "postcard::fixint::le")]
     pub body_len: u32,
-    /// CRC-32 of the body.
+    /// CRC-32 of the whole image but this field: the header's first
+    /// [`Header::CHECKED_SIZE`] bytes, then the body.
     #[serde(with = "postcard::fixint::le")]
-    pub body_crc: u32,
+    pub image_crc: u32,
 }
 
 impl Header {
     /// Encoded size of the header.
-    pub const SIZE: usize = 80;
+    pub const SIZE: usize = 84;
+    /// The header bytes the checksum covers: all of them but the checksum itself, which is
+    /// the header's last field.
+    pub const CHECKED_SIZE: usize = Self::SIZE - 4;
+}
+
+/// A digest of one thing the network was built from (a no-fly zone, the vehicle, a landmark,
+/// the DEM, ...), so that the ground tool can tell whether a scenario still matches the
+/// network before it plans with it. The records close the body, in the order they were
+/// written. The core stores them and does not interpret them; `kind` codes are the ground
+/// tool's (`prep/src/provenance.rs`, `docs/FORMAT.md`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ProvenanceRecord {
+    /// What the digest is of.
+    pub kind: u8,
+    /// The first 8 bytes of its SHA-256, little-endian.
+    #[serde(with = "postcard::fixint::le")]
+    pub digest: u64,
+}
+
+impl ProvenanceRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 9;
 }
 
 /// A vertex: a pose.
@@ -335,10 +363,19 @@ mod tests {
             grid_nx: u32::MAX,
             grid_ny: 1,
             grid_entry_count: 0,
+            provenance_count: 3,
             body_len: 0,
-            body_crc: 0,
+            image_crc: 0,
         };
         assert_eq!(postcard::to_stdvec(&h).unwrap().len(), Header::SIZE);
+        let p = ProvenanceRecord {
+            kind: 3,
+            digest: u64::MAX,
+        };
+        assert_eq!(
+            postcard::to_stdvec(&p).unwrap().len(),
+            ProvenanceRecord::SIZE
+        );
         let v = VertexRecord {
             x: 1.0,
             y: 2.0,

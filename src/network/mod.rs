@@ -1,4 +1,4 @@
-//! The preprocessed network: format v2, its validating loader and read-only accessors.
+//! The preprocessed network: format v3, its validating loader and read-only accessors.
 //!
 //! [`Network::from_bytes`] checks an image once (magic, version, length, checksum, counts,
 //! every index and every float) and then reads it where it lies: the network is never copied
@@ -13,7 +13,7 @@ pub mod format;
 #[cfg(feature = "std")]
 pub mod write;
 
-pub use crc::crc32;
+pub use crc::{crc32, crc32_parts};
 pub use error::{LoadError, Parameter, Section};
 
 use crate::geometry::grid::{segment_cells, CellGrid};
@@ -59,6 +59,8 @@ struct Layout {
     rosettes: usize,
     chain_offsets: usize,
     elements: usize,
+    /// The provenance records that close the body.
+    provenance: usize,
     end: usize,
 }
 
@@ -88,8 +90,18 @@ impl Layout {
             rosettes: 0,
             chain_offsets: 0,
             elements: 0,
+            provenance: 0,
             end: at,
         })
+    }
+
+    /// Adds the provenance records after every other section, or `None` on overflow.
+    fn with_provenance(mut self, count: u32) -> Option<Self> {
+        self.provenance = self.end;
+        self.end = self
+            .end
+            .checked_add((count as usize).checked_mul(ProvenanceRecord::SIZE)?)?;
+        Some(self)
     }
 
     /// Adds the landmark sections after the common ones, or `None` on overflow.
@@ -121,6 +133,15 @@ impl Layout {
         self.end = self.elevations.checked_add(cells)?;
         Some(self)
     }
+}
+
+/// The checksum of a network image as [`Header::image_crc`] defines it: the CRC-32 of the
+/// header's first [`Header::CHECKED_SIZE`] bytes followed by the body (everything after the
+/// header). An image shorter than its header has the CRC of what there is. Work: O(bytes).
+pub fn image_checksum(image: &[u8]) -> u32 {
+    let head = image.get(..Header::CHECKED_SIZE).unwrap_or(image);
+    let body = image.get(Header::SIZE..).unwrap_or(&[]);
+    crc32_parts(&[head, body])
 }
 
 /// A directed edge of the network.
@@ -215,8 +236,9 @@ impl<'a> Network<'a> {
                 grid_nx: 0,
                 grid_ny: 0,
                 grid_entry_count: 0,
+                provenance_count: 0,
                 body_len: 0,
-                body_crc: 0,
+                image_crc: 0,
             },
             layout: Layout {
                 vertices: 0,
@@ -233,6 +255,7 @@ impl<'a> Network<'a> {
                 rosettes: 0,
                 chain_offsets: 0,
                 elements: 0,
+                provenance: 0,
                 end: 0,
             },
             terrain: None,
@@ -329,6 +352,9 @@ impl<'a> Network<'a> {
                 .ok_or(LoadError::CountsTooLarge)?;
             landmark = Some(l);
         }
+        layout = layout
+            .with_provenance(header.provenance_count)
+            .ok_or(LoadError::CountsTooLarge)?;
         let expected_body = layout.end - Header::SIZE;
         if header.body_len as usize != expected_body {
             return Err(LoadError::BodyLengthMismatch {
@@ -347,10 +373,10 @@ impl<'a> Network<'a> {
                 extra: bytes.len() - layout.end,
             });
         }
-        let computed = crc32(&bytes[Header::SIZE..layout.end]);
-        if computed != header.body_crc {
+        let computed = image_checksum(bytes);
+        if computed != header.image_crc {
             return Err(LoadError::ChecksumMismatch {
-                stored: header.body_crc,
+                stored: header.image_crc,
                 computed,
             });
         }
@@ -1093,6 +1119,32 @@ impl<'a> Network<'a> {
     /// The network's mode: [`MODE_ROADMAP`], [`MODE_LANDMARK`] or [`MODE_TERRAIN`].
     pub fn mode(&self) -> u8 {
         self.header.mode
+    }
+
+    /// The rectangle the network covers, `(south-west, north-east)` corners in metres: its
+    /// grid index, which the loader has checked holds every vertex with four turn radii around
+    /// it. Nothing the aircraft can fly through the network lies outside it.
+    pub fn extent(&self) -> (Vec2, Vec2) {
+        let h = &self.header;
+        let lo = Vec2::new(h.grid_origin_x, h.grid_origin_y);
+        let size = Vec2::new(
+            h.grid_nx as f32 * h.grid_cell_m,
+            h.grid_ny as f32 * h.grid_cell_m,
+        );
+        (lo, lo + size)
+    }
+
+    /// Number of provenance records (digests of what the network was built from).
+    pub fn provenance_count(&self) -> u32 {
+        self.header.provenance_count
+    }
+
+    /// Provenance record `i`, in the order written; `None` past the count.
+    pub fn provenance(&self, i: u32) -> Option<ProvenanceRecord> {
+        if i >= self.header.provenance_count {
+            return None;
+        }
+        self.record(self.layout.provenance, ProvenanceRecord::SIZE, i as usize)
     }
 
     /// Terrain mode: the elevation table's grid and coding record.

@@ -1,8 +1,8 @@
-//! The network writer (host only, feature `std`): the ground tool's half of format v2.
+//! The network writer (host only, feature `std`): the ground tool's half of format v3.
 
 use super::elevation::ElevationCoding;
 use super::format::*;
-use super::{crc32, Network};
+use super::{image_checksum, Network};
 use crate::geometry::grid::{segment_cells, CellGrid};
 use crate::geometry::hermite::{FlyLimits, HermiteSegment, LineElement};
 use crate::geometry::{points_bounding_box, DubinsPath, DubinsWord, Pose, Segment, Vec2};
@@ -143,6 +143,8 @@ pub struct NetworkSpec {
     pub terrain: Option<TerrainSpec>,
     /// Landmark mode: the landmark tables (then every edge must be an [`EdgeSpec::chain`]).
     pub landmark: Option<LandmarkSpec>,
+    /// Digests of what the network was built from, written as they are at the end of the body.
+    pub provenance: Vec<ProvenanceRecord>,
 }
 
 /// Why a network could not be written.
@@ -167,7 +169,7 @@ pub enum WriteError {
 impl core::fmt::Display for WriteError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            WriteError::TooLarge(what) => write!(f, "too many {what} for format v1"),
+            WriteError::TooLarge(what) => write!(f, "too many {what} for the network format"),
             WriteError::BadEdge { edge } => write!(f, "edge {edge} names a missing vertex"),
             WriteError::Invalid(e) => write!(f, "the network does not validate: {e}"),
             WriteError::BadTerrain(what) => write!(f, "terrain network: {what}"),
@@ -389,6 +391,9 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
             }
         }
     }
+    for record in &spec.provenance {
+        push(&mut body, record);
+    }
 
     let header = Header {
         magic: MAGIC,
@@ -415,12 +420,15 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
         grid_nx: grid.nx,
         grid_ny: grid.ny,
         grid_entry_count: count(grid.entries.len(), "grid entries")?,
+        provenance_count: count(spec.provenance.len(), "provenance records")?,
         body_len: count(body.len(), "body bytes")?,
-        body_crc: crc32(&body),
+        image_crc: 0,
     };
     let mut out = Vec::with_capacity(Header::SIZE + body.len());
     push(&mut out, &header);
     out.extend_from_slice(&body);
+    let crc = image_checksum(&out);
+    out[Header::CHECKED_SIZE..Header::SIZE].copy_from_slice(&crc.to_le_bytes());
     Network::from_bytes(&out).map_err(WriteError::Invalid)?;
     Ok(out)
 }

@@ -211,6 +211,7 @@ fn synthetic_network() -> Result<Vec<u8>, String> {
         grid_cell_m: 100.0,
         landmark: None,
         terrain: None,
+        provenance: Vec::new(),
     };
     encode(&spec).map_err(|e| format!("synthetic network: {e}"))
 }

@@ -99,6 +99,7 @@ pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize
         grid_cell_m: 2.0 * radius,
         landmark: None,
         terrain: None,
+        provenance: Vec::new(),
     };
     let bytes = encode(&spec).expect("test network encodes");
     World {

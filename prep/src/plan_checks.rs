@@ -1,0 +1,193 @@
+//! What `skyroute plan` checks before it plans, beyond the network's own validation: that the
+//! scenario is the one the network was built from ([`crate::provenance`]), that the mode's
+//! query is all the scenario asks for, and that every endpoint and pop-up lies on the network's
+//! map. It also gathers the pop-ups to apply: the scenario's `popup` features and `--popup`.
+
+use crate::frame::LocalFrame;
+use crate::mission::LocalPopup;
+use crate::scenario::{Mode, Scenario};
+use skyroute::{Network, Vec2};
+
+/// Where a pop-up came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PopupSource {
+    /// A `popup` feature of the scenario.
+    Scenario,
+    /// A `--popup` option.
+    CommandLine,
+}
+
+/// A circular pop-up to apply, as given.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PopupInput {
+    /// How messages name it: the feature's name, or `--popup #k`.
+    pub name: String,
+    /// Where it came from.
+    pub source: PopupSource,
+    /// Centre longitude, degrees.
+    pub lon: f64,
+    /// Centre latitude, degrees.
+    pub lat: f64,
+    /// Radius, metres.
+    pub radius_m: f64,
+    /// The scenario's appearance probability, if it gives one.
+    pub probability: Option<f64>,
+}
+
+impl PopupInput {
+    /// The pop-up in the network's frame.
+    pub fn local(&self, frame: &LocalFrame) -> LocalPopup {
+        LocalPopup {
+            name: self.name.clone(),
+            centre: crate::build::local(frame, self.lon, self.lat),
+            radius: self.radius_m as f32,
+        }
+    }
+}
+
+/// The pop-ups a plan applies: the scenario's `popup` features (unless `with_scenario` is
+/// false), then the command line's, numbered from 1 as `--popup #k`.
+pub fn gather_popups(
+    s: &Scenario,
+    command_line: &[(f64, f64, f64)],
+    with_scenario: bool,
+) -> Vec<PopupInput> {
+    let from_scenario = s
+        .popups
+        .iter()
+        .filter(|_| with_scenario)
+        .map(|p| PopupInput {
+            name: format!("pop-up {:?}", p.name),
+            source: PopupSource::Scenario,
+            lon: p.lon,
+            lat: p.lat,
+            radius_m: p.radius_m,
+            probability: Some(p.probability),
+        });
+    let given = command_line
+        .iter()
+        .enumerate()
+        .map(|(i, &(lon, lat, r))| PopupInput {
+            name: format!("--popup #{}", i + 1),
+            source: PopupSource::CommandLine,
+            lon,
+            lat,
+            radius_m: r,
+            probability: None,
+        });
+    from_scenario.chain(given).collect()
+}
+
+/// The network's extent in the frame, and as a lon/lat box for messages.
+struct Extent {
+    lo: Vec2,
+    hi: Vec2,
+    text: String,
+}
+
+impl Extent {
+    fn of(net: &Network, frame: &LocalFrame) -> Self {
+        let (lo, hi) = net.extent();
+        let corners = [(lo.x, lo.y), (hi.x, lo.y), (lo.x, hi.y), (hi.x, hi.y)]
+            .map(|(x, y)| frame.to_geo(x as f64, y as f64));
+        let lons = corners.map(|c| c.0);
+        let lats = corners.map(|c| c.1);
+        let min = |v: [f64; 4]| v.into_iter().fold(f64::INFINITY, f64::min);
+        let max = |v: [f64; 4]| v.into_iter().fold(f64::NEG_INFINITY, f64::max);
+        let text = format!(
+            "lon {:.4}..{:.4}, lat {:.4}..{:.4}",
+            min(lons),
+            max(lons),
+            min(lats),
+            max(lats)
+        );
+        Extent { lo, hi, text }
+    }
+
+    /// How far `(lon, lat)` lies outside the extent, metres (0 inside; infinite where the
+    /// projection gives no finite point).
+    fn distance_outside(&self, frame: &LocalFrame, lon: f64, lat: f64) -> f64 {
+        let (x, y) = frame.to_local(lon, lat);
+        if !(x.is_finite() && y.is_finite()) {
+            return f64::INFINITY;
+        }
+        let dx = (self.lo.x as f64 - x).max(x - self.hi.x as f64).max(0.0);
+        let dy = (self.lo.y as f64 - y).max(y - self.hi.y as f64).max(0.0);
+        dx.hypot(dy)
+    }
+}
+
+fn km(m: f64) -> String {
+    if m.is_finite() {
+        format!("{:.1} km", m / 1000.0)
+    } else {
+        "immeasurably far".to_string()
+    }
+}
+
+/// Refuses, by name, a start, waypoint or goal outside the network's extent, and a pop-up
+/// whose disc does not reach it (such a pop-up can change nothing, so it is most likely a
+/// mistake: the message says when swapping its longitude and latitude would put it on the
+/// map). In landmark mode, also a scenario with waypoints (a landmark network plans its stored
+/// start to its stored goal, so it could not visit them).
+pub fn check_query(
+    s: &Scenario,
+    net: &Network,
+    frame: &LocalFrame,
+    popups: &[PopupInput],
+) -> Result<(), String> {
+    if s.planner.mode == Mode::Landmark {
+        if let Some(w) = s.waypoints.first() {
+            return Err(format!(
+                "waypoint {:?}: landmark networks plan from their start to their goal and \
+                 cannot visit waypoints ({} in the scenario)",
+                w.name,
+                s.waypoints.len()
+            ));
+        }
+    }
+    let extent = Extent::of(net, frame);
+    let ends = s
+        .start
+        .iter()
+        .map(|e| ("start", e))
+        .chain(s.waypoints.iter().map(|e| ("waypoint", e)))
+        .chain(s.goal.iter().map(|e| ("goal", e)));
+    for (role, e) in ends {
+        let out = extent.distance_outside(frame, e.lon, e.lat);
+        if out > 0.0 {
+            return Err(format!(
+                "{role} {:?} (lon {}, lat {}) lies {} outside the network's extent ({})",
+                e.name,
+                e.lon,
+                e.lat,
+                km(out),
+                extent.text
+            ));
+        }
+    }
+    for p in popups {
+        let out = extent.distance_outside(frame, p.lon, p.lat);
+        if out > p.radius_m {
+            let swapped = p.lat.abs() <= 180.0
+                && p.lon.abs() <= 90.0
+                && extent.distance_outside(frame, p.lat, p.lon) <= p.radius_m;
+            return Err(format!(
+                "{} (lon {}, lat {}, radius {} m) lies {} outside the network's extent ({}){}",
+                p.name,
+                p.lon,
+                p.lat,
+                p.radius_m,
+                km(out - p.radius_m),
+                extent.text,
+                if swapped {
+                    "; with longitude and latitude swapped it would lie on the map: pop-ups \
+                     are given as LON,LAT,RADIUS_M"
+                } else {
+                    ""
+                }
+            ));
+        }
+    }
+    Ok(())
+}
