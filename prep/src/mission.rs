@@ -11,6 +11,7 @@ use crate::build::{local, local_heading};
 use crate::frame::LocalFrame;
 use crate::scenario::{Endpoint, Scenario};
 use rayon::prelude::*;
+use skyroute::network::Mode;
 use skyroute::planner::{
     Goal, PlanError, PlannerConfig, Query, QueryField, RouteSummary, Search, Work,
 };
@@ -276,10 +277,12 @@ fn planner<'n>(
 ) -> Result<Box<HostPlanner<'n>>, MissionError> {
     let mut p: Box<HostPlanner<'n>> = Box::new(Planner::new());
     p.load(bytes).map_err(MissionError::Load)?;
-    if p.network().terrain().is_some() {
-        // Terrain nodes sit at region corners, often kilometres from a valley's start or goal.
-        p.set_config(TERRAIN_CONFIG);
-    }
+    // Terrain nodes sit at region corners, often kilometres from a valley's start or goal.
+    let config = match p.network().mode() {
+        Mode::Terrain => TERRAIN_CONFIG,
+        Mode::Roadmap | Mode::Landmark | Mode::Unknown(_) => PlannerConfig::DEFAULT,
+    };
+    p.set_config(config);
     if let Some(r) = options.connect_radius_m {
         let config = p.config();
         p.set_config(PlannerConfig {

@@ -455,13 +455,7 @@ impl std::error::Error for BindingError {}
 
 /// The name of a network's mode, as `planner.mode` spells it.
 pub fn network_mode_name(network: &Network) -> &'static str {
-    if network.terrain().is_some() {
-        Mode::Terrain.as_str()
-    } else if network.landmark().is_some() {
-        Mode::Landmark.as_str()
-    } else {
-        Mode::Roadmap.as_str()
-    }
+    network.mode().name()
 }
 
 /// Checks that `s` is the scenario `network` was built from: the same mode, then every digest

@@ -10,17 +10,21 @@ mod crc;
 pub mod elevation;
 mod error;
 pub mod format;
+mod landmark;
+mod mode;
+mod roadmap;
+mod terrain;
+mod validate;
 #[cfg(feature = "std")]
 pub mod write;
 
 pub use crc::{crc32, crc32_parts};
 pub use error::{LoadError, Parameter, Section};
+pub use mode::Mode;
+use mode::ModeSection;
 
-use crate::geometry::grid::{segment_cells, CellGrid};
-use crate::geometry::hermite::{FlyLimits, HermiteSegment, LineElement};
 use crate::geometry::predicates::PolygonView;
-use crate::geometry::{DubinsPath, DubinsWord, Pose, Segment, Vec2};
-use elevation::{ElevationCoding, ELEVATION_BLOCKED};
+use crate::geometry::{DubinsPath, DubinsWord, Pose, Vec2};
 use format::*;
 use serde::de::DeserializeOwned;
 
@@ -32,12 +36,8 @@ pub struct Network<'a> {
     bytes: Option<&'a [u8]>,
     header: Header,
     layout: Layout,
-    /// Terrain mode: the elevation table's grid and coding.
-    terrain: Option<TerrainRecord>,
-    /// Landmark mode: the landmark record.
-    landmark: Option<LandmarkRecord>,
-    /// Landmark mode: the most pieces of any edge's chain (0 otherwise).
-    max_chain_pieces: u32,
+    /// The mode's own record (and what the loader derived from its tables).
+    section: ModeSection,
 }
 
 /// Byte offsets of each section within the image.
@@ -101,36 +101,6 @@ impl Layout {
         self.end = self
             .end
             .checked_add((count as usize).checked_mul(ProvenanceRecord::SIZE)?)?;
-        Some(self)
-    }
-
-    /// Adds the landmark sections after the common ones, or `None` on overflow.
-    fn with_landmark(mut self, l: &LandmarkRecord, edge_count: u32) -> Option<Self> {
-        let lm = l.landmark_count as usize;
-        let qualities = lm
-            .checked_mul(l.weather_count as usize)?
-            .checked_mul(l.directions as usize)?;
-        let mut at = self.end;
-        let mut next = |count: usize, size: usize| -> Option<usize> {
-            let start = at;
-            at = at.checked_add(count.checked_mul(size)?)?;
-            Some(start)
-        };
-        self.landmark = next(1, LandmarkRecord::SIZE)?;
-        self.landmarks = next(lm, LandmarkSiteRecord::SIZE)?;
-        self.rosettes = next(qualities, F32Record::SIZE)?;
-        self.chain_offsets = next((edge_count as usize).checked_add(1)?, U32Record::SIZE)?;
-        self.elements = next(l.element_count as usize, ElementRecord::SIZE)?;
-        self.end = at;
-        Some(self)
-    }
-
-    /// Adds the terrain sections after the common ones, or `None` on overflow.
-    fn with_terrain(mut self, t: &TerrainRecord) -> Option<Self> {
-        let cells = (t.cols as usize).checked_mul(t.rows as usize)?;
-        self.terrain = self.end;
-        self.elevations = self.terrain.checked_add(TerrainRecord::SIZE)?;
-        self.end = self.elevations.checked_add(cells)?;
         Some(self)
     }
 }
@@ -258,9 +228,7 @@ impl<'a> Network<'a> {
                 provenance: 0,
                 end: 0,
             },
-            terrain: None,
-            landmark: None,
-            max_chain_pieces: 0,
+            section: ModeSection::Roadmap,
         }
     }
 
@@ -298,12 +266,7 @@ impl<'a> Network<'a> {
                 supported: FORMAT_VERSION,
             });
         }
-        if header.mode != MODE_ROADMAP
-            && header.mode != MODE_TERRAIN
-            && header.mode != MODE_LANDMARK
-        {
-            return Err(LoadError::UnknownMode { mode: header.mode });
-        }
+        let mode = Mode::decode(header.mode)?;
         if header.vertex_count as usize > max_vertices {
             return Err(LoadError::TooManyVertices {
                 count: header.vertex_count,
@@ -316,43 +279,16 @@ impl<'a> Network<'a> {
                 capacity: max_edges,
             });
         }
-        let mut layout = Layout::from_header(&header).ok_or(LoadError::CountsTooLarge)?;
-        let mut terrain = None;
-        if header.mode == MODE_TERRAIN {
-            // The terrain record sizes the table after it, so it is read before the lengths
-            // are compared (the checksum comes after them, as for every section).
-            let end = layout.end.saturating_add(TerrainRecord::SIZE);
-            let record = bytes.get(layout.end..end).ok_or(LoadError::Truncated {
-                needed: end,
-                available: bytes.len(),
-            })?;
-            let t: TerrainRecord =
-                postcard::from_bytes(record).map_err(|_| LoadError::Malformed {
-                    section: Section::Terrain,
-                    index: 0,
-                })?;
-            layout = layout.with_terrain(&t).ok_or(LoadError::CountsTooLarge)?;
-            terrain = Some(t);
-        }
-        let mut landmark = None;
-        if header.mode == MODE_LANDMARK {
-            // As for terrain: the record sizes the tables after it.
-            let end = layout.end.saturating_add(LandmarkRecord::SIZE);
-            let record = bytes.get(layout.end..end).ok_or(LoadError::Truncated {
-                needed: end,
-                available: bytes.len(),
-            })?;
-            let l: LandmarkRecord =
-                postcard::from_bytes(record).map_err(|_| LoadError::Malformed {
-                    section: Section::Landmark,
-                    index: 0,
-                })?;
-            layout = layout
-                .with_landmark(&l, header.edge_count)
-                .ok_or(LoadError::CountsTooLarge)?;
-            landmark = Some(l);
-        }
-        layout = layout
+        let layout = Layout::from_header(&header).ok_or(LoadError::CountsTooLarge)?;
+        // The mode's record sizes its tables, so it is read before the lengths are compared
+        // (the checksum comes after them, as for every section).
+        let (section, layout) = match mode {
+            Mode::Roadmap => (ModeSection::Roadmap, layout),
+            Mode::Terrain => terrain::read_section(bytes, layout)?,
+            Mode::Landmark => landmark::read_section(bytes, layout, header.edge_count)?,
+            Mode::Unknown(mode) => return Err(LoadError::UnknownMode { mode }),
+        };
+        let layout = layout
             .with_provenance(header.provenance_count)
             .ok_or(LoadError::CountsTooLarge)?;
         let expected_body = layout.end - Header::SIZE;
@@ -384,590 +320,22 @@ impl<'a> Network<'a> {
             bytes: Some(bytes),
             header,
             layout,
-            terrain,
-            landmark,
-            max_chain_pieces: 0,
+            section,
         };
         net.validate_parameters()?;
         net.validate_vertices()?;
-        if net.landmark.is_some() {
-            net.max_chain_pieces = net.validate_landmark_tables()?;
-        }
+        // The mode's own tables come before the edges that index them.
+        net.section = match section {
+            ModeSection::Roadmap | ModeSection::Terrain(_) => section,
+            ModeSection::Landmark { record, .. } => ModeSection::Landmark {
+                record,
+                max_chain_pieces: net.validate_landmark_tables(&record)?,
+            },
+        };
         net.validate_edges()?;
         net.validate_obstacles()?;
         net.validate_grid()?;
         Ok(net)
-    }
-
-    fn validate_parameters(&self) -> Result<(), LoadError> {
-        let h = &self.header;
-        let bad = |parameter| Err(LoadError::InvalidParameter { parameter });
-        if h.flags != 0 {
-            return bad(Parameter::Flags);
-        }
-        if !(h.turn_radius_m.is_finite() && h.turn_radius_m > 0.0) {
-            return bad(Parameter::TurnRadius);
-        }
-        if !(h.clearance_m.is_finite() && h.clearance_m >= 0.0) {
-            return bad(Parameter::Clearance);
-        }
-        if !(h.origin_lat_deg.abs() <= 90.0 && h.origin_lon_deg.abs() <= 180.0) {
-            return bad(Parameter::Origin);
-        }
-        if !(h.grid_origin_x.is_finite() && h.grid_origin_y.is_finite()) {
-            return bad(Parameter::GridOrigin);
-        }
-        if !(h.grid_cell_m.is_finite() && h.grid_cell_m > 0.0) {
-            return bad(Parameter::GridCell);
-        }
-        if h.grid_nx == 0 || h.grid_ny == 0 {
-            return bad(Parameter::GridDimensions);
-        }
-        if let Some(t) = &self.terrain {
-            // Terrain networks carry no static obstacles: their search checks terrain cells
-            // and pop-ups only, and their work bound has no obstacle term.
-            if h.obstacle_count != 0 || h.obstacle_point_count != 0 {
-                return bad(Parameter::Terrain);
-            }
-            let grid_ok = self.terrain_grid().is_some_and(|g| g.validate().is_ok());
-            let coding_ok = self.elevation_coding().is_some_and(|c| c.is_valid());
-            let numbers_ok = t.widen_m.is_finite()
-                && t.widen_m >= 0.0
-                && t.altitude_m.is_finite()
-                && t.safety_height_m.is_finite()
-                && t.safety_height_m >= 0.0;
-            if !(grid_ok && coding_ok && numbers_ok) {
-                return bad(Parameter::Terrain);
-            }
-        }
-        if let Some(l) = &self.landmark {
-            let ok = l.directions >= 1
-                && l.weather_count >= 1
-                && l.v_nominal.is_finite()
-                && l.v_nominal > 0.0
-                && self.fly_limits().is_some_and(|f| f.is_valid())
-                && l.start_range_m.is_finite()
-                && l.start_range_m >= 0.0;
-            if !ok {
-                return bad(Parameter::Landmark);
-            }
-        }
-        Ok(())
-    }
-
-    fn validate_vertices(&self) -> Result<(), LoadError> {
-        for i in 0..self.header.vertex_count {
-            let v: VertexRecord = self.checked_record(
-                Section::Vertices,
-                self.layout.vertices,
-                VertexRecord::SIZE,
-                i,
-            )?;
-            if !(v.x.is_finite() && v.y.is_finite() && v.heading.is_finite()) {
-                return Err(LoadError::NonFinite {
-                    section: Section::Vertices,
-                    index: i,
-                });
-            }
-        }
-        Ok(())
-    }
-
-    fn validate_edges(&self) -> Result<(), LoadError> {
-        let (v, e) = (self.header.vertex_count, self.header.edge_count);
-        self.validate_offsets(Section::EdgeOffsets, self.layout.edge_offsets, v, e)?;
-        let mut source = 0u32;
-        for i in 0..e {
-            // Advance to the vertex whose range holds edge i (empty ranges are skipped).
-            while self.offset(self.layout.edge_offsets, source + 1) <= i {
-                source += 1;
-            }
-            let r: EdgeRecord =
-                self.checked_record(Section::Edges, self.layout.edges, EdgeRecord::SIZE, i)?;
-            if r.source != source {
-                return Err(LoadError::EdgeSourceMismatch {
-                    edge: i,
-                    stored: r.source,
-                    expected: source,
-                });
-            }
-            if r.target >= v {
-                return Err(LoadError::IndexOutOfRange {
-                    section: Section::Edges,
-                    index: i,
-                    value: r.target,
-                    limit: v,
-                });
-            }
-            if !r.cost.is_finite() || r.params.iter().any(|x| !x.is_finite()) {
-                return Err(LoadError::NonFinite {
-                    section: Section::Edges,
-                    index: i,
-                });
-            }
-            if r.cost < 0.0 || r.params.iter().any(|&x| x < 0.0) {
-                return Err(LoadError::NegativeValue { edge: i });
-            }
-            let unknown = LoadError::UnknownGeometry {
-                edge: i,
-                code: r.geometry,
-            };
-            if self.terrain.is_some() {
-                if r.geometry != GEOMETRY_LINE {
-                    return Err(unknown);
-                }
-                self.validate_line_edge(i, &r)?;
-            } else if self.landmark.is_some() {
-                if r.geometry != GEOMETRY_HERMITE_CHAIN {
-                    return Err(unknown);
-                }
-                self.validate_chain_edge(i, &r)?;
-            } else {
-                let Some(word) = DubinsWord::from_code(r.geometry) else {
-                    return Err(unknown);
-                };
-                self.validate_edge_geometry(i, &r, word)?;
-            }
-        }
-        Ok(())
-    }
-
-    /// Flying edge `i` from its source must end at its target's pose, and its cost must not
-    /// undercut its length (the A* heuristic and the grid's 4r reach rely on both). Tolerances
-    /// cover f32 rounding: 10⁻⁴ of (turn radius + coordinate size + length) plus 1 cm, and
-    /// 10⁻³ rad; measured Dubins end errors are below 5·10⁻⁶ of that scale.
-    fn validate_edge_geometry(
-        &self,
-        i: u32,
-        r: &EdgeRecord,
-        word: DubinsWord,
-    ) -> Result<(), LoadError> {
-        let malformed = LoadError::Malformed {
-            section: Section::Edges,
-            index: i,
-        };
-        let (Some(start), Some(target)) = (self.vertex(r.source), self.vertex(r.target)) else {
-            return Err(malformed);
-        };
-        let path = DubinsPath {
-            start,
-            radius: self.header.turn_radius_m,
-            word,
-            lengths: r.params,
-        };
-        let end = path.end();
-        let length = path.length();
-        let scale = self.header.turn_radius_m
-            + libm::fabsf(target.position.x).max(libm::fabsf(target.position.y))
-            + length;
-        let miss = end.position.distance(target.position);
-        let turn = libm::fabsf(crate::geometry::wrap_to_pi(end.heading - target.heading));
-        if !(miss <= 1e-4 * scale + 0.01 && turn <= 1e-3) {
-            return Err(LoadError::EdgeMissesTarget {
-                edge: i,
-                miss_mm: (miss * 1000.0).min(u32::MAX as f32) as u32,
-            });
-        }
-        if !(r.cost >= length * (1.0 - 1e-5)) {
-            return Err(LoadError::CostBelowLength { edge: i });
-        }
-        Ok(())
-    }
-
-    /// A terrain edge: its stored length is the distance between its ends (tolerance as for
-    /// Dubins edges), its cost does not undercut it, its elevation code is a whole number no
-    /// lower than the highest code of the cells within the widening of the segment (recomputed
-    /// here with the exact traversal, so altitude pruning can trust it), and that band lies
-    /// inside the elevation grid. Work: the cells of the band.
-    fn validate_line_edge(&self, i: u32, r: &EdgeRecord) -> Result<(), LoadError> {
-        let malformed = LoadError::Malformed {
-            section: Section::Edges,
-            index: i,
-        };
-        let (Some(a), Some(b), Some(grid), Some(t)) = (
-            self.vertex(r.source),
-            self.vertex(r.target),
-            self.terrain_grid(),
-            self.terrain,
-        ) else {
-            return Err(malformed);
-        };
-        let (a, b) = (a.position, b.position);
-        let length = r.params[0];
-        let chord = a.distance(b);
-        // A line between (nearly) coincident nodes has no direction to turn from.
-        if !(chord >= 1e-3 * self.header.turn_radius_m && chord > 0.0) {
-            return Err(malformed);
-        }
-        let scale = libm::fabsf(b.x).max(libm::fabsf(b.y)) + length;
-        if !(libm::fabsf(chord - length) <= 1e-4 * scale + 0.01) {
-            return Err(LoadError::EdgeMissesTarget {
-                edge: i,
-                miss_mm: (libm::fabsf(chord - length) * 1000.0).min(u32::MAX as f32) as u32,
-            });
-        }
-        if !(r.cost >= length * (1.0 - 1e-5)) {
-            return Err(LoadError::CostBelowLength { edge: i });
-        }
-        let stored = r.params[1];
-        if !(stored <= ELEVATION_BLOCKED as f32 && stored == libm::floorf(stored))
-            || r.params[2] != 0.0
-        {
-            return Err(malformed);
-        }
-        let w = Vec2::new(t.widen_m, t.widen_m);
-        let lo = Vec2::new(a.x.min(b.x), a.y.min(b.y)) - w;
-        let hi = Vec2::new(a.x.max(b.x), a.y.max(b.y)) + w;
-        if !grid.covers(lo, hi) {
-            return Err(LoadError::EdgeOutsideTerrain { edge: i });
-        }
-        let mut highest = 0u8;
-        segment_cells(&grid, &Segment::new(a, b), t.widen_m, |c, r| {
-            highest = highest.max(self.elevation_code(c, r));
-            true
-        })
-        .map_err(|_| LoadError::EdgeOutsideTerrain { edge: i })?;
-        if (stored as u8) < highest {
-            return Err(LoadError::EdgeElevationUnderstated {
-                edge: i,
-                stored: stored as u8,
-                computed: highest,
-            });
-        }
-        Ok(())
-    }
-
-    /// Landmark mode: the vertex layout (overflights, then start, then goal), every overflight
-    /// at its landmark, the landmarks and qualities, the chain offsets and the line elements
-    /// (finite, nominal speed). Returns the most pieces of any chain. Work: O(bytes) of these
-    /// tables.
-    fn validate_landmark_tables(&self) -> Result<u32, LoadError> {
-        let Some(l) = self.landmark else {
-            return Ok(0);
-        };
-        let v = self.header.vertex_count;
-        let overflights = l.landmark_count.checked_mul(l.directions);
-        let mut expected = overflights.unwrap_or(u32::MAX);
-        for stored in [l.start_vertex, l.goal_vertex] {
-            if stored != LandmarkRecord::ABSENT {
-                if stored != expected {
-                    return Err(LoadError::EndpointVertexMismatch { stored, expected });
-                }
-                expected = expected.saturating_add(1);
-            }
-        }
-        if overflights.is_none() || expected != v {
-            return Err(LoadError::LandmarkVertexCount {
-                vertices: v,
-                expected,
-            });
-        }
-        for i in 0..l.landmark_count {
-            let site: LandmarkSiteRecord = self.checked_record(
-                Section::Landmarks,
-                self.layout.landmarks,
-                LandmarkSiteRecord::SIZE,
-                i,
-            )?;
-            if !(site.x.is_finite() && site.y.is_finite() && site.d_max.is_finite()) {
-                return Err(LoadError::NonFinite {
-                    section: Section::Landmarks,
-                    index: i,
-                });
-            }
-            if site.d_max < 0.0 {
-                return Err(LoadError::InvalidParameter {
-                    parameter: Parameter::Landmark,
-                });
-            }
-            let at = Vec2::new(site.x, site.y);
-            for k in 0..l.directions {
-                let vertex = i * l.directions + k;
-                let p = self
-                    .vertex(vertex)
-                    .ok_or(LoadError::Malformed {
-                        section: Section::Vertices,
-                        index: vertex,
-                    })?
-                    .position;
-                if p.distance(at) > position_tolerance(at) {
-                    return Err(LoadError::VertexOffLandmark { vertex });
-                }
-            }
-        }
-        // The product fits: the layout was computed from it without overflow.
-        let qualities = (l.landmark_count as u64 * l.weather_count as u64 * l.directions as u64)
-            .min(u32::MAX as u64) as u32;
-        for i in 0..qualities {
-            let F32Record(q) =
-                self.checked_record(Section::Rosettes, self.layout.rosettes, F32Record::SIZE, i)?;
-            if !(0.0..=1.0).contains(&q) {
-                return Err(LoadError::QualityOutOfRange { index: i });
-            }
-        }
-        self.validate_offsets(
-            Section::ChainOffsets,
-            self.layout.chain_offsets,
-            self.header.edge_count,
-            l.element_count,
-        )?;
-        let mut most = 0u32;
-        for e in 0..self.header.edge_count {
-            let n = self.chain_elements(e).len() as u32;
-            if n < 2 {
-                return Err(LoadError::ChainTooShort {
-                    edge: e,
-                    elements: n,
-                });
-            }
-            most = most.max(n - 1);
-        }
-        for i in 0..l.element_count {
-            let r: ElementRecord = self.checked_record(
-                Section::ChainElements,
-                self.layout.elements,
-                ElementRecord::SIZE,
-                i,
-            )?;
-            if ![r.x, r.y, r.vx, r.vy].iter().all(|x| x.is_finite()) {
-                return Err(LoadError::NonFinite {
-                    section: Section::ChainElements,
-                    index: i,
-                });
-            }
-            let speed = Vec2::new(r.vx, r.vy).norm();
-            if !(libm::fabsf(speed - l.v_nominal) <= 1e-3 * l.v_nominal) {
-                return Err(LoadError::ElementSpeed {
-                    element: i,
-                    speed_mm_s: (speed * 1000.0).min(u32::MAX as f32) as u32,
-                });
-            }
-        }
-        Ok(most)
-    }
-
-    /// Landmark mode: a chain edge's params are `[length, 0, 0]` with the cost not below the
-    /// length and the length not below the polyline through its elements; its first element
-    /// is its source vertex's line element and its last its target's; consecutive elements are
-    /// distinct; and the grid covers its reach. Work: its elements.
-    fn validate_chain_edge(&self, i: u32, r: &EdgeRecord) -> Result<(), LoadError> {
-        let malformed = LoadError::Malformed {
-            section: Section::Edges,
-            index: i,
-        };
-        if r.params[1] != 0.0 || r.params[2] != 0.0 {
-            return Err(malformed);
-        }
-        let length = r.params[0];
-        if !(r.cost >= length * (1.0 - 1e-5)) {
-            return Err(LoadError::CostBelowLength { edge: i });
-        }
-        let range = self.chain_elements(i);
-        let mut chords = 0.0f32;
-        let mut previous: Option<LineElement> = None;
-        for k in range.clone() {
-            let el = self.chain_element(k).ok_or(LoadError::Malformed {
-                section: Section::ChainElements,
-                index: k,
-            })?;
-            if let Some(p) = previous {
-                let d = p.position.distance(el.position);
-                if !(d > 0.0) {
-                    return Err(LoadError::CoincidentElements {
-                        edge: i,
-                        element: k,
-                    });
-                }
-                chords += d;
-            }
-            previous = Some(el);
-        }
-        let (Some(first), Some(last)) = (
-            self.chain_element(range.start),
-            range.end.checked_sub(1).and_then(|k| self.chain_element(k)),
-        ) else {
-            return Err(malformed);
-        };
-        for (el, vertex) in [(first, r.source), (last, r.target)] {
-            let pose = self.vertex(vertex).ok_or(malformed)?;
-            let miss = el.position.distance(pose.position);
-            let turn = libm::fabsf(crate::geometry::wrap_to_pi(
-                el.velocity.angle() - pose.heading,
-            ));
-            if !(miss <= position_tolerance(pose.position) && turn <= 1e-3) {
-                return Err(LoadError::ChainMissesVertex {
-                    edge: i,
-                    vertex,
-                    miss_mm: (miss * 1000.0).min(u32::MAX as f32) as u32,
-                });
-            }
-        }
-        if !(length >= chords * (1.0 - 1e-5) - 0.01) {
-            return Err(LoadError::ChainShorterThanChords { edge: i });
-        }
-        let (lo, hi) = self.edge_reach(first.position, last.position, length);
-        let h = &self.header;
-        let (x1, y1) = (
-            h.grid_origin_x + h.grid_cell_m * h.grid_nx as f32,
-            h.grid_origin_y + h.grid_cell_m * h.grid_ny as f32,
-        );
-        if !(lo.x >= h.grid_origin_x && lo.y >= h.grid_origin_y && hi.x <= x1 && hi.y <= y1) {
-            return Err(LoadError::EdgeOutsideGrid { edge: i });
-        }
-        Ok(())
-    }
-
-    /// The box that holds every curve of length `length` from `a` to `b`: the ellipse
-    /// `|PA| + |PB| ≤ length` lies within `length / 2` of the midpoint (widened by 10⁻⁴ of the
-    /// length plus 1 cm against rounding).
-    pub fn edge_reach(&self, a: Vec2, b: Vec2, length: f32) -> (Vec2, Vec2) {
-        let mid = (a + b) * 0.5;
-        let r = 0.5 * length + 1e-4 * length + 0.01;
-        (mid - Vec2::new(r, r), mid + Vec2::new(r, r))
-    }
-
-    fn validate_obstacles(&self) -> Result<(), LoadError> {
-        let points = self.header.obstacle_point_count;
-        for i in 0..self.header.obstacle_point_count {
-            let p: PointRecord = self.checked_record(
-                Section::ObstaclePoints,
-                self.layout.points,
-                PointRecord::SIZE,
-                i,
-            )?;
-            if !(p.x.is_finite() && p.y.is_finite()) {
-                return Err(LoadError::NonFinite {
-                    section: Section::ObstaclePoints,
-                    index: i,
-                });
-            }
-        }
-        // Polygons own back-to-back point ranges that together use every point exactly once:
-        // the work bound charges each point once.
-        let mut next_point = 0u64;
-        for i in 0..self.header.obstacle_count {
-            let o: ObstacleRecord = self.checked_record(
-                Section::Obstacles,
-                self.layout.obstacles,
-                ObstacleRecord::SIZE,
-                i,
-            )?;
-            if o.circle.iter().chain(o.bbox.iter()).any(|x| !x.is_finite()) {
-                return Err(LoadError::NonFinite {
-                    section: Section::Obstacles,
-                    index: i,
-                });
-            }
-            let ok = match o.kind {
-                OBSTACLE_POLYGON => {
-                    let end = o.first_point as u64 + o.point_count as u64;
-                    if o.first_point as u64 != next_point {
-                        return Err(LoadError::BadOffsets {
-                            section: Section::Obstacles,
-                            index: i,
-                        });
-                    }
-                    if end > points as u64 {
-                        return Err(LoadError::IndexOutOfRange {
-                            section: Section::Obstacles,
-                            index: i,
-                            value: o.first_point.saturating_add(o.point_count),
-                            limit: points,
-                        });
-                    }
-                    next_point = end;
-                    o.point_count >= 3
-                }
-                OBSTACLE_CIRCLE => o.circle[2] > 0.0,
-                _ => false,
-            };
-            if !ok || o.bbox[0] > o.bbox[2] || o.bbox[1] > o.bbox[3] {
-                return Err(LoadError::BadObstacle { obstacle: i });
-            }
-        }
-        if next_point != points as u64 {
-            // Points that no polygon uses.
-            return Err(LoadError::BadOffsets {
-                section: Section::ObstaclePoints,
-                index: next_point as u32,
-            });
-        }
-        Ok(())
-    }
-
-    fn validate_grid(&self) -> Result<(), LoadError> {
-        let h = &self.header;
-        let cells = h
-            .grid_nx
-            .checked_mul(h.grid_ny)
-            .ok_or(LoadError::CountsTooLarge)?;
-        self.validate_offsets(
-            Section::CellOffsets,
-            self.layout.cell_offsets,
-            cells,
-            h.grid_entry_count,
-        )?;
-        for i in 0..h.grid_entry_count {
-            let U32Record(e) = self.checked_record(
-                Section::CellEntries,
-                self.layout.cell_entries,
-                U32Record::SIZE,
-                i,
-            )?;
-            if e >= h.edge_count {
-                return Err(LoadError::IndexOutOfRange {
-                    section: Section::CellEntries,
-                    index: i,
-                    value: e,
-                    limit: h.edge_count,
-                });
-            }
-        }
-        // Every Dubins path stays within 4r of its start (CSC within 2r; the middle circle of a
-        // CCC word is 2r from the first circle's centre, so its points are within 4r).
-        let reach = 4.0 * h.turn_radius_m;
-        let (x1, y1) = (
-            h.grid_origin_x + h.grid_cell_m * h.grid_nx as f32,
-            h.grid_origin_y + h.grid_cell_m * h.grid_ny as f32,
-        );
-        for i in 0..h.vertex_count {
-            let p = self
-                .vertex(i)
-                .ok_or(LoadError::Malformed {
-                    section: Section::Vertices,
-                    index: i,
-                })?
-                .position;
-            if p.x - reach < h.grid_origin_x
-                || p.y - reach < h.grid_origin_y
-                || p.x + reach > x1
-                || p.y + reach > y1
-            {
-                return Err(LoadError::GridTooSmall { vertex: i });
-            }
-        }
-        Ok(())
-    }
-
-    /// Checks that `count + 1` offsets at `base` run non-decreasing from 0 to `total`.
-    fn validate_offsets(
-        &self,
-        section: Section,
-        base: usize,
-        count: u32,
-        total: u32,
-    ) -> Result<(), LoadError> {
-        let mut previous = 0u32;
-        for i in 0..=count {
-            let U32Record(o) = self.checked_record(section, base, U32Record::SIZE, i)?;
-            let first_ok = i != 0 || o == 0;
-            let last_ok = i != count || o == total;
-            if o < previous || o > total || !first_ok || !last_ok {
-                return Err(LoadError::BadOffsets { section, index: i });
-            }
-            previous = o;
-        }
-        Ok(())
     }
 
     fn checked_record<T: DeserializeOwned>(
@@ -991,89 +359,6 @@ impl<'a> Network<'a> {
     fn offset(&self, base: usize, i: u32) -> u32 {
         self.record::<U32Record>(base, U32Record::SIZE, i as usize)
             .map_or(0, |r| r.0)
-    }
-
-    /// Landmark mode: the landmark record.
-    pub fn landmark(&self) -> Option<&LandmarkRecord> {
-        self.landmark.as_ref()
-    }
-
-    /// Landmark mode: the vehicle limits every piece was checked against.
-    pub fn fly_limits(&self) -> Option<FlyLimits> {
-        self.landmark.map(|l| FlyLimits {
-            v_min: l.v_min,
-            v_max: l.v_max,
-            a_long_min: l.a_long_min,
-            a_long_max: l.a_long_max,
-            a_lat_max: l.a_lat_max,
-        })
-    }
-
-    /// Landmark mode: landmark `l`'s position and `d_max` (metres).
-    pub fn landmark_site(&self, l: u32) -> Option<(Vec2, f32)> {
-        let rec = self.landmark?;
-        if l >= rec.landmark_count {
-            return None;
-        }
-        let r: LandmarkSiteRecord =
-            self.record(self.layout.landmarks, LandmarkSiteRecord::SIZE, l as usize)?;
-        Some((Vec2::new(r.x, r.y), r.d_max))
-    }
-
-    /// Landmark mode: the stored quality `q(direction, weather)` of landmark `l`, in `[0, 1]`.
-    pub fn rosette_quality(&self, l: u32, weather: u32, direction: u32) -> Option<f32> {
-        let rec = self.landmark?;
-        if l >= rec.landmark_count || weather >= rec.weather_count || direction >= rec.directions {
-            return None;
-        }
-        let i = (l as usize * rec.weather_count as usize + weather as usize)
-            * rec.directions as usize
-            + direction as usize;
-        self.record::<F32Record>(self.layout.rosettes, F32Record::SIZE, i)
-            .map(|r| r.0)
-    }
-
-    /// Landmark mode: the indices of edge `e`'s line elements (empty for other modes).
-    pub fn chain_elements(&self, e: u32) -> core::ops::Range<u32> {
-        if self.landmark.is_none() || e >= self.header.edge_count {
-            return 0..0;
-        }
-        self.offset(self.layout.chain_offsets, e)..self.offset(self.layout.chain_offsets, e + 1)
-    }
-
-    /// Landmark mode: line element `k` (an index into all chains' elements).
-    pub fn chain_element(&self, k: u32) -> Option<LineElement> {
-        if k >= self.landmark?.element_count {
-            return None;
-        }
-        let r: ElementRecord =
-            self.record(self.layout.elements, ElementRecord::SIZE, k as usize)?;
-        Some(LineElement::new(Vec2::new(r.x, r.y), Vec2::new(r.vx, r.vy)))
-    }
-
-    /// Landmark mode: the number of Hermite pieces of edge `e` (its elements minus one).
-    pub fn chain_piece_count(&self, e: u32) -> u32 {
-        (self.chain_elements(e).len() as u32).saturating_sub(1)
-    }
-
-    /// Landmark mode: the most pieces of any edge.
-    pub fn max_chain_pieces(&self) -> u32 {
-        self.max_chain_pieces
-    }
-
-    /// Landmark mode: piece `k` of edge `e`, rebuilt from its two line elements with
-    /// [`HermiteSegment::new`] at the nominal speed — bit for bit the segment the ground tool
-    /// built and checked. Work: one segment construction (a few Newton steps of adaptive
-    /// quadrature); the loader does not rebuild pieces, so a construction that fails (which the
-    /// ground tool rules out) gives `None`.
-    pub fn chain_piece(&self, e: u32, k: u32) -> Option<HermiteSegment> {
-        let range = self.chain_elements(e);
-        let i = range.start.checked_add(k)?;
-        if i.checked_add(1)? >= range.end {
-            return None;
-        }
-        let (a, b) = (self.chain_element(i)?, self.chain_element(i + 1)?);
-        HermiteSegment::new(&a, &b, self.landmark?.v_nominal).ok()
     }
 
     /// The length of edge `e` (its first geometry parameter for lines and Hermite chains; the
@@ -1116,9 +401,10 @@ impl<'a> Network<'a> {
         self.bytes.map_or(0, <[u8]>::len)
     }
 
-    /// The network's mode: [`MODE_ROADMAP`], [`MODE_LANDMARK`] or [`MODE_TERRAIN`].
-    pub fn mode(&self) -> u8 {
-        self.header.mode
+    /// The network's mode, decoded from the header (never [`Mode::Unknown`] for a loaded
+    /// network: the loader refuses those).
+    pub fn mode(&self) -> Mode {
+        self.section.mode()
     }
 
     /// The rectangle the network covers, `(south-west, north-east)` corners in metres: its
@@ -1145,51 +431,6 @@ impl<'a> Network<'a> {
             return None;
         }
         self.record(self.layout.provenance, ProvenanceRecord::SIZE, i as usize)
-    }
-
-    /// Terrain mode: the elevation table's grid and coding record.
-    pub fn terrain(&self) -> Option<&TerrainRecord> {
-        self.terrain.as_ref()
-    }
-
-    /// Terrain mode: the elevation table's grid.
-    pub fn terrain_grid(&self) -> Option<CellGrid> {
-        self.terrain
-            .map(|t| CellGrid::new(Vec2::new(t.origin_x, t.origin_y), t.cell_m, t.cols, t.rows))
-    }
-
-    /// Terrain mode: how elevation codes map to metres.
-    pub fn elevation_coding(&self) -> Option<ElevationCoding> {
-        self.terrain.map(|t| ElevationCoding {
-            base_m: t.elevation_base_m,
-            step_m: t.elevation_step_m,
-        })
-    }
-
-    /// Terrain mode: the elevation code of cell `(col, row)`; [`ELEVATION_BLOCKED`] outside
-    /// the grid or without terrain.
-    pub fn elevation_code(&self, col: u32, row: u32) -> u8 {
-        let Some(t) = &self.terrain else {
-            return ELEVATION_BLOCKED;
-        };
-        if col >= t.cols || row >= t.rows {
-            return ELEVATION_BLOCKED;
-        }
-        let i = row as usize * t.cols as usize + col as usize;
-        self.bytes
-            .and_then(|b| b.get(self.layout.elevations.checked_add(i)?))
-            .copied()
-            .unwrap_or(ELEVATION_BLOCKED)
-    }
-
-    /// Terrain mode: the highest elevation code within the widening of line edge `i`.
-    pub fn edge_highest_code(&self, i: u32) -> Option<u8> {
-        self.terrain?;
-        if i >= self.header.edge_count {
-            return None;
-        }
-        let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, i as usize)?;
-        Some(r.params[1] as u8)
     }
 
     /// Number of vertices.
@@ -1278,10 +519,13 @@ impl<'a> Network<'a> {
     pub fn edge_path(&self, i: u32) -> Option<DubinsPath> {
         let e = self.edge(i)?;
         let mut start = self.vertex(e.source)?;
-        if self.terrain.is_some() {
-            // Terrain vertices have no heading: a line leaves towards its target.
-            let d = self.vertex(e.target)?.position - start.position;
-            start.heading = libm::atan2f(d.y, d.x);
+        match self.section {
+            ModeSection::Roadmap | ModeSection::Landmark { .. } => {}
+            ModeSection::Terrain(_) => {
+                // Terrain vertices have no heading: a line leaves towards its target.
+                let d = self.vertex(e.target)?.position - start.position;
+                start.heading = libm::atan2f(d.y, d.x);
+            }
         }
         Some(DubinsPath {
             start,
@@ -1397,6 +641,6 @@ impl<'a> Network<'a> {
 }
 
 /// The tolerance of a stored position against another: 10⁻⁴ of the coordinate size plus 1 cm.
-fn position_tolerance(at: Vec2) -> f32 {
+pub(crate) fn position_tolerance(at: Vec2) -> f32 {
     1e-4 * libm::fabsf(at.x).max(libm::fabsf(at.y)) + 0.01
 }

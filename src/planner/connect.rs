@@ -1,5 +1,6 @@
 //! Connecting the start and the goal to the network with collision-checked Dubins paths.
 
+use super::state::ModeState;
 use super::{Goal, Link, Meter, PlanError, Planner, QueryField, MAX_CANDIDATES};
 use crate::geometry::predicates::{
     conflicts_with_circle, conflicts_with_polygon, point_in_polygon,
@@ -85,13 +86,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// In terrain mode, also that every primitive's band is over free terrain (exact cell
     /// traversal), so shortcuts and smoothing keep terrain routes clear too.
     pub(super) fn path_is_clear(&self, path: &DubinsPath, meter: &mut Meter) -> bool {
-        if self.network.terrain().is_some()
-            && !path
+        let over_terrain = match self.state {
+            ModeState::Roadmap | ModeState::Landmark(_) => true,
+            ModeState::Terrain(_) => path
                 .primitives()
                 .into_iter()
                 .flatten()
-                .all(|p| self.primitive_over_free_terrain(&p, meter))
-        {
+                .all(|p| self.primitive_over_free_terrain(&p, meter)),
+        };
+        if !over_terrain {
             return false;
         }
         let clearance = self.network.clearance();

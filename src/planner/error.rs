@@ -72,6 +72,8 @@ pub enum PlanError {
     InvalidAltitude,
     /// Landmark mode only: the operation needs a landmark network.
     NotLandmarkNetwork,
+    /// Terrain mode only: the operation needs a terrain network.
+    NotTerrainNetwork,
     /// Landmark mode: the weather index is not below the network's weather count.
     UnknownWeather {
         /// The index given.
@@ -141,6 +143,7 @@ impl fmt::Display for PlanError {
                 )
             }
             NotLandmarkNetwork => write!(f, "the network is not a landmark network"),
+            NotTerrainNetwork => write!(f, "the network is not a terrain network"),
             UnknownWeather { weather, count } => {
                 write!(f, "weather {weather} unknown: the network has {count}")
             }

@@ -10,9 +10,11 @@
 
 use super::popup::{Popup, PopupSummary};
 use super::search::{Arrival, Ends};
-use super::{Meter, PlanError, Planner, Query, RouteSummary, FROM_START};
+use super::state::{LandmarkState, ModeState};
+use super::{Meter, PlanError, Planner, Query, RouteSummary};
 use crate::geometry::{wrap_to_pi, Vec2};
 use crate::network::format::LandmarkRecord;
+use heapless::Vec;
 
 /// The most overflight directions a rosette override holds (the network may have more; then
 /// [`Planner::update_rosette`] refuses).
@@ -40,6 +42,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             .ok_or(PlanError::NotLandmarkNetwork)
     }
 
+    /// The landmark state, or [`PlanError::NotLandmarkNetwork`].
+    fn landmark_state(&mut self) -> Result<&mut LandmarkState<R>, PlanError> {
+        match &mut self.state {
+            ModeState::Landmark(l) => Ok(l),
+            _ => Err(PlanError::NotLandmarkNetwork),
+        }
+    }
+
     /// Landmark mode: sets the weather in force (an index into the network's weathers; 0 after
     /// [`Planner::load`]). O(1).
     pub fn set_weather(&mut self, weather: u32) -> Result<(), PlanError> {
@@ -50,13 +60,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 count: l.weather_count,
             });
         }
-        self.weather = weather;
+        self.landmark_state()?.weather = weather;
         Ok(())
     }
 
-    /// Landmark mode: the weather in force.
+    /// Landmark mode: the weather in force (0 for other networks).
     pub fn weather(&self) -> u32 {
-        self.weather
+        match &self.state {
+            ModeState::Landmark(l) => l.weather,
+            _ => 0,
+        }
     }
 
     /// Landmark mode: replaces landmark `landmark`'s rosette, in every weather, by `qualities`
@@ -85,11 +98,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         for (r, q) in row.iter_mut().zip(qualities) {
             *r = *q;
         }
-        if let Some(entry) = self.rosettes.iter_mut().find(|(at, _)| *at == landmark) {
+        let rosettes = &mut self.landmark_state()?.rosettes;
+        if let Some(entry) = rosettes.iter_mut().find(|(at, _)| *at == landmark) {
             entry.1 = row;
             return Ok(());
         }
-        self.rosettes
+        rosettes
             .push((landmark, row))
             .map_err(|_| PlanError::RosetteTableFull {
                 capacity: MAX_ROSETTE_OVERRIDES as u32,
@@ -99,9 +113,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Landmark mode: drops landmark `landmark`'s override (its stored rosettes apply again).
     /// Returns whether it had one.
     pub fn clear_rosette(&mut self, landmark: u32) -> bool {
-        match self.rosettes.iter().position(|(at, _)| *at == landmark) {
+        let Ok(l) = self.landmark_state() else {
+            return false;
+        };
+        match l.rosettes.iter().position(|(at, _)| *at == landmark) {
             Some(i) => {
-                self.rosettes.swap_remove(i);
+                l.rosettes.swap_remove(i);
                 true
             }
             None => false,
@@ -111,11 +128,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Landmark mode: the quality in force for landmark `landmark` crossed in `direction`
     /// (its override, or the stored rosette of the weather in force).
     pub fn quality(&self, landmark: u32, direction: u32) -> Option<f32> {
-        if let Some((_, row)) = self.rosettes.iter().find(|(at, _)| *at == landmark) {
+        let ModeState::Landmark(l) = &self.state else {
+            return None;
+        };
+        if let Some((_, row)) = l.rosettes.iter().find(|(at, _)| *at == landmark) {
             return row.get(direction as usize).copied();
         }
-        self.network
-            .rosette_quality(landmark, self.weather, direction)
+        self.network.rosette_quality(landmark, l.weather, direction)
     }
 
     /// Landmark mode: whether edge `e` is navigable in the weather and rosettes in force: an
@@ -149,7 +168,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// `k < chain_piece_count(e)`; consecutive pieces and edges meet in line elements, so the
     /// route is C² (nominal speed, zero acceleration at every joint).
     pub fn route_edges(&self) -> &[u32] {
-        &self.route_edges
+        match &self.state {
+            ModeState::Landmark(l) => &l.route_edges,
+            _ => &[],
+        }
     }
 
     /// Landmark mode's [`Planner::plan`], after the query's numbers were checked.
@@ -204,30 +226,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Err(PlanError::StartNotInNetwork)
     }
 
-    /// Walks back from `to`: calls `visit` with each edge, goal end first; returns the count.
-    fn walk_landmark(
-        &self,
-        to: u32,
-        meter: &mut Meter,
-        mut visit: impl FnMut(u32),
-    ) -> Result<u32, PlanError> {
-        let mut v = to;
-        for edges in 0..=self.network.vertex_count() {
-            meter.work.vertex_scans += 1;
-            let via = self
-                .via
-                .get(v as usize)
-                .copied()
-                .ok_or(PlanError::Internal)?;
-            if via >= FROM_START {
-                return Ok(edges);
-            }
-            visit(via);
-            v = self.network.edge_source(via).ok_or(PlanError::Internal)?;
-        }
-        Err(PlanError::Internal)
-    }
-
     fn write_landmark_route(
         &mut self,
         from: u32,
@@ -236,9 +234,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     ) -> Result<RouteSummary, PlanError> {
         let (mut length, mut pieces) = (0.0f32, 0u32);
         let net = self.network;
-        let edges = self.walk_landmark(to, meter, |e| {
+        let (edges, _) = self.walk_vertices(to, meter, |e| {
             length += net.edge_cost_target(e).map_or(0.0, |c| c.0);
             pieces = pieces.saturating_add(net.chain_piece_count(e));
+            Ok(())
         })?;
         if edges as usize > R {
             return Err(PlanError::RouteTooLong {
@@ -248,18 +247,19 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         meter.work.vertex_scans += edges as u64 + 1;
         meter.check()?;
-        let mut route = core::mem::take(&mut self.route_edges);
+        let mut route = core::mem::take(&mut self.landmark_state()?.route_edges);
         route.clear();
         let mut replay = Meter::new(u64::MAX);
-        let walked = self.walk_landmark(to, &mut replay, |e| {
+        let walked = self.walk_vertices(to, &mut replay, |e| {
             let _ = route.push(e);
+            Ok(())
         });
         route.reverse();
-        self.route_edges = route;
+        let complete = walked.is_ok() && route.len() == edges as usize;
+        self.landmark_state()?.route_edges = if complete { route } else { Vec::new() };
         self.paths.clear();
         self.route.clear();
-        if walked.is_err() || self.route_edges.len() != edges as usize {
-            self.route_edges.clear();
+        if !complete {
             self.summary = None;
             return Err(PlanError::Internal);
         }

@@ -16,6 +16,7 @@ mod landmark;
 mod popup;
 mod search;
 mod smooth;
+mod state;
 mod terrain;
 pub mod work;
 
@@ -30,9 +31,10 @@ pub use work::{
 };
 
 use crate::geometry::{DubinsPath, Pose, Primitive, Vec2};
-use crate::network::{LoadError, Network};
+use crate::network::{LoadError, Mode, Network};
 use heap::IndexedHeap;
 use heapless::Vec;
+use state::{LandmarkState, ModeState, TerrainState};
 
 /// The most start (and the most goal) links a query keeps.
 pub const MAX_LINKS: usize = 16;
@@ -168,16 +170,8 @@ pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: 
     /// The same route as lines and arcs.
     route: Vec<Primitive, R>,
     summary: Option<RouteSummary>,
-    /// Terrain mode: the altitude and safety height set in flight (`None`: the network's).
-    altitude: Option<(f32, f32)>,
-    /// Terrain mode: the turn-arc checks of the last query.
-    arc_stats: ArcCheckStats,
-    /// Landmark mode: the weather in force (an index into the network's weathers).
-    weather: u32,
-    /// Landmark mode: in-flight rosettes replacing the stored ones, per landmark.
-    rosettes: Vec<(u32, [f32; MAX_ROSETTE_DIRECTIONS]), MAX_ROSETTE_OVERRIDES>,
-    /// Landmark mode: the last route's network edges, start to goal.
-    route_edges: Vec<u32, R>,
+    /// What only the loaded network's mode keeps (altitude, weather, rosettes, ...).
+    state: ModeState<R>,
 }
 
 /// `via` values at or above this mark a vertex reached straight from start link `via − FROM_START`.
@@ -213,15 +207,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             paths: Vec::new(),
             route: Vec::new(),
             summary: None,
-            altitude: None,
-            arc_stats: ArcCheckStats {
-                arcs: 0,
-                cells: 0,
-                most_cells: 0,
-            },
-            weather: 0,
-            rosettes: Vec::new(),
-            route_edges: Vec::new(),
+            state: ModeState::Roadmap,
         }
     }
 
@@ -229,21 +215,24 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// pop-ups and the route. On error the planner keeps its previous network and state.
     pub fn load(&mut self, bytes: &'n [u8]) -> Result<(), LoadError> {
         let network = Network::from_bytes_with_capacity(bytes, V, E)?;
-        if network.terrain().is_some() {
-            // The terrain search runs over directed edges and start links.
-            let needed = network.edge_count() as usize + MAX_LINKS;
-            if needed > V {
-                return Err(LoadError::TooManySearchStates {
-                    needed,
-                    capacity: V,
-                });
+        let state = match network.mode() {
+            Mode::Roadmap => ModeState::Roadmap,
+            Mode::Terrain => {
+                // The terrain search runs over directed edges and start links.
+                let needed = network.edge_count() as usize + MAX_LINKS;
+                if needed > V {
+                    return Err(LoadError::TooManySearchStates {
+                        needed,
+                        capacity: V,
+                    });
+                }
+                ModeState::Terrain(TerrainState::for_network(&network))
             }
-        }
+            Mode::Landmark => ModeState::Landmark(LandmarkState::new()),
+            Mode::Unknown(mode) => return Err(LoadError::UnknownMode { mode }),
+        };
         self.network = network;
-        self.altitude = None;
-        self.weather = 0;
-        self.rosettes.clear();
-        self.route_edges.clear();
+        self.state = state;
         self.blocked_by = [0; E];
         self.popups.clear();
         self.paths.clear();
@@ -283,10 +272,21 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.summary.as_ref()
     }
 
-    /// Whether the search may use edge `e`: no pop-up blocks it and, in landmark mode, it is
-    /// navigable in the weather and rosettes in force ([`Planner::is_navigable`]). O(1).
+    /// Whether the search may use edge `e`: no pop-up blocks it and, in terrain mode, its band
+    /// is clear of the terrain at the altitude in force; in landmark mode, it is navigable in
+    /// the weather and rosettes in force ([`Planner::is_navigable`]). O(1).
     pub fn is_edge_usable(&self, e: u32) -> bool {
-        self.is_edge_enabled(e) && (self.network.landmark().is_none() || self.is_navigable(e))
+        if !self.is_edge_enabled(e) {
+            return false;
+        }
+        match &self.state {
+            ModeState::Roadmap => true,
+            ModeState::Terrain(t) => self
+                .network
+                .edge_highest_code(e)
+                .is_some_and(|c| c < t.blocking),
+            ModeState::Landmark(_) => self.is_navigable(e),
+        }
     }
 
     /// Whether edge `e` may be used (no active pop-up blocks it).
@@ -324,32 +324,31 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// The most work any query on the loaded network can count (with a free goal heading, the
     /// larger case): [`plan_work_bound`].
     pub fn worst_case_work(&self) -> u64 {
-        if self.network.terrain().is_some() {
-            return self.terrain_worst_case_work();
+        let h = self.network.header();
+        match self.state {
+            ModeState::Roadmap => plan_work_bound(&self.work_bound_inputs(false)),
+            ModeState::Terrain(_) => terrain_plan_work_bound(&self.terrain_bound_inputs()),
+            ModeState::Landmark(_) => {
+                landmark_plan_work_bound(h.vertex_count as u64, h.edge_count as u64)
+            }
         }
-        if self.network.landmark().is_some() {
-            let h = self.network.header();
-            return landmark_plan_work_bound(h.vertex_count as u64, h.edge_count as u64);
-        }
-        plan_work_bound(&self.work_bound_inputs(false))
     }
 
     /// The most work [`Planner::add_popup`] can count on the loaded network.
     pub fn worst_case_popup_work(&self) -> u64 {
         let h = self.network.header();
-        if self.network.landmark().is_some() {
-            return landmark_popup_work_bound(
-                h.grid_nx as u64 * h.grid_ny as u64,
+        let cells = h.grid_nx as u64 * h.grid_ny as u64;
+        match self.state {
+            ModeState::Roadmap | ModeState::Terrain(_) => {
+                popup_work_bound(cells, h.grid_entry_count as u64, MAX_POPUP_VERTICES as u64)
+            }
+            ModeState::Landmark(_) => landmark_popup_work_bound(
+                cells,
                 h.grid_entry_count as u64,
                 self.network.max_chain_pieces() as u64,
                 MAX_POPUP_VERTICES as u64,
-            );
+            ),
         }
-        popup_work_bound(
-            h.grid_nx as u64 * h.grid_ny as u64,
-            h.grid_entry_count as u64,
-            MAX_POPUP_VERTICES as u64,
-        )
     }
 }
 

@@ -2,6 +2,7 @@
 //! network's clearance of it, visiting only the edges the grid index lists for the cells it
 //! covers; removing it restores them.
 
+use super::state::ModeState;
 use super::{Planner, PopupError};
 use crate::geometry::predicates::{
     conflicts_with_circle, conflicts_with_polygon, point_in_polygon, polygon_is_simple,
@@ -146,21 +147,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         if mask & bit != 0 {
                             continue; // already tested through another cell
                         }
-                        let mut hit = false;
-                        if self.network.landmark().is_some() {
-                            hit = self.chain_conflicts(e, &popup, clearance, &mut summary);
-                        } else if let Some(path) = self.network.edge_path(e) {
-                            for prim in path.primitives().into_iter().flatten() {
-                                let (conflict, tests) = popup.conflicts(&prim, clearance);
-                                summary.predicate_tests =
-                                    summary.predicate_tests.saturating_add(tests);
-                                if conflict {
-                                    hit = true;
-                                    break;
-                                }
-                            }
-                        }
-                        if hit {
+                        if self.edge_conflicts(e, &popup, clearance, &mut summary) {
                             if let Some(m) = self.blocked_by.get_mut(e as usize) {
                                 *m |= bit;
                             }
@@ -173,6 +160,34 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         // Cannot fail: a free id below P means fewer than P pop-ups are active.
         let _ = self.popups.push((slot as u8, popup));
         Ok(summary)
+    }
+
+    /// Whether edge `e` may come within `clearance` of `popup`: exactly for the lines and arcs
+    /// of Dubins and terrain edges, conservatively for Hermite chains
+    /// ([`Planner::chain_conflicts`]). An edge that cannot be read counts as a conflict.
+    fn edge_conflicts(
+        &self,
+        e: u32,
+        popup: &Popup,
+        clearance: f32,
+        summary: &mut PopupSummary,
+    ) -> bool {
+        match self.state {
+            ModeState::Landmark(_) => self.chain_conflicts(e, popup, clearance, summary),
+            ModeState::Roadmap | ModeState::Terrain(_) => {
+                let Some(path) = self.network.edge_path(e) else {
+                    return true;
+                };
+                for prim in path.primitives().into_iter().flatten() {
+                    let (conflict, tests) = popup.conflicts(&prim, clearance);
+                    summary.predicate_tests = summary.predicate_tests.saturating_add(tests);
+                    if conflict {
+                        return true;
+                    }
+                }
+                false
+            }
+        }
     }
 
     /// Removes pop-up `id` and re-enables the edges only it blocked. Work: |E| mask updates.

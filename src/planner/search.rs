@@ -1,6 +1,7 @@
 //! The query: validate, connect, search (Dijkstra or A*), and write the route.
 
 use super::heap::ItemState;
+use super::state::ModeState;
 use super::{Link, Meter, PlanError, Planner, Query, QueryField, RouteSummary, Search, FROM_START};
 use crate::geometry::{DubinsPath, Primitive, Vec2};
 
@@ -9,10 +10,26 @@ use crate::geometry::{DubinsPath, Primitive, Vec2};
 pub(super) enum Arrival {
     /// Straight from the start, by this path.
     Direct(DubinsPath),
-    /// Through the network, leaving it at goal link `k`.
-    FromVertex { link: usize },
+    /// Through the network: from search state `state` by goal link `link`.
+    FromState {
+        /// The last search state (a vertex, or a terrain edge state).
+        state: u32,
+        /// The goal link.
+        link: usize,
+    },
     /// At the target vertex (landmark mode: the goal is a vertex).
     AtVertex,
+}
+
+/// What a search's states are: the one choice that differs between the modes' searches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum StateSpace {
+    /// The network's vertices (roadmap and landmark modes): a state is "at vertex `v`".
+    Vertices,
+    /// The directed edges and then the start links (terrain mode): a state is "arrived at the
+    /// edge's target along it", so that each turn can be checked when it is taken
+    /// (`planner/terrain.rs`).
+    EdgeStates,
 }
 
 /// Where a vertex search starts and what it looks for.
@@ -59,21 +76,29 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 field: QueryField::Goal,
             });
         }
-        if self.network.terrain().is_some() {
-            return self.plan_terrain(query, &mut meter);
+        match self.state {
+            ModeState::Roadmap => self.plan_roadmap(query, &mut meter),
+            ModeState::Terrain(_) => self.plan_terrain(query, &mut meter),
+            ModeState::Landmark(_) => self.plan_landmark(query, &mut meter),
         }
-        if self.network.landmark().is_some() {
-            return self.plan_landmark(query, &mut meter);
-        }
-        self.check_free(query.start.position, QueryField::Start, &mut meter)?;
-        self.check_free(query.goal.position, QueryField::Goal, &mut meter)?;
+    }
 
-        self.connect_start(&query.start, &mut meter)?;
-        self.connect_goal(&query.goal, &mut meter)?;
+    /// Roadmap mode's [`Planner::plan`], after the query's numbers were checked: connect the
+    /// start and goal to nearby vertices (and to each other), search, write the route.
+    fn plan_roadmap(
+        &mut self,
+        query: &Query,
+        meter: &mut Meter,
+    ) -> Result<RouteSummary, PlanError> {
+        self.check_free(query.start.position, QueryField::Start, meter)?;
+        self.check_free(query.goal.position, QueryField::Goal, meter)?;
+
+        self.connect_start(&query.start, meter)?;
+        self.connect_goal(&query.goal, meter)?;
         let direct = if query.start.position.distance(query.goal.position)
             <= self.config().connect_radius_m
         {
-            self.best_clear_path_to_goal(&query.start, &query.goal, &mut meter)?
+            self.best_clear_path_to_goal(&query.start, &query.goal, meter)?
         } else {
             None
         };
@@ -83,12 +108,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if self.goal_links.is_empty() && direct.is_none() {
             return Err(PlanError::GoalUnconnected);
         }
-        let arrival = self.search(query, Ends::Links, direct, &mut meter)?;
-        self.write_route(arrival, &mut meter)
+        let arrival = self.search(query, Ends::Links, direct, meter)?;
+        self.write_route(arrival, meter)
     }
 
-    /// Dijkstra (or A*) from the start links (or a start vertex); returns how the cheapest
-    /// route arrives. Edges are relaxed only when [`Planner::is_edge_usable`].
+    /// The one search of every mode: Dijkstra (or A*, over vertices) from the start links (or
+    /// a start vertex) over the states of the mode's [`StateSpace`]; returns how the cheapest
+    /// route arrives. Edges are relaxed only when [`Planner::is_edge_usable`]; the expansion of
+    /// a state is the space's ([`Planner::expand_vertex`], [`Planner::expand_edge_state`]).
     pub(super) fn search(
         &mut self,
         query: &Query,
@@ -96,16 +123,59 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         direct: Option<DubinsPath>,
         meter: &mut Meter,
     ) -> Result<Arrival, PlanError> {
-        let n = self.network.vertex_count() as usize;
-        self.heap.clear(n);
-        meter.work.vertex_scans += n as u64;
-        let goal = query.goal.position;
-        let heuristic = |p: Vec2| match query.search {
-            Search::Dijkstra => 0.0,
-            Search::AStar => p.distance(goal) * HEURISTIC_SCALE,
+        let space = match self.state {
+            ModeState::Roadmap | ModeState::Landmark(_) => StateSpace::Vertices,
+            ModeState::Terrain(_) => StateSpace::EdgeStates,
         };
+        let states = match space {
+            StateSpace::Vertices => self.network.vertex_count() as usize,
+            StateSpace::EdgeStates => self.network.edge_count() as usize + self.start_links.len(),
+        };
+        if states > V {
+            return Err(PlanError::Internal); // load() rules this out
+        }
+        self.heap.clear(states);
+        meter.work.vertex_scans += states as u64;
         let mut best = direct.map(|p| (p.length(), Arrival::Direct(p)));
+        match space {
+            StateSpace::Vertices => self.seed_vertices(query, ends, meter)?,
+            StateSpace::EdgeStates => self.seed_edge_states(meter)?,
+        }
+        meter.check()?;
 
+        while let Some((s, key, levels)) = self.heap.pop() {
+            meter.work.heap_steps += levels as u64;
+            if best.is_some_and(|(b, _)| key >= b) {
+                break; // every remaining route costs at least `key`
+            }
+            let reached = match space {
+                StateSpace::Vertices => self.expand_vertex(query, ends, s, &mut best, meter)?,
+                StateSpace::EdgeStates => self.expand_edge_state(s, key, &mut best, meter)?,
+            };
+            if reached {
+                break;
+            }
+            meter.check()?;
+        }
+        best.map(|(_, a)| a).ok_or(PlanError::NoRoute)
+    }
+
+    /// The A* heuristic at `p` (0 for Dijkstra).
+    fn heuristic(query: &Query, p: Vec2) -> f32 {
+        match query.search {
+            Search::Dijkstra => 0.0,
+            Search::AStar => p.distance(query.goal.position) * HEURISTIC_SCALE,
+        }
+    }
+
+    /// Queues the start of a search over vertices: the start vertex at cost 0, or the start
+    /// links' vertices at the links' lengths.
+    fn seed_vertices(
+        &mut self,
+        query: &Query,
+        ends: Ends,
+        meter: &mut Meter,
+    ) -> Result<(), PlanError> {
         if let Ends::Vertices { from, .. } = ends {
             let (Some(d), Some(via)) = (
                 self.dist.get_mut(from as usize),
@@ -133,78 +203,83 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 let h = self
                     .network
                     .vertex(link.vertex)
-                    .map_or(0.0, |p| heuristic(p.position));
+                    .map_or(0.0, |p| Self::heuristic(query, p.position));
                 meter.work.heap_steps += self.heap.push_or_decrease(link.vertex, cost + h) as u64;
             }
         }
-        meter.check()?;
-
-        while let Some((u, key, levels)) = self.heap.pop() {
-            meter.work.heap_steps += levels as u64;
-            if best.is_some_and(|(b, _)| key >= b) {
-                break; // every remaining route costs at least `key`
-            }
-            let du = self
-                .dist
-                .get(u as usize)
-                .copied()
-                .ok_or(PlanError::Internal)?;
-            if let Ends::Vertices { to, .. } = ends {
-                if u == to {
-                    // Popped with its final cost: no cheaper route remains.
-                    best = Some((du, Arrival::AtVertex));
-                    break;
-                }
-            }
-            for (k, link) in self.goal_links.iter().enumerate() {
-                meter.work.relaxations += 1;
-                if link.vertex == u {
-                    let total = du + link.path.length();
-                    if best.is_none_or(|(b, _)| total < b) {
-                        best = Some((total, Arrival::FromVertex { link: k }));
-                    }
-                }
-            }
-            for e in self.network.out_edges(u) {
-                meter.work.relaxations += 1;
-                if !self.is_edge_usable(e) {
-                    continue;
-                }
-                let Some((cost, t)) = self.network.edge_cost_target(e) else {
-                    return Err(PlanError::Internal);
-                };
-                let candidate = du + cost;
-                let state = self.heap.state(t);
-                let (Some(dt), Some(via)) =
-                    (self.dist.get_mut(t as usize), self.via.get_mut(t as usize))
-                else {
-                    return Err(PlanError::Internal);
-                };
-                if state == ItemState::Unseen || (state == ItemState::Queued && candidate < *dt) {
-                    *dt = candidate;
-                    *via = e;
-                    let h = self
-                        .network
-                        .vertex(t)
-                        .map_or(0.0, |p| heuristic(p.position));
-                    meter.work.heap_steps += self.heap.push_or_decrease(t, candidate + h) as u64;
-                }
-            }
-            meter.check()?;
-        }
-        best.map(|(_, a)| a).ok_or(PlanError::NoRoute)
+        Ok(())
     }
 
-    /// Walks back from the goal link: calls `visit` with each path of the route, goal end first.
-    /// Returns the number of network edges on the route.
-    fn walk_back(
-        &self,
-        link: &Link,
+    /// Expands vertex `u`: offers the goal links that leave it to `best`, relaxes its usable
+    /// edges. Returns whether `u` is the target of an [`Ends::Vertices`] search (popped with
+    /// its final cost: no cheaper route remains, and `best` is set to it).
+    fn expand_vertex(
+        &mut self,
+        query: &Query,
+        ends: Ends,
+        u: u32,
+        best: &mut Option<(f32, Arrival)>,
         meter: &mut Meter,
-        mut visit: impl FnMut(&DubinsPath),
-    ) -> Result<u32, PlanError> {
-        visit(&link.path);
-        let mut v = link.vertex;
+    ) -> Result<bool, PlanError> {
+        let du = self
+            .dist
+            .get(u as usize)
+            .copied()
+            .ok_or(PlanError::Internal)?;
+        if let Ends::Vertices { to, .. } = ends {
+            if u == to {
+                *best = Some((du, Arrival::AtVertex));
+                return Ok(true);
+            }
+        }
+        for (k, link) in self.goal_links.iter().enumerate() {
+            meter.work.relaxations += 1;
+            if link.vertex == u {
+                let total = du + link.path.length();
+                if best.is_none_or(|(b, _)| total < b) {
+                    *best = Some((total, Arrival::FromState { state: u, link: k }));
+                }
+            }
+        }
+        for e in self.network.out_edges(u) {
+            meter.work.relaxations += 1;
+            if !self.is_edge_usable(e) {
+                continue;
+            }
+            let Some((cost, t)) = self.network.edge_cost_target(e) else {
+                return Err(PlanError::Internal);
+            };
+            let candidate = du + cost;
+            let state = self.heap.state(t);
+            let (Some(dt), Some(via)) =
+                (self.dist.get_mut(t as usize), self.via.get_mut(t as usize))
+            else {
+                return Err(PlanError::Internal);
+            };
+            if state == ItemState::Unseen || (state == ItemState::Queued && candidate < *dt) {
+                *dt = candidate;
+                *via = e;
+                let h = self
+                    .network
+                    .vertex(t)
+                    .map_or(0.0, |p| Self::heuristic(query, p.position));
+                meter.work.heap_steps += self.heap.push_or_decrease(t, candidate + h) as u64;
+            }
+        }
+        Ok(false)
+    }
+
+    /// Walks the predecessors back from vertex `to`: calls `visit` with each network edge,
+    /// goal end first. Returns the number of edges and the start link the walk ends at
+    /// (`None` when it ends at a vertex the search started from). The one walk-back of the
+    /// searches over vertices (roadmap and landmark modes).
+    pub(super) fn walk_vertices(
+        &self,
+        to: u32,
+        meter: &mut Meter,
+        mut visit: impl FnMut(u32) -> Result<(), PlanError>,
+    ) -> Result<(u32, Option<usize>), PlanError> {
+        let mut v = to;
         // Predecessors form a tree over at most |V| vertices: more steps mean a broken invariant.
         for edges in 0..=self.network.vertex_count() {
             meter.work.vertex_scans += 1;
@@ -214,18 +289,32 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 .copied()
                 .ok_or(PlanError::Internal)?;
             if via >= FROM_START {
-                let start = self
-                    .start_links
-                    .get((via - FROM_START) as usize)
-                    .ok_or(PlanError::Internal)?;
-                visit(&start.path);
-                return Ok(edges);
+                return Ok((edges, Some((via - FROM_START) as usize)));
             }
-            let path = self.network.edge_path(via).ok_or(PlanError::Internal)?;
-            visit(&path);
-            v = path_source(&self.network, via)?;
+            visit(via)?;
+            v = self.network.edge_source(via).ok_or(PlanError::Internal)?;
         }
         Err(PlanError::Internal)
+    }
+
+    /// Walks back from the goal link: calls `visit` with each path of the route, goal end first.
+    /// Returns the number of network edges on the route.
+    fn walk_back(
+        &self,
+        link: &Link,
+        meter: &mut Meter,
+        visit: &mut dyn FnMut(&DubinsPath),
+    ) -> Result<u32, PlanError> {
+        visit(&link.path);
+        let (edges, start) = self.walk_vertices(link.vertex, meter, |e| {
+            visit(&self.network.edge_path(e).ok_or(PlanError::Internal)?);
+            Ok(())
+        })?;
+        let start = start
+            .and_then(|k| self.start_links.get(k))
+            .ok_or(PlanError::Internal)?;
+        visit(&start.path);
+        Ok(edges)
     }
 
     /// Replaces the route with the one `arrival` describes, if it fits in `R` paths and `R`
@@ -235,20 +324,43 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         arrival: Arrival,
         meter: &mut Meter,
     ) -> Result<RouteSummary, PlanError> {
-        let count = |p: &DubinsPath| p.primitives().iter().flatten().count() as u32;
-        let (needed, paths, network_edges) = match arrival {
+        let (link, direct) = match arrival {
             Arrival::AtVertex => return Err(PlanError::Internal),
-            Arrival::Direct(p) => (count(&p), 1, 0),
-            Arrival::FromVertex { link } => {
-                let link = *self.goal_links.get(link).ok_or(PlanError::Internal)?;
-                let (mut needed, mut paths) = (0, 0);
-                let edges = self.walk_back(&link, meter, |p| {
-                    needed += count(p);
-                    paths += 1;
-                })?;
-                (needed, paths, edges)
-            }
+            Arrival::Direct(p) => (None, Some(p)),
+            Arrival::FromState { link, .. } => (
+                Some(*self.goal_links.get(link).ok_or(PlanError::Internal)?),
+                None,
+            ),
         };
+        self.write_path_route(meter, link.is_some(), |me, meter, visit| {
+            match (link, direct) {
+                (Some(link), _) => me.walk_back(&link, meter, visit),
+                (None, Some(path)) => {
+                    visit(&path);
+                    Ok(0)
+                }
+                (None, None) => Err(PlanError::Internal),
+            }
+        })
+    }
+
+    /// The one route writer of the modes whose routes are chains of Dubins paths (roadmap and
+    /// terrain): replaces the route by the paths `walk` visits (goal end first) if they fit in
+    /// `R` paths and `R` primitives, and otherwise leaves the route as it was. `walk` returns
+    /// the number of network edges on the route; it runs twice, once to count and, after the
+    /// budget is settled (the second walk charged when `charge_replay`), once to fill.
+    pub(super) fn write_path_route(
+        &mut self,
+        meter: &mut Meter,
+        charge_replay: bool,
+        walk: impl Fn(&Self, &mut Meter, &mut dyn FnMut(&DubinsPath)) -> Result<u32, PlanError>,
+    ) -> Result<RouteSummary, PlanError> {
+        let count = |p: &DubinsPath| p.primitives().iter().flatten().count() as u32;
+        let (mut needed, mut paths) = (0u32, 0u32);
+        let network_edges = walk(self, meter, &mut |p| {
+            needed += count(p);
+            paths += 1;
+        })?;
         if needed as usize > R || paths as usize > R {
             return Err(PlanError::RouteTooLong {
                 primitives: needed.max(paths),
@@ -257,26 +369,17 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         // Charge the second walk (identical to the first) before it starts, so that the budget
         // is settled before the old route is touched.
-        if let Arrival::FromVertex { .. } = arrival {
+        if charge_replay {
             meter.work.vertex_scans += network_edges as u64 + 1;
         }
         meter.check()?;
         // The walk below repeats the one that just succeeded: the new route replaces the old one.
         let mut chain = core::mem::take(&mut self.paths);
         chain.clear();
-        let walked = match arrival {
-            Arrival::AtVertex => Err(PlanError::Internal),
-            Arrival::Direct(p) => chain.push(p).map(|_| 0).map_err(|_| PlanError::Internal),
-            Arrival::FromVertex { link } => match self.goal_links.get(link).copied() {
-                Some(link) => {
-                    let mut replay = Meter::new(u64::MAX);
-                    self.walk_back(&link, &mut replay, |p| {
-                        let _ = chain.push(*p);
-                    })
-                }
-                None => Err(PlanError::Internal),
-            },
-        };
+        let mut replay = Meter::new(u64::MAX);
+        let walked = walk(self, &mut replay, &mut |p| {
+            let _ = chain.push(*p);
+        });
         chain.reverse();
         self.paths = chain;
         if walked.is_err() {
@@ -312,13 +415,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    fn clear_route(&mut self) {
+    pub(super) fn clear_route(&mut self) {
         self.paths.clear();
         self.route.clear();
         self.summary = None;
     }
-}
-
-fn path_source(network: &crate::network::Network<'_>, edge: u32) -> Result<u32, PlanError> {
-    network.edge_source(edge).ok_or(PlanError::Internal)
 }

@@ -40,7 +40,9 @@
 //! [`Network`]: crate::network::Network
 
 use super::heap::ItemState;
-use super::work::{cells_bound, terrain_plan_work_bound, TerrainBoundInputs};
+use super::search::{Arrival, Ends};
+use super::state::ModeState;
+use super::work::{cells_bound, TerrainBoundInputs};
 use super::{Goal, Link, Meter, PlanError, Planner, Query, QueryField, RouteSummary, MAX_LINKS};
 use super::{MAX_CANDIDATES, MAX_POPUP_VERTICES};
 use crate::geometry::grid::{arc_cells, primitive_cells, CellGrid};
@@ -101,15 +103,6 @@ impl Fillet {
     }
 }
 
-/// How the best route found so far reaches the goal.
-#[derive(Clone, Copy, Debug)]
-enum Arrival {
-    /// Straight from the start, by this path.
-    Direct(DubinsPath),
-    /// From search state `state` by goal link `link`.
-    FromState { state: u32, link: usize },
-}
-
 /// A state's node, the unit direction it arrived along, the share of that straight a turn at
 /// the node may use, and the node it came from (`None` for a start link).
 #[derive(Clone, Copy, Debug)]
@@ -140,41 +133,41 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// elevation codes are compared with the new blocking code as the search reads them
     /// (`network::elevation`). Non-finite values are refused (the setting is kept).
     pub fn set_altitude(&mut self, altitude_m: f32, safety_height_m: f32) -> Result<(), PlanError> {
+        let ModeState::Terrain(t) = &mut self.state else {
+            return Err(PlanError::NotTerrainNetwork);
+        };
         if !(altitude_m.is_finite() && safety_height_m.is_finite() && safety_height_m >= 0.0) {
             return Err(PlanError::InvalidAltitude);
         }
-        self.altitude = Some((altitude_m, safety_height_m));
+        t.altitude = Some((altitude_m, safety_height_m));
+        t.blocking = t.blocking_code(&self.network);
         Ok(())
     }
 
     /// Terrain mode: the altitude and safety height in force (those the network was built for
-    /// until [`Planner::set_altitude`]).
+    /// until [`Planner::set_altitude`]); `None` for other networks.
     pub fn altitude(&self) -> Option<(f32, f32)> {
-        let t = self.network.terrain()?;
-        Some(self.altitude.unwrap_or((t.altitude_m, t.safety_height_m)))
+        match &self.state {
+            ModeState::Terrain(t) => t.altitude(&self.network),
+            _ => None,
+        }
     }
 
-    /// Terrain mode: cells (and edges) with an elevation code at or above this are blocked.
+    /// Terrain mode: cells (and edges) with an elevation code at or above this are blocked
+    /// (0 for other networks).
     pub fn blocking_code(&self) -> u8 {
-        match (self.network.elevation_coding(), self.altitude()) {
-            (Some(coding), Some((a, s))) => coding.blocking_code(a, s),
+        match &self.state {
+            ModeState::Terrain(t) => t.blocking,
             _ => 0,
         }
     }
 
-    /// Terrain mode: whether edge `e` is usable: enabled (no pop-up) and clear of terrain at
-    /// the altitude in force.
-    pub fn is_terrain_edge_usable(&self, e: u32) -> bool {
-        self.is_edge_enabled(e)
-            && self
-                .network
-                .edge_highest_code(e)
-                .is_some_and(|c| c < self.blocking_code())
-    }
-
     /// Terrain mode: the turn-arc checks of the last query.
     pub fn arc_check_stats(&self) -> ArcCheckStats {
-        self.arc_stats
+        match &self.state {
+            ModeState::Terrain(t) => t.arc_stats,
+            _ => ArcCheckStats::default(),
+        }
     }
 
     /// Terrain mode: the inputs of [`terrain_plan_work_bound`] for the loaded network and the
@@ -227,18 +220,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// The most work a terrain query can count on the loaded network.
-    pub(super) fn terrain_worst_case_work(&self) -> u64 {
-        terrain_plan_work_bound(&self.terrain_bound_inputs())
-    }
-
     /// Terrain mode's [`Planner::plan`], after the query's numbers were checked.
     pub(super) fn plan_terrain(
         &mut self,
         query: &Query,
         meter: &mut Meter,
     ) -> Result<RouteSummary, PlanError> {
-        self.arc_stats = ArcCheckStats::default();
+        if let ModeState::Terrain(t) = &mut self.state {
+            t.arc_stats = ArcCheckStats::default();
+        }
         self.check_over_terrain(query.start.position, QueryField::Start, meter)?;
         self.check_over_terrain(query.goal.position, QueryField::Goal, meter)?;
         self.check_free(query.start.position, QueryField::Start, meter)?;
@@ -253,7 +243,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if self.goal_links.is_empty() && direct.is_none() {
             return Err(PlanError::GoalUnconnected);
         }
-        let arrival = self.terrain_search(direct, meter)?;
+        let arrival = self.search(query, Ends::Links, direct, meter)?;
         self.write_terrain_route(arrival, meter)
     }
 
@@ -485,9 +475,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let before = meter.work.cells_visited;
         let clear = self.arc_over_free_terrain(&grid, t.widen_m, &arc, meter);
         let cells = meter.work.cells_visited - before;
-        self.arc_stats.arcs += 1;
-        self.arc_stats.cells += cells;
-        self.arc_stats.most_cells = self.arc_stats.most_cells.max(cells);
+        if let ModeState::Terrain(t) = &mut self.state {
+            t.arc_stats.arcs += 1;
+            t.arc_stats.cells += cells;
+            t.arc_stats.most_cells = t.arc_stats.most_cells.max(cells);
+        }
         clear && {
             // The arc must also keep clear of the pop-ups.
             let prim = Primitive::Arc(arc);
@@ -525,23 +517,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// Dijkstra over the states; returns how the cheapest route arrives.
-    fn terrain_search(
-        &mut self,
-        direct: Option<DubinsPath>,
-        meter: &mut Meter,
-    ) -> Result<Arrival, PlanError> {
+    /// Queues the start links' states (`|E| + k`) at the links' lengths.
+    pub(super) fn seed_edge_states(&mut self, meter: &mut Meter) -> Result<(), PlanError> {
         let edges = self.network.edge_count();
-        let states = edges as usize + self.start_links.len();
-        if states > V {
-            return Err(PlanError::Internal); // load() rules this out
-        }
-        let r = self.network.turn_radius();
-        let blocking = self.blocking_code();
-        self.heap.clear(states);
-        meter.work.vertex_scans += states as u64;
-        let mut best = direct.map(|p| (p.length(), Arrival::Direct(p)));
-
         for k in 0..self.start_links.len() {
             let s = edges + k as u32;
             let cost = self.start_links[k].path.length();
@@ -554,80 +532,80 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             *via = NO_PREVIOUS;
             meter.work.heap_steps += self.heap.push_or_decrease(s, cost) as u64;
         }
-        meter.check()?;
+        Ok(())
+    }
 
-        while let Some((s, key, levels)) = self.heap.pop() {
-            meter.work.heap_steps += levels as u64;
-            if best.is_some_and(|(b, _)| key >= b) {
-                break; // every remaining route costs at least `key`
+    /// Expands state `s` (popped at cost `ds`): offers the goal links leaving its node, turn
+    /// checked, to `best`, and relaxes the transitions to the node's usable out-edges whose
+    /// turn fits and is clear (the turn is checked only for a transition that would improve
+    /// its target). Returns `false`: an edge-state search has no target state.
+    pub(super) fn expand_edge_state(
+        &mut self,
+        s: u32,
+        ds: f32,
+        best: &mut Option<(f32, Arrival)>,
+        meter: &mut Meter,
+    ) -> Result<bool, PlanError> {
+        let r = self.network.turn_radius();
+        let at = self.arrived(s)?;
+        meter.work.vertex_scans += 1;
+        for k in 0..self.goal_links.len() {
+            meter.work.relaxations += 1;
+            let link = self.goal_links[k];
+            if link.vertex != at.node {
+                continue;
             }
-            let at = self.arrived(s)?;
-            meter.work.vertex_scans += 1;
-            let ds = key;
-            for k in 0..self.goal_links.len() {
-                meter.work.relaxations += 1;
-                let link = self.goal_links[k];
-                if link.vertex != at.node {
-                    continue;
-                }
-                let out = Vec2::from_angle(link.path.start.heading);
-                let fillet = Fillet::new(at.direction, out, r);
-                if fillet.cut > at.share || fillet.cut > 0.5 * link.path.lengths[1] {
-                    continue;
-                }
-                let total = ds + link.path.length() + fillet.saving(r);
-                if best.is_none_or(|(b, _)| total < b) && self.fillet_is_clear(&at, &fillet, meter)
-                {
-                    best = Some((total, Arrival::FromState { state: s, link: k }));
-                }
+            let out = Vec2::from_angle(link.path.start.heading);
+            let fillet = Fillet::new(at.direction, out, r);
+            if fillet.cut > at.share || fillet.cut > 0.5 * link.path.lengths[1] {
+                continue;
             }
-            for e in self.network.out_edges(at.node) {
-                meter.work.relaxations += 1;
-                if !self.is_edge_enabled(e) {
-                    continue;
-                }
-                let (Some(edge), Some(code)) =
-                    (self.network.edge(e), self.network.edge_highest_code(e))
-                else {
-                    return Err(PlanError::Internal);
-                };
-                if code >= blocking || Some(edge.target) == at.from {
-                    continue;
-                }
-                let length = edge.lengths[1];
-                let to = self
-                    .network
-                    .vertex(edge.target)
-                    .ok_or(PlanError::Internal)?
-                    .position;
-                if !(length > 0.0) {
-                    continue;
-                }
-                let out = (to - at.position) * (1.0 / length);
-                let fillet = Fillet::new(at.direction, out, r);
-                if fillet.cut > at.share || fillet.cut > 0.5 * length {
-                    continue;
-                }
-                let candidate = ds + length + fillet.saving(r);
-                let state = self.heap.state(e);
-                let improves = state == ItemState::Unseen
-                    || (state == ItemState::Queued
-                        && self.dist.get(e as usize).is_some_and(|d| candidate < *d));
-                if !improves || !self.fillet_is_clear(&at, &fillet, meter) {
-                    continue;
-                }
-                let (Some(de), Some(via)) =
-                    (self.dist.get_mut(e as usize), self.via.get_mut(e as usize))
-                else {
-                    return Err(PlanError::Internal);
-                };
-                *de = candidate;
-                *via = s;
-                meter.work.heap_steps += self.heap.push_or_decrease(e, candidate) as u64;
+            let total = ds + link.path.length() + fillet.saving(r);
+            if best.is_none_or(|(b, _)| total < b) && self.fillet_is_clear(&at, &fillet, meter) {
+                *best = Some((total, Arrival::FromState { state: s, link: k }));
             }
-            meter.check()?;
         }
-        best.map(|(_, a)| a).ok_or(PlanError::NoRoute)
+        for e in self.network.out_edges(at.node) {
+            meter.work.relaxations += 1;
+            if !self.is_edge_usable(e) {
+                continue;
+            }
+            let edge = self.network.edge(e).ok_or(PlanError::Internal)?;
+            if Some(edge.target) == at.from {
+                continue;
+            }
+            let length = edge.lengths[1];
+            let to = self
+                .network
+                .vertex(edge.target)
+                .ok_or(PlanError::Internal)?
+                .position;
+            if !(length > 0.0) {
+                continue;
+            }
+            let out = (to - at.position) * (1.0 / length);
+            let fillet = Fillet::new(at.direction, out, r);
+            if fillet.cut > at.share || fillet.cut > 0.5 * length {
+                continue;
+            }
+            let candidate = ds + length + fillet.saving(r);
+            let state = self.heap.state(e);
+            let improves = state == ItemState::Unseen
+                || (state == ItemState::Queued
+                    && self.dist.get(e as usize).is_some_and(|d| candidate < *d));
+            if !improves || !self.fillet_is_clear(&at, &fillet, meter) {
+                continue;
+            }
+            let (Some(de), Some(via)) =
+                (self.dist.get_mut(e as usize), self.via.get_mut(e as usize))
+            else {
+                return Err(PlanError::Internal);
+            };
+            *de = candidate;
+            *via = s;
+            meter.work.heap_steps += self.heap.push_or_decrease(e, candidate) as u64;
+        }
+        Ok(false)
     }
 
     /// Walks the route of `arrival` back from the goal, calling `visit` with each path (goal
@@ -638,7 +616,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &self,
         arrival: &Arrival,
         meter: &mut Meter,
-        mut visit: impl FnMut(&DubinsPath),
+        visit: &mut dyn FnMut(&DubinsPath),
     ) -> Result<u32, PlanError> {
         let (state, link) = match *arrival {
             Arrival::Direct(p) => {
@@ -646,6 +624,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 return Ok(0);
             }
             Arrival::FromState { state, link } => (state, link),
+            Arrival::AtVertex => return Err(PlanError::Internal),
         };
         let r = self.network.turn_radius();
         let link = *self.goal_links.get(link).ok_or(PlanError::Internal)?;
@@ -715,34 +694,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         arrival: Arrival,
         meter: &mut Meter,
     ) -> Result<RouteSummary, PlanError> {
-        let count = |p: &DubinsPath| p.primitives().iter().flatten().count() as u32;
-        let (mut needed, mut paths) = (0u32, 0u32);
-        let network_edges = self.walk_terrain_route(&arrival, meter, |p| {
-            needed += count(p);
-            paths += 1;
-        })?;
-        if needed as usize > R || paths as usize > R {
-            return Err(PlanError::RouteTooLong {
-                primitives: needed.max(paths),
-                capacity: R as u32,
-            });
-        }
-        meter.work.vertex_scans += network_edges as u64 + 1;
-        meter.check()?;
-        let mut chain = core::mem::take(&mut self.paths);
-        chain.clear();
-        let mut replay = Meter::new(u64::MAX);
-        let walked = self.walk_terrain_route(&arrival, &mut replay, |p| {
-            let _ = chain.push(*p);
-        });
-        chain.reverse();
-        self.paths = chain;
-        if walked.is_err() {
-            self.paths.clear();
-            self.route.clear();
-            self.summary = None;
-            return Err(PlanError::Internal);
-        }
-        Ok(self.finish_route(network_edges, meter))
+        self.write_path_route(meter, true, |me, meter, visit| {
+            me.walk_terrain_route(&arrival, meter, visit)
+        })
     }
 }

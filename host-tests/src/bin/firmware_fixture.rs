@@ -26,6 +26,7 @@ use skyroute::geometry::predicates::{
     conflicts_with_polygon, point_in_polygon, point_segment_distance, PolygonView,
 };
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec};
+use skyroute::network::Mode;
 use skyroute::planner::{PlanError, PlannerConfig, PopupSummary, RouteSummary, MAX_LINKS};
 use skyroute::{DubinsPath, Goal, Network, Planner, Popup, Pose, Query, Search, Vec2};
 use std::f32::consts::{FRAC_PI_2, PI};
@@ -345,15 +346,14 @@ fn choose(
 /// The connection settings the firmware uses: the default for a roadmap; for a terrain network,
 /// 16 links to the 32 nearest nodes however far (region corners can be kilometres away).
 fn config_for(network: &Network<'_>) -> PlannerConfig {
-    if network.terrain().is_some() {
-        PlannerConfig {
+    match network.mode() {
+        Mode::Terrain => PlannerConfig {
             start_candidates: 16,
             goal_candidates: 16,
             connect_radius_m: f32::INFINITY,
             ..PlannerConfig::DEFAULT
-        }
-    } else {
-        PlannerConfig::DEFAULT
+        },
+        Mode::Roadmap | Mode::Landmark | Mode::Unknown(_) => PlannerConfig::DEFAULT,
     }
 }
 
@@ -393,15 +393,12 @@ fn run(args: Args) -> Result<(), String> {
     if nv == 0 {
         return Err(format!("{source}: the network has no vertices"));
     }
-    if network.landmark().is_some() {
-        return run_landmark(&args, &bytes, &source, &network);
-    }
     // Search states: the vertices of a roadmap; a terrain search runs over directed edges and
     // start links.
-    let states = if network.terrain().is_some() {
-        ne + MAX_LINKS as u32
-    } else {
-        nv
+    let states = match network.mode() {
+        Mode::Landmark => return run_landmark(&args, &bytes, &source, &network),
+        Mode::Terrain => ne + MAX_LINKS as u32,
+        Mode::Roadmap | Mode::Unknown(_) => nv,
     };
     let (v_cap, e_cap) = (capacity(states, 64), capacity(ne, 256));
     // The very check the firmware's `Planner::load` makes.

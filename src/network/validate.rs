@@ -1,0 +1,254 @@
+//! The loader's checks of the common sections: header parameters, vertices, edges (each by
+//! its mode's rule), obstacles and the grid index. Each failure is its own [`LoadError`].
+
+use super::format::*;
+use super::{LoadError, ModeSection, Network, Parameter, Section};
+use crate::geometry::DubinsWord;
+
+impl<'a> Network<'a> {
+    /// The header's numbers, then the mode record's.
+    pub(super) fn validate_parameters(&self) -> Result<(), LoadError> {
+        let h = &self.header;
+        let bad = |parameter| Err(LoadError::InvalidParameter { parameter });
+        if h.flags != 0 {
+            return bad(Parameter::Flags);
+        }
+        if !(h.turn_radius_m.is_finite() && h.turn_radius_m > 0.0) {
+            return bad(Parameter::TurnRadius);
+        }
+        if !(h.clearance_m.is_finite() && h.clearance_m >= 0.0) {
+            return bad(Parameter::Clearance);
+        }
+        if !(h.origin_lat_deg.abs() <= 90.0 && h.origin_lon_deg.abs() <= 180.0) {
+            return bad(Parameter::Origin);
+        }
+        if !(h.grid_origin_x.is_finite() && h.grid_origin_y.is_finite()) {
+            return bad(Parameter::GridOrigin);
+        }
+        if !(h.grid_cell_m.is_finite() && h.grid_cell_m > 0.0) {
+            return bad(Parameter::GridCell);
+        }
+        if h.grid_nx == 0 || h.grid_ny == 0 {
+            return bad(Parameter::GridDimensions);
+        }
+        match &self.section {
+            ModeSection::Roadmap => Ok(()),
+            ModeSection::Terrain(t) => self.validate_terrain_parameters(t),
+            ModeSection::Landmark { record, .. } => self.validate_landmark_parameters(record),
+        }
+    }
+    pub(super) fn validate_vertices(&self) -> Result<(), LoadError> {
+        for i in 0..self.header.vertex_count {
+            let v: VertexRecord = self.checked_record(
+                Section::Vertices,
+                self.layout.vertices,
+                VertexRecord::SIZE,
+                i,
+            )?;
+            if !(v.x.is_finite() && v.y.is_finite() && v.heading.is_finite()) {
+                return Err(LoadError::NonFinite {
+                    section: Section::Vertices,
+                    index: i,
+                });
+            }
+        }
+        Ok(())
+    }
+    pub(super) fn validate_edges(&self) -> Result<(), LoadError> {
+        let (v, e) = (self.header.vertex_count, self.header.edge_count);
+        self.validate_offsets(Section::EdgeOffsets, self.layout.edge_offsets, v, e)?;
+        let mut source = 0u32;
+        for i in 0..e {
+            // Advance to the vertex whose range holds edge i (empty ranges are skipped).
+            while self.offset(self.layout.edge_offsets, source + 1) <= i {
+                source += 1;
+            }
+            let r: EdgeRecord =
+                self.checked_record(Section::Edges, self.layout.edges, EdgeRecord::SIZE, i)?;
+            if r.source != source {
+                return Err(LoadError::EdgeSourceMismatch {
+                    edge: i,
+                    stored: r.source,
+                    expected: source,
+                });
+            }
+            if r.target >= v {
+                return Err(LoadError::IndexOutOfRange {
+                    section: Section::Edges,
+                    index: i,
+                    value: r.target,
+                    limit: v,
+                });
+            }
+            if !r.cost.is_finite() || r.params.iter().any(|x| !x.is_finite()) {
+                return Err(LoadError::NonFinite {
+                    section: Section::Edges,
+                    index: i,
+                });
+            }
+            if r.cost < 0.0 || r.params.iter().any(|&x| x < 0.0) {
+                return Err(LoadError::NegativeValue { edge: i });
+            }
+            let unknown = LoadError::UnknownGeometry {
+                edge: i,
+                code: r.geometry,
+            };
+            // Each mode has its own edge geometry.
+            match &self.section {
+                ModeSection::Roadmap => {
+                    let word = DubinsWord::from_code(r.geometry).ok_or(unknown)?;
+                    self.validate_edge_geometry(i, &r, word)?;
+                }
+                ModeSection::Terrain(_) if r.geometry == GEOMETRY_LINE => {
+                    self.validate_line_edge(i, &r)?
+                }
+                ModeSection::Landmark { .. } if r.geometry == GEOMETRY_HERMITE_CHAIN => {
+                    self.validate_chain_edge(i, &r)?
+                }
+                ModeSection::Terrain(_) | ModeSection::Landmark { .. } => return Err(unknown),
+            }
+        }
+        Ok(())
+    }
+    pub(super) fn validate_obstacles(&self) -> Result<(), LoadError> {
+        let points = self.header.obstacle_point_count;
+        for i in 0..self.header.obstacle_point_count {
+            let p: PointRecord = self.checked_record(
+                Section::ObstaclePoints,
+                self.layout.points,
+                PointRecord::SIZE,
+                i,
+            )?;
+            if !(p.x.is_finite() && p.y.is_finite()) {
+                return Err(LoadError::NonFinite {
+                    section: Section::ObstaclePoints,
+                    index: i,
+                });
+            }
+        }
+        // Polygons own back-to-back point ranges that together use every point exactly once:
+        // the work bound charges each point once.
+        let mut next_point = 0u64;
+        for i in 0..self.header.obstacle_count {
+            let o: ObstacleRecord = self.checked_record(
+                Section::Obstacles,
+                self.layout.obstacles,
+                ObstacleRecord::SIZE,
+                i,
+            )?;
+            if o.circle.iter().chain(o.bbox.iter()).any(|x| !x.is_finite()) {
+                return Err(LoadError::NonFinite {
+                    section: Section::Obstacles,
+                    index: i,
+                });
+            }
+            let ok = match o.kind {
+                OBSTACLE_POLYGON => {
+                    let end = o.first_point as u64 + o.point_count as u64;
+                    if o.first_point as u64 != next_point {
+                        return Err(LoadError::BadOffsets {
+                            section: Section::Obstacles,
+                            index: i,
+                        });
+                    }
+                    if end > points as u64 {
+                        return Err(LoadError::IndexOutOfRange {
+                            section: Section::Obstacles,
+                            index: i,
+                            value: o.first_point.saturating_add(o.point_count),
+                            limit: points,
+                        });
+                    }
+                    next_point = end;
+                    o.point_count >= 3
+                }
+                OBSTACLE_CIRCLE => o.circle[2] > 0.0,
+                _ => false,
+            };
+            if !ok || o.bbox[0] > o.bbox[2] || o.bbox[1] > o.bbox[3] {
+                return Err(LoadError::BadObstacle { obstacle: i });
+            }
+        }
+        if next_point != points as u64 {
+            // Points that no polygon uses.
+            return Err(LoadError::BadOffsets {
+                section: Section::ObstaclePoints,
+                index: next_point as u32,
+            });
+        }
+        Ok(())
+    }
+    pub(super) fn validate_grid(&self) -> Result<(), LoadError> {
+        let h = &self.header;
+        let cells = h
+            .grid_nx
+            .checked_mul(h.grid_ny)
+            .ok_or(LoadError::CountsTooLarge)?;
+        self.validate_offsets(
+            Section::CellOffsets,
+            self.layout.cell_offsets,
+            cells,
+            h.grid_entry_count,
+        )?;
+        for i in 0..h.grid_entry_count {
+            let U32Record(e) = self.checked_record(
+                Section::CellEntries,
+                self.layout.cell_entries,
+                U32Record::SIZE,
+                i,
+            )?;
+            if e >= h.edge_count {
+                return Err(LoadError::IndexOutOfRange {
+                    section: Section::CellEntries,
+                    index: i,
+                    value: e,
+                    limit: h.edge_count,
+                });
+            }
+        }
+        // Every Dubins path stays within 4r of its start (CSC within 2r; the middle circle of a
+        // CCC word is 2r from the first circle's centre, so its points are within 4r).
+        let reach = 4.0 * h.turn_radius_m;
+        let (x1, y1) = (
+            h.grid_origin_x + h.grid_cell_m * h.grid_nx as f32,
+            h.grid_origin_y + h.grid_cell_m * h.grid_ny as f32,
+        );
+        for i in 0..h.vertex_count {
+            let p = self
+                .vertex(i)
+                .ok_or(LoadError::Malformed {
+                    section: Section::Vertices,
+                    index: i,
+                })?
+                .position;
+            if p.x - reach < h.grid_origin_x
+                || p.y - reach < h.grid_origin_y
+                || p.x + reach > x1
+                || p.y + reach > y1
+            {
+                return Err(LoadError::GridTooSmall { vertex: i });
+            }
+        }
+        Ok(())
+    }
+    /// Checks that `count + 1` offsets at `base` run non-decreasing from 0 to `total`.
+    pub(super) fn validate_offsets(
+        &self,
+        section: Section,
+        base: usize,
+        count: u32,
+        total: u32,
+    ) -> Result<(), LoadError> {
+        let mut previous = 0u32;
+        for i in 0..=count {
+            let U32Record(o) = self.checked_record(section, base, U32Record::SIZE, i)?;
+            let first_ok = i != 0 || o == 0;
+            let last_ok = i != count || o == total;
+            if o < previous || o > total || !first_ok || !last_ok {
+                return Err(LoadError::BadOffsets { section, index: i });
+            }
+            previous = o;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,87 @@
+//! Each mode's mutable planner state, one variant per mode, set by [`Planner::load`].
+//!
+//! The state every mode shares (edge masks, pop-ups, distances, heap, links, route) lives in
+//! [`Planner`] itself; what only one mode has lives here, so that a planner holds exactly its
+//! network's mode's state and every operation that differs by mode matches on it once.
+//!
+//! [`Planner`]: super::Planner
+//! [`Planner::load`]: super::Planner::load
+
+use super::landmark::{MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
+use super::terrain::ArcCheckStats;
+use crate::network::Network;
+use heapless::Vec;
+
+/// Terrain mode's state: the altitude in force and what the last query's turn checks cost.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct TerrainState {
+    /// The altitude and safety height set in flight (`None`: the network's).
+    pub(super) altitude: Option<(f32, f32)>,
+    /// Cells and edges with an elevation code at or above this are blocked at that altitude.
+    pub(super) blocking: u8,
+    /// The turn-arc checks of the last query.
+    pub(super) arc_stats: ArcCheckStats,
+}
+
+impl TerrainState {
+    /// The state after loading `network`: its own altitude and safety height.
+    pub(super) fn for_network(network: &Network) -> Self {
+        let mut s = TerrainState {
+            altitude: None,
+            blocking: 0,
+            arc_stats: ArcCheckStats::default(),
+        };
+        s.blocking = s.blocking_code(network);
+        s
+    }
+
+    /// The altitude and safety height in force (the network's until one is set).
+    pub(super) fn altitude(&self, network: &Network) -> Option<(f32, f32)> {
+        let t = network.terrain()?;
+        Some(self.altitude.unwrap_or((t.altitude_m, t.safety_height_m)))
+    }
+
+    /// The blocking code of the altitude in force (0, blocking everything, without terrain).
+    pub(super) fn blocking_code(&self, network: &Network) -> u8 {
+        match (network.elevation_coding(), self.altitude(network)) {
+            (Some(coding), Some((a, s))) => coding.blocking_code(a, s),
+            _ => 0,
+        }
+    }
+}
+
+/// Landmark mode's state: the weather, the in-flight rosettes and the last route's edges.
+#[derive(Clone, Debug)]
+pub(super) struct LandmarkState<const R: usize> {
+    /// The weather in force (an index into the network's weathers).
+    pub(super) weather: u32,
+    /// In-flight rosettes replacing the stored ones, per landmark.
+    pub(super) rosettes: Vec<(u32, [f32; MAX_ROSETTE_DIRECTIONS]), MAX_ROSETTE_OVERRIDES>,
+    /// The last route's network edges, start to goal.
+    pub(super) route_edges: Vec<u32, R>,
+}
+
+impl<const R: usize> LandmarkState<R> {
+    /// Weather 0, no overrides, no route.
+    pub(super) const fn new() -> Self {
+        LandmarkState {
+            weather: 0,
+            rosettes: Vec::new(),
+            route_edges: Vec::new(),
+        }
+    }
+}
+
+/// The state of the loaded network's mode.
+// Fixed memory: the planner reserves room for the largest variant once (no allocator to box
+// it), which is still less than keeping every mode's state side by side.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug)]
+pub(super) enum ModeState<const R: usize> {
+    /// Roadmaps keep nothing of their own (also the state of a planner with no network).
+    Roadmap,
+    /// Terrain mode.
+    Terrain(TerrainState),
+    /// Landmark mode.
+    Landmark(LandmarkState<R>),
+}
