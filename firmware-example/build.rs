@@ -1,5 +1,10 @@
 //! Puts `../memory.x` (the STM32F405's flash and RAM) on the linker's search path for
-//! cortex-m-rt's `link.x`, and checks that the generated fixture exists.
+//! cortex-m-rt's `link.x`.
+//!
+//! The fixtures are not this script's business: each binary `include!`s its own
+//! (`src/bin/roadmap.rs` ← `fixture/`, `terrain.rs` ← `fixture-terrain/`, `landmark.rs` ←
+//! `fixture-landmark/`), rustc tracks those files, and a binary whose fixture has not been
+//! generated fails to compile naming the missing file, while the others build.
 
 use std::path::PathBuf;
 
@@ -12,26 +17,4 @@ fn main() {
     println!("cargo:rustc-link-search={}", out.display());
     println!("cargo:rerun-if-changed={}", memory.display());
     println!("cargo:rerun-if-changed=build.rs");
-
-    let terrain = std::env::var_os("CARGO_FEATURE_TERRAIN").is_some();
-    let landmark = std::env::var_os("CARGO_FEATURE_LANDMARK").is_some();
-    let dir = match (terrain, landmark) {
-        (true, true) => panic!("the features `terrain` and `landmark` exclude each other"),
-        (true, false) => "fixture-terrain",
-        (false, true) => "fixture-landmark",
-        (false, false) => "fixture",
-    };
-    for f in ["network.bin", "query.rs"].map(|f| format!("{dir}/{f}")) {
-        let path = manifest.join(f);
-        if !path.exists() {
-            panic!(
-                "{} is missing: generate the fixture first, e.g.\n  \
-                 cargo run --release -p host-tests --bin firmware_fixture -- --synthetic \
-                 firmware-example/fixture\n(from the repository root; scripts/test.sh does this \
-                 for {dir}/)",
-                path.display()
-            );
-        }
-        println!("cargo:rerun-if-changed={}", path.display());
-    }
 }

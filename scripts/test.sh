@@ -2,8 +2,9 @@
 # The project's whole check, as CI runs it (.ci/run): installs what is missing, then
 #   format → clippy (host, thumbv7em, thumbv7em+defmt) → core docs → OMPL reference → tests →
 #   firmware fixture → firmware build → firmware clippy → firmware under QEMU → sizes, for the
-#   roadmap (niendorf-urban), again for terrain (medeiros-jacksboro, feature `terrain`) and for
-#   landmarks (babel-II-N, feature `landmark`: plan, lose a landmark in flight, re-plan).
+#   roadmap (niendorf-urban, binary `roadmap`), again for terrain (medeiros-jacksboro, binary
+#   `terrain`) and for landmarks (babel-II-N, binary `landmark`: plan, lose a landmark in
+#   flight, re-plan).
 # Runnable from any directory. Stops at the first failing step; KEEP_GOING=1 runs every step
 # and fails at the end instead.
 #
@@ -21,7 +22,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 
-# Each workspace builds into its own target/ (the firmware ELF's path below relies on it; an
+# Each workspace builds into its own target/ (the firmware ELFs' paths below rely on it; an
 # exported CARGO_TARGET_DIR would leave QEMU running a stale ELF).
 unset CARGO_TARGET_DIR
 
@@ -47,7 +48,8 @@ terrain_query="--start -3547.7197,-9893.968,0.78498753 --goal 3539.5775,9895.572
 landmark_scenario=scenarios/babel-II-N.geojson
 landmark_src=target/fixture/landmark-src.bin
 landmark_fixture_dir=firmware-example/fixture-landmark
-firmware_elf=firmware-example/target/thumbv7em-none-eabihf/release/skyroute-firmware-example
+# The firmware binaries' ELFs: $firmware_release/{roadmap,terrain,landmark}.
+firmware_release=firmware-example/target/thumbv7em-none-eabihf/release
 
 script_start=$SECONDS
 failed=()
@@ -165,8 +167,15 @@ fixture() {
         "$network_src" "$fixture_dir" ${extra[@]+"${extra[@]}"}
 }
 
+# firmware_build BIN: builds the firmware binary BIN (roadmap, terrain or landmark), which
+# embeds its own fixture (fixture/, fixture-terrain/, fixture-landmark/).
 firmware_build() {
-    (cd firmware-example && cargo build --release)
+    (cd firmware-example && cargo build --release --bin "$1")
+}
+
+# firmware_clippy BIN: lints the firmware library and the binary BIN, warnings denied.
+firmware_clippy() {
+    (cd firmware-example && cargo clippy --release --bin "$1" -- -D warnings)
 }
 
 terrain_fixture() {
@@ -176,14 +185,6 @@ terrain_fixture() {
     # shellcheck disable=SC2086 # the query's options are meant to split
     cargo run --release -q -p host-tests --bin firmware_fixture -- \
         "$terrain_src" "$terrain_fixture_dir" $terrain_query
-}
-
-terrain_firmware_build() {
-    (cd firmware-example && cargo build --release --features terrain)
-}
-
-firmware_clippy() {
-    (cd firmware-example && cargo clippy --release -- -D warnings)
 }
 
 # The babel-II-N landmark network and the fixture: the host plans stored start → stored goal in
@@ -196,23 +197,17 @@ landmark_fixture() {
         "$landmark_src" "$landmark_fixture_dir"
 }
 
-landmark_firmware_build() {
-    (cd firmware-example && cargo build --release --features landmark)
-}
-
-landmark_firmware_clippy() {
-    (cd firmware-example && cargo clippy --release --features landmark -- -D warnings)
-}
-
+# firmware_run ELF: boots the firmware ELF under QEMU; its exit code is the verdict.
 firmware_run() {
-    FIRMWARE_TIMEOUT=${FIRMWARE_TIMEOUT:-300} bash scripts/run-firmware.sh "$firmware_elf"
+    FIRMWARE_TIMEOUT=${FIRMWARE_TIMEOUT:-300} bash scripts/run-firmware.sh "$1"
 }
 
-# Flash: everything loaded into flash (vector table, code, read-only data with the network, and
-# the initial image of .data); RAM: .data + .bss + .uninit (the stack takes the rest of the
-# 128 KiB from the top down). Read from the ELF's section headers.
+# firmware_size ELF: the firmware's flash and RAM. Flash: everything loaded into flash (vector
+# table, code, read-only data with the network, and the initial image of .data); RAM: .data +
+# .bss + .uninit (the stack takes the rest of the 128 KiB from the top down). Read from the
+# ELF's section headers.
 firmware_size() {
-    python3 - "$firmware_elf" <<'EOF'
+    python3 - "$1" <<'EOF'
 import struct, sys
 data = open(sys.argv[1], "rb").read()
 assert data[:4] == b"\x7fELF" and data[4] == 1, "expected a 32-bit ELF"
@@ -255,19 +250,20 @@ step "core docs (cargo doc, warnings denied)" \
 step "OMPL Dubins reference" ompl_reference
 step "cargo test --workspace" cargo test --workspace
 step "firmware fixture" fixture
-step "firmware build (release)" firmware_build
-step "firmware clippy" firmware_clippy
-step "firmware under QEMU (netduinoplus2)" firmware_run
-step "firmware size" firmware_size
+step "firmware build (release, bin roadmap)" firmware_build roadmap
+step "firmware clippy (bin roadmap)" firmware_clippy roadmap
+step "firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/roadmap"
+step "firmware size" firmware_size "$firmware_release/roadmap"
 step "terrain firmware fixture (medeiros-jacksboro)" terrain_fixture
-step "terrain firmware build (release, feature terrain)" terrain_firmware_build
-step "terrain firmware under QEMU (netduinoplus2)" firmware_run
-step "terrain firmware size" firmware_size
+step "terrain firmware build (release, bin terrain)" firmware_build terrain
+step "terrain firmware clippy (bin terrain)" firmware_clippy terrain
+step "terrain firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/terrain"
+step "terrain firmware size" firmware_size "$firmware_release/terrain"
 step "landmark firmware fixture (babel-II-N)" landmark_fixture
-step "landmark firmware build (release, feature landmark)" landmark_firmware_build
-step "landmark firmware clippy" landmark_firmware_clippy
-step "landmark firmware under QEMU (netduinoplus2)" firmware_run
-step "landmark firmware size" firmware_size
+step "landmark firmware build (release, bin landmark)" firmware_build landmark
+step "landmark firmware clippy (bin landmark)" firmware_clippy landmark
+step "landmark firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/landmark"
+step "landmark firmware size" firmware_size "$firmware_release/landmark"
 
 summary
 [[ ${#failed[@]} -eq 0 ]]

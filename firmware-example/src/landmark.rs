@@ -1,30 +1,58 @@
 //! Landmark mode (Babel) on the flight computer: plan from the network's stored start to its
 //! stored goal in the fixture's weather, then lose a landmark in flight and plan again.
 //!
-//! 1. `set_weather(WEATHER)`; the query is the stored start vertex's pose → the stored goal
-//!    vertex's position with a free heading, Dijkstra, budget `Planner::worst_case_work()`;
-//!    one [`RouteTask`] cycle plans it (timed with SysTick) and the route's overflights are
-//!    logged (landmark, compass direction, the leg's cost from `route_edges` + `edge_record`);
-//! 2. `update_rosette(LOST_LANDMARK, &[0.0; D])` — the fixture's landmark (the first one the
+//! 1. `set_weather` with the fixture's weather; the query is the stored start vertex's pose →
+//!    the stored goal vertex's position with a free heading, Dijkstra, budget
+//!    `Planner::worst_case_work()`; one [`RouteTask`] cycle plans it (timed with SysTick) and
+//!    the route's overflights are logged (landmark, compass direction, the leg's cost from
+//!    `route_edges` + `edge_record`);
+//! 2. `update_rosette(lost_landmark, &[0.0; D])` — the fixture's landmark (the first one the
 //!    route overflies) is lost — through [`RouteTask::planner`] between cycles, as a navigation
 //!    monitor would, then one more cycle re-plans;
-//! 3. the verdict: both answers equal the host's exactly (`EXPECTED_*` in `query.rs`: length,
+//! 3. the verdict: both answers equal the host's exactly ([`LandmarkFixture`]: length,
 //!    edges, pieces, work; or the re-plan fails on both), and the new route avoids the lost
 //!    landmark.
 
 use crate::autopilot::{Cycle, Next, RouteTask};
 use crate::clock::{self, Clock};
-use crate::fixture::*;
-use crate::{stack, FlightPlanner, PERIOD_MS};
+use crate::{log_stack, PERIOD_MS};
 use skyroute::planner::{RouteSummary, MAX_ROSETTE_DIRECTIONS};
-use skyroute::{Goal, Network, PlanError, Query, Search};
+use skyroute::{Goal, Network, PlanError, Planner, Query, Search};
 
-/// The task type: the planner in its `static`, SysTick as delay and clock.
-type Task = RouteTask<'static, 'static, Clock, Clock, V_CAP, E_CAP, P_CAP, R_CAP>;
+/// What the landmark binary's `query.rs` holds for this mission: the weather, the landmark to
+/// lose, and both answers of the host.
+pub struct LandmarkFixture {
+    /// The weather in force (`Planner::set_weather`).
+    pub weather: u32,
+    /// Route length the host computed, stored start → stored goal, metres.
+    pub expected_length: f32,
+    /// Hermite pieces of that route.
+    pub expected_primitives: u32,
+    /// Network edges of that route.
+    pub expected_network_edges: u32,
+    /// Work the host counted.
+    pub expected_work: u64,
+    /// The network's worst-case work (the host's `Planner::worst_case_work`), compared with the
+    /// target's own, which is the budget.
+    pub budget: u64,
+    /// The landmark lost in flight (all-zero rosette): the first one the route overflies.
+    pub lost_landmark: u32,
+    /// The host's re-plan after losing it: `Some((length m, network edges, work))`, or `None`
+    /// when its `plan` failed.
+    pub expected_replan: Option<(f32, u32, u64)>,
+}
 
-/// Plans from the stored start to the stored goal, loses [`LOST_LANDMARK`], plans again; true
-/// only if both answers equal the host's.
-pub fn run(planner: &'static mut FlightPlanner, clock: Clock) -> bool {
+/// The task type: the planner, SysTick as delay and clock.
+type Task<'p, 'n, const V: usize, const E: usize, const P: usize, const R: usize> =
+    RouteTask<'p, 'n, Clock, Clock, V, E, P, R>;
+
+/// Plans from the stored start to the stored goal, loses
+/// [`LandmarkFixture::lost_landmark`], plans again; true only if both answers equal the host's.
+pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
+    planner: &mut Planner<'_, V, E, P, R>,
+    clock: Clock,
+    fixture: &LandmarkFixture,
+) -> bool {
     let net = *planner.network();
     let Some(l) = net.landmark().copied() else {
         defmt::error!("the fixture's network is not a landmark network");
@@ -46,15 +74,15 @@ pub fn run(planner: &'static mut FlightPlanner, clock: Clock) -> bool {
     };
 
     let t = clock.now();
-    let weather = planner.set_weather(WEATHER);
+    let weather = planner.set_weather(fixture.weather);
     let weather_ticks = clock.now() - t;
     if let Err(e) = weather {
-        defmt::error!("set_weather({=u32}) failed: {}", WEATHER, e);
+        defmt::error!("set_weather({=u32}) failed: {}", fixture.weather, e);
         return false;
     }
     defmt::info!(
         "set_weather({=u32}) took {=u64} ticks",
-        WEATHER,
+        fixture.weather,
         weather_ticks
     );
 
@@ -71,52 +99,29 @@ pub fn run(planner: &'static mut FlightPlanner, clock: Clock) -> bool {
     defmt::info!(
         "worst-case work bound {=u64} (host {=u64}): the budget",
         budget,
-        BUDGET
+        fixture.budget
     );
-    if budget != BUDGET {
+    if budget != fixture.budget {
         defmt::warn!("the host computed a different bound: fixture out of date?");
     }
 
-    let mut task: Task = RouteTask::new(planner, clock, clock, PERIOD_MS, budget);
+    let mut task: Task<'_, '_, V, E, P, R> =
+        RouteTask::new(planner, clock, clock, PERIOD_MS, budget);
 
     // 1. The planned route.
     let (first, plan_ticks) = plan_once(&mut task, query);
-    let mut verdict = match first {
-        Ok(s) => {
-            log_route(&net, "plan", &s, plan_ticks, task.planner().route_edges());
-            let same = s.length == EXPECTED_LENGTH
-                && s.network_edges == EXPECTED_NETWORK_EDGES
-                && s.primitives == EXPECTED_PRIMITIVES
-                && s.work.total() == EXPECTED_WORK;
-            if !same {
-                defmt::error!(
-                    "route {=f32} m, {=u32} edges, {=u32} pieces, work {=u64}; host: {=f32} m, {=u32} edges, {=u32} pieces, work {=u64}",
-                    s.length,
-                    s.network_edges,
-                    s.primitives,
-                    s.work.total(),
-                    EXPECTED_LENGTH,
-                    EXPECTED_NETWORK_EDGES,
-                    EXPECTED_PRIMITIVES,
-                    EXPECTED_WORK
-                );
-            }
-            same
-        }
-        Err(e) => {
-            defmt::error!("plan failed after {=u64} ticks: {}", plan_ticks, e);
-            false
-        }
-    };
-    let overflown = task.planner().route_edges().iter().any(|&e| {
+    let route = task.planner().route_edges();
+    let mut verdict = check_plan(&net, first, plan_ticks, route, fixture);
+    let lost_landmark = fixture.lost_landmark;
+    let overflown = route.iter().any(|&e| {
         net.edge_record(e).is_some_and(|r| {
-            r.target < l.landmark_count * l.directions && r.target / l.directions == LOST_LANDMARK
+            r.target < l.landmark_count * l.directions && r.target / l.directions == lost_landmark
         })
     });
     if !overflown {
         defmt::warn!(
             "landmark {=u32} (the fixture's) is not on the route",
-            LOST_LANDMARK
+            lost_landmark
         );
     }
 
@@ -131,36 +136,103 @@ pub fn run(planner: &'static mut FlightPlanner, clock: Clock) -> bool {
         return false;
     };
     let t = clock.now();
-    let updated = task.planner().update_rosette(LOST_LANDMARK, lost);
+    let updated = task.planner().update_rosette(lost_landmark, lost);
     let update_ticks = clock.now() - t;
     if let Err(e) = updated {
-        defmt::error!("update_rosette({=u32}) failed: {}", LOST_LANDMARK, e);
+        defmt::error!("update_rosette({=u32}) failed: {}", lost_landmark, e);
         return false;
     }
     defmt::info!(
         "landmark {=u32} lost: update_rosette took {=u64} ticks = {=u64} us",
-        LOST_LANDMARK,
+        lost_landmark,
         update_ticks,
         Clock::ticks_to_us(update_ticks)
     );
+
+    // 3. The re-plan.
     let (second, replan_ticks) = plan_once(&mut task, query);
-    let replan_ok = match (second, EXPECTED_REPLAN) {
-        (Ok(s), Some((length, edges, work))) => {
-            let route = task.planner().route_edges();
-            log_route(&net, "re-plan", &s, replan_ticks, route);
-            let avoids = route.iter().all(|&e| {
+    let route = task.planner().route_edges();
+    verdict &= check_replan(&net, second, replan_ticks, route, fixture);
+
+    log_stack();
+    if verdict {
+        defmt::info!(
+            "PASS: route {=f32} m and, landmark {=u32} lost, {=f32} m: equal to the host's",
+            fixture.expected_length,
+            lost_landmark,
+            fixture.expected_replan.map_or(f32::NAN, |r| r.0)
+        );
+    }
+    verdict
+}
+
+/// The first plan's verdict: logs the route (`edges`, `ticks`), true only if its length, edges,
+/// pieces and work equal the host's.
+fn check_plan(
+    net: &Network<'_>,
+    outcome: Result<RouteSummary, PlanError>,
+    ticks: u64,
+    edges: &[u32],
+    fixture: &LandmarkFixture,
+) -> bool {
+    let s = match outcome {
+        Ok(s) => s,
+        Err(e) => {
+            defmt::error!("plan failed after {=u64} ticks: {}", ticks, e);
+            return false;
+        }
+    };
+    log_route(net, "plan", &s, ticks, edges);
+    let same = s.length == fixture.expected_length
+        && s.network_edges == fixture.expected_network_edges
+        && s.primitives == fixture.expected_primitives
+        && s.work.total() == fixture.expected_work;
+    if !same {
+        defmt::error!(
+            "route {=f32} m, {=u32} edges, {=u32} pieces, work {=u64}; host: {=f32} m, {=u32} edges, {=u32} pieces, work {=u64}",
+            s.length,
+            s.network_edges,
+            s.primitives,
+            s.work.total(),
+            fixture.expected_length,
+            fixture.expected_network_edges,
+            fixture.expected_primitives,
+            fixture.expected_work
+        );
+    }
+    same
+}
+
+/// The re-plan's verdict: true if it equals the host's (length, edges, work) and the new route
+/// (`edges`) avoids the lost landmark, or if it failed as the host's did.
+fn check_replan(
+    net: &Network<'_>,
+    outcome: Result<RouteSummary, PlanError>,
+    ticks: u64,
+    edges: &[u32],
+    fixture: &LandmarkFixture,
+) -> bool {
+    let Some(l) = net.landmark() else {
+        return false;
+    };
+    let lost_landmark = fixture.lost_landmark;
+    match (outcome, fixture.expected_replan) {
+        (Ok(s), Some((length, route_edges, work))) => {
+            log_route(net, "re-plan", &s, ticks, edges);
+            let avoids = edges.iter().all(|&e| {
                 net.edge_record(e).is_some_and(|r| {
                     r.source >= l.landmark_count * l.directions
-                        || r.source / l.directions != LOST_LANDMARK
+                        || r.source / l.directions != lost_landmark
                 })
             });
             if !avoids {
                 defmt::error!(
                     "the new route still overflies landmark {=u32}",
-                    LOST_LANDMARK
+                    lost_landmark
                 );
             }
-            let same = s.length == length && s.network_edges == edges && s.work.total() == work;
+            let same =
+                s.length == length && s.network_edges == route_edges && s.work.total() == work;
             if !same {
                 defmt::error!(
                     "re-plan {=f32} m, {=u32} edges, work {=u64}; host: {=f32} m, {=u32} edges, work {=u64}",
@@ -168,7 +240,7 @@ pub fn run(planner: &'static mut FlightPlanner, clock: Clock) -> bool {
                     s.network_edges,
                     s.work.total(),
                     length,
-                    edges,
+                    route_edges,
                     work
                 );
             }
@@ -178,7 +250,7 @@ pub fn run(planner: &'static mut FlightPlanner, clock: Clock) -> bool {
             defmt::info!(
                 "re-plan: no route ({}) in {=u64} ticks, as on the host; the previous route is kept",
                 e,
-                replan_ticks
+                ticks
             );
             true
         }
@@ -190,28 +262,14 @@ pub fn run(planner: &'static mut FlightPlanner, clock: Clock) -> bool {
             defmt::error!("re-plan failed ({}); the host found {=f32} m", e, length);
             false
         }
-    };
-    verdict &= replan_ok;
-
-    let (stack_used, stack_size) = stack::high_water();
-    defmt::info!(
-        "stack: peak {=usize} B of the {=usize} B left above .data/.bss",
-        stack_used,
-        stack_size
-    );
-    if verdict {
-        defmt::info!(
-            "PASS: route {=f32} m and, landmark {=u32} lost, {=f32} m: equal to the host's",
-            EXPECTED_LENGTH,
-            LOST_LANDMARK,
-            EXPECTED_REPLAN.map_or(f32::NAN, |r| r.0)
-        );
     }
-    verdict
 }
 
 /// One [`RouteTask`] cycle: plans `query`, returns the outcome and the ticks `plan` took.
-fn plan_once(task: &mut Task, query: Query) -> (Result<RouteSummary, PlanError>, u64) {
+fn plan_once<const V: usize, const E: usize, const P: usize, const R: usize>(
+    task: &mut Task<'_, '_, V, E, P, R>,
+    query: Query,
+) -> (Result<RouteSummary, PlanError>, u64) {
     let mut result = (Err(PlanError::Internal), 0);
     task.run(
         |_| query,

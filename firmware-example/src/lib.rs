@@ -1,0 +1,138 @@
+//! skyroute on a Cortex-M4F: what the three firmware binaries share.
+//!
+//! Each binary embeds its own fixture, which `build.rs` picks: `src/bin/roadmap.rs` embeds
+//! `fixture/` (a roadmap network), `terrain.rs` `fixture-terrain/` (a terrain network over the
+//! Jacksboro DEM), `landmark.rs` `fixture-landmark/` (a Babel landmark network): the network
+//! image in flash and the constants of `query.rs` (written by host-tests' `firmware_fixture`:
+//! capacities, query, the host's answers). Each keeps its planner in a `static` sized by those
+//! capacities, and its entry point
+//!
+//! 1. calls [`start`]: starts the SysTick [`clock`], loads (validates) the image and logs the
+//!    network;
+//! 2. runs its mission: [`popup_mission::run`] for a roadmap or terrain network (adds the
+//!    fixture's pop-up, then runs the [`autopilot`] route task for a few cycles, measuring each
+//!    `plan` call with SysTick; every route's length must match the host's), [`landmark::run`]
+//!    for a landmark network (plans from the stored start to the stored goal, loses a landmark
+//!    in flight with `update_rosette`, plans again; both answers must equal the host's);
+//! 3. [`exit`]s through semihosting with the verdict: success only if the host match holds.
+//!
+//! Logs go over defmt (semihosting); panics and hard faults exit with failure. Run a binary with
+//! `scripts/run-firmware.sh` (or `cargo run --release --bin roadmap` in `firmware-example/`).
+#![no_std]
+
+pub mod autopilot;
+pub mod clock;
+pub mod landmark;
+pub mod popup_mission;
+pub mod stack;
+
+use clock::Clock;
+use cortex_m_rt::{exception, ExceptionFrame};
+use cortex_m_semihosting::debug::{self, ExitStatus};
+use defmt_semihosting as _; // the defmt transport: semihosting writes to QEMU's stdout
+use skyroute::planner::PlannerConfig;
+use skyroute::Planner;
+
+/// The route task's period (both missions), milliseconds.
+pub const PERIOD_MS: u32 = 20;
+
+/// Start-up, shared by every binary: starts SysTick, logs the planner's capacities and size,
+/// loads `network` into `planner` (validating it once, timed), applies `config` when given, and
+/// logs the network (and for a terrain network its grid, altitude and safety height). `None`
+/// (after logging the error) when the core peripherals are taken or `load` fails.
+pub fn start<const V: usize, const E: usize, const P: usize, const R: usize>(
+    planner: &mut Planner<'static, V, E, P, R>,
+    network: &'static [u8],
+    config: Option<PlannerConfig>,
+) -> Option<Clock> {
+    let Some(core) = cortex_m::Peripherals::take() else {
+        defmt::error!("core peripherals already taken");
+        return None;
+    };
+    let clock = Clock::start(core.SYST);
+    defmt::info!(
+        "skyroute firmware example: STM32F405 (Cortex-M4F), SysTick at {=u32} Hz",
+        clock::CORE_HZ
+    );
+    defmt::info!(
+        "planner capacities V={=usize} E={=usize} P={=usize} R={=usize}: {=usize} B of RAM",
+        V,
+        E,
+        P,
+        R,
+        core::mem::size_of::<Planner<'static, V, E, P, R>>()
+    );
+
+    let t = clock.now();
+    if let Err(e) = planner.load(network) {
+        defmt::error!("load failed: {}", e);
+        return None;
+    }
+    let load_ticks = clock.now() - t;
+    if let Some(config) = config {
+        planner.set_config(config);
+    }
+    let net = planner.network();
+    defmt::info!(
+        "network: {=u32} vertices, {=u32} edges, {=u32} obstacles, {=usize} B in flash, turn radius {=f32} m, clearance {=f32} m",
+        net.vertex_count(),
+        net.edge_count(),
+        net.obstacle_count(),
+        net.byte_len(),
+        net.turn_radius(),
+        net.clearance()
+    );
+    defmt::info!(
+        "load (validation) took {=u64} ticks = {=u64} us",
+        load_ticks,
+        Clock::ticks_to_us(load_ticks)
+    );
+    if let (Some(t), Some((altitude, safety))) = (net.terrain(), planner.altitude()) {
+        defmt::info!(
+            "terrain: {=u32} x {=u32} cells of {=f32} m, altitude {=f32} m, safety height {=f32} m, band +-{=f32} m, blocking code {=u8}",
+            t.cols,
+            t.rows,
+            t.cell_m,
+            altitude,
+            safety,
+            t.widen_m,
+            planner.blocking_code()
+        );
+    }
+    Some(clock)
+}
+
+/// Logs the peak stack use ([`stack::high_water`]); both missions end with it.
+pub fn log_stack() {
+    let (stack_used, stack_size) = stack::high_water();
+    defmt::info!(
+        "stack: peak {=usize} B of the {=usize} B left above .data/.bss",
+        stack_used,
+        stack_size
+    );
+}
+
+/// Ends the program through semihosting: QEMU exits with status 0 when `ok`, 1 otherwise.
+pub fn exit(ok: bool) -> ! {
+    let status: ExitStatus = if ok {
+        debug::EXIT_SUCCESS
+    } else {
+        debug::EXIT_FAILURE
+    };
+    loop {
+        debug::exit(status);
+        cortex_m::asm::bkpt();
+    }
+}
+
+#[panic_handler]
+fn panic(info: &core::panic::PanicInfo) -> ! {
+    defmt::error!("panic: {}", defmt::Display2Format(info));
+    exit(false)
+}
+
+#[exception]
+unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
+    defmt::error!("hard fault at pc {=u32:#010x}", frame.pc());
+    exit(false)
+}

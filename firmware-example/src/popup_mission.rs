@@ -1,0 +1,168 @@
+//! Roadmap and terrain mode on the flight computer: a pop-up, then periodic re-planning.
+//!
+//! 1. `add_popup` with the fixture's disc (timed with SysTick); the work bound after it must be
+//!    the host's budget (a warning otherwise: the fixture is out of date);
+//! 2. [`CYCLES`] cycles of the [`RouteTask`] every [`PERIOD_MS`](crate::PERIOD_MS): the
+//!    fixture's query, Dijkstra, budget [`RouteFixture::budget`]; each `plan` call is timed;
+//! 3. the verdict: every cycle's route length is within [`TOLERANCE`] (relative) of the host's
+//!    and its primitives are all in the route.
+
+use crate::autopilot::{Cycle, Next, RouteTask};
+use crate::clock::{self, Clock};
+use crate::{log_stack, PERIOD_MS};
+use skyroute::{Goal, Planner, Popup, Pose, Query, Search, Vec2};
+
+/// What a roadmap or terrain binary's `query.rs` holds for this mission: the query, the pop-up,
+/// and the host's answer.
+pub struct RouteFixture {
+    /// The aircraft's pose when it plans.
+    pub start: Pose,
+    /// Where to go.
+    pub goal: Goal,
+    /// The pop-up disc: centre x, centre y, radius (metres).
+    pub popup: (f32, f32, f32),
+    /// Route length the host computed, metres.
+    pub expected_length: f32,
+    /// Route primitives the host computed.
+    pub expected_primitives: u32,
+    /// Work the host counted.
+    pub expected_work: u64,
+    /// Work budget of each plan: the network's worst case (the host's `Planner::worst_case_work`).
+    pub budget: u64,
+}
+
+/// Plan cycles to run.
+pub const CYCLES: u32 = 3;
+/// Largest accepted relative difference between the target's and the host's route length.
+pub const TOLERANCE: f32 = 1e-4;
+
+/// Adds the fixture's pop-up, then plans [`CYCLES`] times with the [`RouteTask`]; true only if
+/// every route's length matches the host's.
+pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
+    planner: &mut Planner<'_, V, E, P, R>,
+    clock: Clock,
+    fixture: &RouteFixture,
+) -> bool {
+    let (x, y, radius) = fixture.popup;
+    let t = clock.now();
+    let popup = planner.add_popup(Popup::Circle {
+        centre: Vec2::new(x, y),
+        radius,
+    });
+    let popup_ticks = clock.now() - t;
+    match popup {
+        Ok(s) => defmt::info!(
+            "pop-up ({=f32}, {=f32}) r={=f32} m: {} in {=u64} ticks, bound {=u64} work",
+            x,
+            y,
+            radius,
+            s,
+            popup_ticks,
+            planner.worst_case_popup_work()
+        ),
+        Err(e) => {
+            defmt::error!("add_popup failed: {}", e);
+            return false;
+        }
+    }
+
+    let bound = planner.worst_case_work();
+    defmt::info!(
+        "worst-case work bound {=u64}, budget {=u64}",
+        bound,
+        fixture.budget
+    );
+    if bound != fixture.budget {
+        defmt::warn!("the host computed a different bound: fixture out of date?");
+    }
+
+    let query = Query {
+        start: fixture.start,
+        goal: fixture.goal,
+        search: Search::Dijkstra,
+    };
+    let mut verdict = false;
+    let mut task = RouteTask::new(planner, clock, clock, PERIOD_MS, fixture.budget);
+    let cycles = task.run(
+        // Query source: an autopilot reads its navigation filter and mission here.
+        |_| query,
+        // Route sink: an autopilot hands the primitives to path following here.
+        |cycle: &Cycle<'_>| {
+            let summary = match cycle.outcome {
+                Ok(s) => s,
+                Err(e) => {
+                    defmt::error!("cycle {=u32}: plan failed: {}", cycle.index, e);
+                    verdict = false;
+                    return Next::Stop;
+                }
+            };
+            if cycle.index == 0 {
+                defmt::info!("query: {}", cycle.query);
+            }
+            defmt::info!(
+                "cycle {=u32}: route {=f32} m, {=u32} primitives (host {=u32}), {=u32} network edges, arrival heading {=f32} rad",
+                cycle.index,
+                summary.length,
+                summary.primitives,
+                fixture.expected_primitives,
+                summary.network_edges,
+                summary.arrival_heading
+            );
+            defmt::info!(
+                "cycle {=u32}: work {=u64} (host {=u64}) of bound {=u64}: {}",
+                cycle.index,
+                summary.work.total(),
+                fixture.expected_work,
+                bound,
+                summary.work
+            );
+            defmt::info!(
+                "cycle {=u32}: plan took {=u64} SysTick ticks = {=u64} us at {=u32} Hz",
+                cycle.index,
+                cycle.plan_ticks,
+                Clock::ticks_to_us(cycle.plan_ticks),
+                clock::CORE_HZ
+            );
+            if cycle.index == 0 {
+                for (i, p) in cycle.route.iter().enumerate() {
+                    defmt::debug!("  primitive {=usize}: {}", i, p);
+                }
+            }
+            let expected = fixture.expected_length;
+            let error = (summary.length - expected).abs() / expected;
+            verdict = error < TOLERANCE && summary.primitives == cycle.route.len() as u32;
+            if !verdict {
+                defmt::error!(
+                    "route length {=f32} m, host expected {=f32} m (relative error {=f32})",
+                    summary.length,
+                    expected,
+                    error
+                );
+                return Next::Stop;
+            }
+            if cycle.index + 1 < CYCLES {
+                Next::Continue
+            } else {
+                Next::Stop
+            }
+        },
+    );
+    if task.planner().network().terrain().is_some() {
+        defmt::info!(
+            "turn arcs checked in the last query: {}",
+            task.planner().arc_check_stats()
+        );
+    }
+    log_stack();
+    if verdict {
+        defmt::info!(
+            "PASS: {=u32} cycles, route length {=f32} m matches the host's {=f32} m",
+            cycles,
+            task.planner()
+                .route_summary()
+                .map_or(f32::NAN, |s| s.length),
+            fixture.expected_length
+        );
+    }
+    verdict
+}
