@@ -10,6 +10,7 @@
 use crate::autopilot::{Cycle, Next, RouteTask};
 use crate::clock::{self, Clock};
 use crate::{log_stack, PERIOD_MS};
+use skyroute::network::Mode;
 use skyroute::{Goal, Planner, Popup, Pose, Query, Search, Vec2};
 
 /// What a roadmap or terrain binary's `query.rs` holds for this mission: the query, the pop-up,
@@ -147,11 +148,12 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
             }
         },
     );
-    if task.planner().network().terrain().is_some() {
-        defmt::info!(
+    match task.planner().network().mode() {
+        Mode::Terrain => defmt::info!(
             "turn arcs checked in the last query: {}",
             task.planner().arc_check_stats()
-        );
+        ),
+        Mode::Roadmap | Mode::Landmark | Mode::Unknown(_) => {}
     }
     log_stack();
     if verdict {

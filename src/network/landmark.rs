@@ -280,7 +280,13 @@ impl<'a> Network<'a> {
     }
     /// Landmark mode: landmark `l`'s position and `d_max` (metres).
     pub fn landmark_site(&self, l: u32) -> Option<(Vec2, f32)> {
-        let rec = self.landmark()?;
+        self.landmark_site_of(self.landmark()?, l)
+    }
+
+    /// [`Network::landmark_site`] with the landmark record already at hand (the search reads
+    /// it once per edge).
+    #[inline(always)]
+    pub(crate) fn landmark_site_of(&self, rec: &LandmarkRecord, l: u32) -> Option<(Vec2, f32)> {
         if l >= rec.landmark_count {
             return None;
         }
@@ -290,7 +296,18 @@ impl<'a> Network<'a> {
     }
     /// Landmark mode: the stored quality `q(direction, weather)` of landmark `l`, in `[0, 1]`.
     pub fn rosette_quality(&self, l: u32, weather: u32, direction: u32) -> Option<f32> {
-        let rec = self.landmark()?;
+        self.rosette_quality_of(self.landmark()?, l, weather, direction)
+    }
+
+    /// [`Network::rosette_quality`] with the landmark record already at hand.
+    #[inline(always)]
+    pub(crate) fn rosette_quality_of(
+        &self,
+        rec: &LandmarkRecord,
+        l: u32,
+        weather: u32,
+        direction: u32,
+    ) -> Option<f32> {
         if l >= rec.landmark_count || weather >= rec.weather_count || direction >= rec.directions {
             return None;
         }

@@ -128,19 +128,42 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Landmark mode: the quality in force for landmark `landmark` crossed in `direction`
     /// (its override, or the stored rosette of the weather in force).
     pub fn quality(&self, landmark: u32, direction: u32) -> Option<f32> {
-        let ModeState::Landmark(l) = &self.state else {
+        let (ModeState::Landmark(state), Some(l)) = (&self.state, self.network.landmark()) else {
             return None;
         };
-        if let Some((_, row)) = l.rosettes.iter().find(|(at, _)| *at == landmark) {
+        self.quality_in(state, l, landmark, direction)
+    }
+
+    /// [`Planner::quality`] with the state and the landmark record at hand.
+    #[inline(always)]
+    fn quality_in(
+        &self,
+        state: &LandmarkState<R>,
+        l: &LandmarkRecord,
+        landmark: u32,
+        direction: u32,
+    ) -> Option<f32> {
+        if let Some((_, row)) = state.rosettes.iter().find(|(at, _)| *at == landmark) {
             return row.get(direction as usize).copied();
         }
-        self.network.rosette_quality(landmark, l.weather, direction)
+        self.network
+            .rosette_quality_of(l, landmark, state.weather, direction)
     }
 
     /// Landmark mode: whether edge `e` is navigable in the weather and rosettes in force: an
     /// edge from overflight `(L, α)` iff its cost ≤ `d_max(L)·q(α)`; a start edge iff its cost
     /// ≤ the start's range; other edges (and non-landmark networks) always. O(1).
     pub fn is_navigable(&self, e: u32) -> bool {
+        match &self.state {
+            ModeState::Landmark(state) => self.navigable_in(state, e),
+            ModeState::Roadmap | ModeState::Terrain(_) => true,
+        }
+    }
+
+    /// [`Planner::is_navigable`] with the landmark state at hand: the landmark record is read
+    /// once for the edge's site and quality.
+    #[inline(always)]
+    pub(super) fn navigable_in(&self, state: &LandmarkState<R>, e: u32) -> bool {
         let Some(l) = self.network.landmark() else {
             return true;
         };
@@ -155,8 +178,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             return true; // the goal's (if any)
         }
         match (
-            self.network.landmark_site(landmark),
-            self.quality(landmark, direction),
+            self.network.landmark_site_of(l, landmark),
+            self.quality_in(state, l, landmark, direction),
         ) {
             (Some((_, d_max)), Some(q)) => r.cost <= d_max * q,
             _ => false,

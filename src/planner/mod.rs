@@ -275,6 +275,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Whether the search may use edge `e`: no pop-up blocks it and, in terrain mode, its band
     /// is clear of the terrain at the altitude in force; in landmark mode, it is navigable in
     /// the weather and rosettes in force ([`Planner::is_navigable`]). O(1).
+    #[inline(always)]
     pub fn is_edge_usable(&self, e: u32) -> bool {
         if !self.is_edge_enabled(e) {
             return false;
@@ -285,7 +286,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 .network
                 .edge_highest_code(e)
                 .is_some_and(|c| c < t.blocking),
-            ModeState::Landmark(_) => self.is_navigable(e),
+            ModeState::Landmark(state) => self.navigable_in(state, e),
         }
     }
 

@@ -161,6 +161,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// The A* heuristic at `p` (0 for Dijkstra).
+    #[inline(always)]
     fn heuristic(query: &Query, p: Vec2) -> f32 {
         match query.search {
             Search::Dijkstra => 0.0,

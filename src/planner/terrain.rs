@@ -518,6 +518,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Queues the start links' states (`|E| + k`) at the links' lengths.
+    #[inline(never)]
     pub(super) fn seed_edge_states(&mut self, meter: &mut Meter) -> Result<(), PlanError> {
         let edges = self.network.edge_count();
         for k in 0..self.start_links.len() {
@@ -539,6 +540,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// checked, to `best`, and relaxes the transitions to the node's usable out-edges whose
     /// turn fits and is clear (the turn is checked only for a transition that would improve
     /// its target). Returns `false`: an edge-state search has no target state.
+    #[inline(never)]
     pub(super) fn expand_edge_state(
         &mut self,
         s: u32,
