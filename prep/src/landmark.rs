@@ -124,8 +124,8 @@
 //! the core's conservative polyline enclosure, its chord count chosen so that the deviation bound
 //! `ε` is about a tenth of the clearance (at least 1 m).
 
-use crate::build::{local, local_heading, local_obstacles, local_pose};
 use crate::frame::LocalFrame;
+use crate::local::{local, local_heading, local_obstacles, local_pose};
 use crate::scenario::{Landmark, Scenario, ROSETTE_HEADINGS};
 use rayon::prelude::*;
 use skyroute::geometry::hermite::{FlyLimits, HermiteSegment, LineElement, MAX_PIECES};

@@ -7,8 +7,8 @@
 //! leg by leg with the first-found heading would not be). A waypoint none of whose copies has a
 //! collision-free way out is reported, by name, as an inevitable-collision state.
 
-use crate::build::{local, local_heading};
 use crate::frame::LocalFrame;
+use crate::local::{local, local_heading};
 use crate::scenario::{Endpoint, Scenario};
 use rayon::prelude::*;
 use skyroute::planner::{
@@ -204,7 +204,7 @@ fn explain(
     };
     match error {
         PlanError::InsideObstacle { field, obstacle } => {
-            match crate::build::obstacle_containing(scenario, frame, at(field)) {
+            match crate::local::obstacle_containing(scenario, frame, at(field)) {
                 Some(name) => format!("{name} contains it"),
                 None => format!("network obstacle {obstacle} contains it"),
             }

@@ -225,7 +225,7 @@ pub fn scenario_marks(s: &Scenario, frame: &LocalFrame) -> (Vec<EndpointMark>, V
             position: (x, y),
             heading: e
                 .heading_deg
-                .map(|c| crate::build::local_heading(frame, e.lon, e.lat, c) as f64),
+                .map(|c| crate::local::local_heading(frame, e.lon, e.lat, c) as f64),
         }
     };
     let mut ends: Vec<EndpointMark> = s.start.iter().map(|e| mark(e, "start")).collect();
