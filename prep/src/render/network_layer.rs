@@ -41,7 +41,7 @@ pub(super) fn edges(svg: &mut String, net: &Network, view: &View) {
         if let Some(path) = net.edge_path(i) {
             let mut pen = None;
             for p in path.primitives().iter().flatten() {
-                path_data(&mut d, p, &view, &mut pen);
+                path_data(&mut d, p, view, &mut pen);
             }
         }
     }

@@ -15,7 +15,7 @@ pub(super) fn route(svg: &mut String, route: &Route, view: &View) {
             let mut d = String::new();
             let mut pen = None;
             for p in &l.primitives {
-                path_data(&mut d, p, &view, &mut pen);
+                path_data(&mut d, p, view, &mut pen);
             }
             d
         })
