@@ -27,7 +27,7 @@ pub struct Route {
     pub origin_deg: (f64, f64),
     /// Its legs, in order.
     pub legs: Vec<RouteLeg>,
-    /// The pop-ups it was planned round (its `popups` member; empty in older files).
+    /// The pop-ups it was planned round (its `popups` member; empty when the file has none).
     pub popups: Vec<PopupMark>,
 }
 
