@@ -10,8 +10,9 @@ For every ROOT (a crate's source folder) it reports
       character literals and comments blanked out,
   (c) import cycles between modules. A module is a top-level file or folder of ROOT (`network`,
       `planner`, ...); inside a folder, its `mod.rs` and each child file or folder is a module
-      one level deeper (`planner::search`). Edges come from `use crate::...` trees, `crate::X::`
-      paths and `super::` / `self::` references. Cycles are looked for among the top-level
+      one level deeper (`planner::search`). Edges come from `use` trees and paths that start
+      with `crate::`, `super::`, `self::` or a child module the file declares (`mod x;`, then
+      `use x::Y` or `x::f()`). Cycles are looked for among the top-level
       modules (a folder's edges counted together) and among the modules of each folder.
 
 Exits 1 if anything is reported, 0 otherwise. Python 3 standard library only.
@@ -202,21 +203,63 @@ def absolute(mod, path):
     return base + segs
 
 
+MOD_RE = re.compile(r"\bmod\s+([A-Za-z_][A-Za-z0-9_]*)\s*;")
+
+
 def references(clean, mod):
-    """(absolute path, position) of every crate-internal path in the blanked text."""
+    """(absolute path, position) of every crate-internal path in the blanked text: `use` trees
+    and paths that start with `crate`, `super` or `self`, or with the name of a child module
+    the file declares (`mod x;` then `use x::Y` or `x::f()`)."""
+    children = set(MOD_RE.findall(clean))
+    relative = re.compile(
+        r"(?<![A-Za-z0-9_:])((?:%s)(?:::[A-Za-z_][A-Za-z0-9_]*)+)" % "|".join(sorted(children))
+    ) if children else None
+    inline = inline_modules(clean)
+
+    def module_at(pos):
+        # The file's module, plus the inline modules (`mod tests { ... }`) around `pos`.
+        return list(mod) + [name for name, a, b in inline if a <= pos < b]
+
     refs = []
     for m in USE_RE.finditer(clean):
         for p in expand_use_tree(m.group(1)):
+            if p.split("::")[0] in children:
+                p = "self::" + p
             if p.startswith(("crate::", "super::", "self::")):
-                a = absolute(mod, p)
+                a = absolute(module_at(m.start()), p)
                 if a is not None:
                     refs.append((a, m.start()))
     body = USE_RE.sub(lambda m: " " * len(m.group(0)), clean)
     for m in PATH_RE.finditer(body):
-        a = absolute(mod, m.group(1))
+        a = absolute(module_at(m.start()), m.group(1))
         if a is not None:
             refs.append((a, m.start()))
+    if relative:
+        for m in relative.finditer(body):
+            a = absolute(module_at(m.start()), "self::" + m.group(1))
+            if a is not None:
+                refs.append((a, m.start()))
     return refs
+
+
+INLINE_MOD_RE = re.compile(r"\bmod\s+([A-Za-z_][A-Za-z0-9_]*)\s*\{")
+
+
+def inline_modules(clean):
+    """(name, start, end) of every inline module body `mod name { ... }`, outermost first."""
+    found = []
+    for m in INLINE_MOD_RE.finditer(clean):
+        level, k = 0, m.end() - 1
+        while k < len(clean):
+            if clean[k] == "{":
+                level += 1
+            elif clean[k] == "}":
+                level -= 1
+                if level == 0:
+                    break
+            k += 1
+        found.append((m.group(1), m.end(), k))
+    return found
 
 
 def cycles(nodes, edges):
