@@ -494,10 +494,7 @@ fn best_into(
 }
 
 /// Walks back from the cheapest copy of the goal: the copy of each stage the route takes.
-fn walk_back(
-    stages: &[Stage],
-    best: &[StageBest],
-) -> Result<Vec<usize>, MissionError> {
+fn walk_back(stages: &[Stage], best: &[StageBest]) -> Result<Vec<usize>, MissionError> {
     let last = stages.len() - 1;
     let mut k = (0..stages[last].headings.len())
         .filter(|&b| best[last][b].is_some())

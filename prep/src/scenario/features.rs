@@ -127,7 +127,7 @@ impl Parser<'_> {
             return Err(self.err(at, field, ErrorKind::TooFewPoints(distinct.len())));
         }
         if let Some((edge_a, edge_b, overlap)) = first_self_intersection(&ring) {
-            if !self.options.hull_self_intersecting_no_fly {
+            if !self.hull_self_intersecting_no_fly {
                 return Err(self.err(
                     at,
                     field,

@@ -79,7 +79,7 @@ pub fn parse_with(
     let root = parse_json(text, path)?;
     Parser {
         file: path,
-        options,
+        hull_self_intersecting_no_fly: options.hull_self_intersecting_no_fly,
         warnings: Vec::new(),
     }
     .scenario(&root)

@@ -4,16 +4,18 @@ use super::error::{ErrorKind, FeatureRef, ScenarioError};
 use super::geometry::point_in_ring;
 use super::json::{describe, NON_FINITE};
 use super::types::{Circle, Endpoint, Landmark, Mode, NoFly, Popup, Scenario};
-use super::ParseOptions;
 use serde_json::{Map, Value};
 use std::path::Path;
 
 // ------------------------------------------------------------------------------------------------
 // The parser
 
+/// Parses one scenario: the file it came from (for errors and `terrain.dem`), the repair
+/// option, and the warnings so far.
 pub(super) struct Parser<'a> {
     pub(super) file: &'a Path,
-    pub(super) options: &'a ParseOptions,
+    /// [`ParseOptions::hull_self_intersecting_no_fly`](super::ParseOptions).
+    pub(super) hull_self_intersecting_no_fly: bool,
     pub(super) warnings: Vec<ScenarioError>,
 }
 

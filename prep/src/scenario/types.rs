@@ -36,7 +36,7 @@ pub struct Scenario {
     pub threats: Vec<Circle>,
     /// Pop-up threats, in file order.
     pub popups: Vec<Popup>,
-    /// What [`ParseOptions`] allowed through and repaired (empty with the default options).
+    /// What [`ParseOptions`](super::ParseOptions) allowed through and repaired (empty with the default options).
     pub warnings: Vec<ScenarioError>,
 }
 
