@@ -9,8 +9,10 @@ use crate::terrain::{build_terrain_graph, TerrainGraph, TerrainParams};
 use skyroute::network::format::ProvenanceRecord;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec};
 use skyroute::network::write::{LandmarkSiteSpec, LandmarkSpec};
-use skyroute::{Pose, Vec2};
+use skyroute::Pose;
 use std::fmt;
+
+pub use crate::local::{local, local_heading, local_obstacles, local_pose, obstacle_containing};
 
 /// Overrides of the scenario's parameters, for experiments and for networks that must fit a
 /// smaller target.
@@ -110,84 +112,32 @@ pub struct Built {
     pub obstacles: Vec<ObstacleSpec>,
 }
 
-/// The scenario's obstacles in the local frame: no-fly polygons and threat discs.
-pub fn local_obstacles(s: &Scenario, frame: &LocalFrame) -> Vec<ObstacleSpec> {
-    let mut out: Vec<ObstacleSpec> = s
-        .no_fly
-        .iter()
-        .map(|z| {
-            ObstacleSpec::Polygon(
-                z.ring
-                    .iter()
-                    .map(|&(lon, lat)| local(frame, lon, lat))
-                    .collect(),
-            )
-        })
-        .collect();
-    out.extend(s.threats.iter().map(|t| ObstacleSpec::Circle {
-        centre: local(frame, t.lon, t.lat),
-        radius: t.radius_m as f32,
-    }));
-    out
-}
-
-/// The name of the scenario's no-fly zone or threat disc that contains the local point `p`
-/// (as `no-fly zone "B12"` or `threat "T3"`), if any.
-pub fn obstacle_containing(s: &Scenario, frame: &LocalFrame, p: Vec2) -> Option<String> {
-    let names = s
-        .no_fly
-        .iter()
-        .map(|z| format!("no-fly zone {:?}", z.name))
-        .chain(s.threats.iter().map(|t| format!("threat {:?}", t.name)));
-    local_obstacles(s, frame)
-        .iter()
-        .zip(names)
-        .find(|(o, _)| match o {
-            ObstacleSpec::Polygon(ring) => {
-                skyroute::geometry::predicates::point_in_polygon(p, ring.as_slice())
-            }
-            ObstacleSpec::Circle { centre, radius } => p.distance(*centre) <= *radius,
-        })
-        .map(|(_, name)| name)
-}
-
-/// A lon/lat point in the local frame, as the core's f32 vector.
-pub fn local(frame: &LocalFrame, lon: f64, lat: f64) -> Vec2 {
-    let (x, y) = frame.to_local(lon, lat);
-    Vec2::new(x as f32, y as f32)
-}
-
-/// A compass heading at `(lon, lat)` as the core's local heading (radians counter-clockwise
-/// from the frame's `x` axis), corrected for the projection's meridian convergence.
-pub fn local_heading(frame: &LocalFrame, lon: f64, lat: f64, compass_deg: f64) -> f32 {
-    skyroute::geometry::heading_from_compass_deg(
-        frame.heading_to_local(lon, lat, compass_deg) as f32
-    )
-}
-
-/// A scenario endpoint as a pose (heading 0 where the endpoint has none).
-pub fn local_pose(frame: &LocalFrame, lon: f64, lat: f64, compass_deg: Option<f64>) -> Pose {
-    Pose {
-        position: local(frame, lon, lat),
-        heading: compass_deg.map_or(0.0, |c| local_heading(frame, lon, lat, c)),
-    }
-}
-
-/// Builds the scenario's network.
+/// Builds the scenario's network. The ground tool's per-mode seam: the scenario's
+/// [`Mode`] picks the builder here, and `skyroute plan` picks the planner by the same mode.
 pub fn build(
     s: &Scenario,
     options: &BuildOptions,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Built, BuildError> {
-    let file = s.path.display().to_string();
     let provenance = crate::provenance::scenario_items(s)
         .map(|items| crate::provenance::records(&items))
         .map_err(|e| BuildError::Provenance(e.to_string()))?;
     match s.planner.mode {
-        Mode::Roadmap => {}
-        Mode::Terrain => return build_terrain(s, options, provenance),
-        Mode::Landmark => return build_landmark(s, options, progress, provenance),
+        Mode::Roadmap => build_roadmap_network(s, options, progress, provenance),
+        Mode::Terrain => build_terrain(s, options, provenance),
+        Mode::Landmark => build_landmark(s, options, progress, provenance),
     }
+}
+
+/// Roadmap mode: the sampled Dubins roadmap ([`crate::roadmap`]) over the bounding box of the
+/// scenario's positions.
+fn build_roadmap_network(
+    s: &Scenario,
+    options: &BuildOptions,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    provenance: Vec<ProvenanceRecord>,
+) -> Result<Built, BuildError> {
+    let file = s.path.display().to_string();
     let p = &s.planner;
     let need = |v: Option<f64>, field: &'static str| {
         v.ok_or_else(|| BuildError::Missing(file.clone(), field))

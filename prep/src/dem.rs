@@ -404,6 +404,80 @@ pub fn parse(text: &str, path: &Path) -> Result<Dem, DemError> {
     };
 
     // Data: one line per row, northernmost first.
+    let Rows {
+        values,
+        row_lines,
+        nodata_count,
+        min,
+        max,
+    } = read_rows(lines, path, (ncols, nrows), nodata)?;
+    if row_lines.len() < nrows {
+        let (n, key, ..) = field_of(1)?;
+        let kind = DemErrorKind::TooFewRows {
+            found: row_lines.len(),
+            expected: nrows,
+        };
+        return Err(err(n, &key, kind));
+    }
+
+    let east = xllcorner + ncols as f64 * cellsize;
+    let north = yllcorner + nrows as f64 * cellsize;
+    let geographic = cellsize < 1.0
+        && (-180.0..=180.0).contains(&xllcorner)
+        && (-180.0..=180.0).contains(&east)
+        && (-90.0..=90.0).contains(&yllcorner)
+        && (-90.0..=90.0).contains(&north);
+    let any = nodata_count < cells;
+    Ok(Dem {
+        path: path.to_path_buf(),
+        ncols,
+        nrows,
+        xllcorner,
+        yllcorner,
+        cellsize,
+        nodata,
+        units: if geographic {
+            Units::Geographic
+        } else {
+            Units::Projected
+        },
+        values,
+        row_lines,
+        nodata_count,
+        min: any.then_some(min),
+        max: any.then_some(max),
+    })
+}
+
+/// The data rows of a DEM, as [`read_rows`] reads them.
+struct Rows {
+    /// Elevations, southernmost row first; NaN for NODATA.
+    values: Vec<f32>,
+    /// The file line of each row read, northernmost first.
+    row_lines: Vec<usize>,
+    /// Cells equal to the NODATA value.
+    nodata_count: usize,
+    /// Smallest and largest elevation of the other cells (infinite when there is none).
+    min: f32,
+    max: f32,
+}
+
+/// Reads the data lines (`(line number, text)`, one per row, northernmost first) of a DEM of
+/// `(ncols, nrows)` cells: every value a finite number, `nodata` stored as NaN. Fewer than
+/// `nrows` rows is left to the caller.
+fn read_rows<'t>(
+    lines: impl Iterator<Item = (usize, &'t str)>,
+    path: &Path,
+    (ncols, nrows): (usize, usize),
+    nodata: Option<f64>,
+) -> Result<Rows, DemError> {
+    let err = |line: usize, field: &str, kind: DemErrorKind| DemError {
+        path: path.to_path_buf(),
+        line: Some(line),
+        field: field.to_string(),
+        kind,
+    };
+    let cells = ncols * nrows;
     let mut values = vec![f32::NAN; cells];
     let mut row_lines = Vec::with_capacity(nrows);
     let mut nodata_count = 0;
@@ -446,41 +520,12 @@ pub fn parse(text: &str, path: &Path) -> Result<Dem, DemError> {
         }
         row_lines.push(n);
     }
-    if row_lines.len() < nrows {
-        let (n, key, ..) = field_of(1)?;
-        let kind = DemErrorKind::TooFewRows {
-            found: row_lines.len(),
-            expected: nrows,
-        };
-        return Err(err(n, &key, kind));
-    }
-
-    let east = xllcorner + ncols as f64 * cellsize;
-    let north = yllcorner + nrows as f64 * cellsize;
-    let geographic = cellsize < 1.0
-        && (-180.0..=180.0).contains(&xllcorner)
-        && (-180.0..=180.0).contains(&east)
-        && (-90.0..=90.0).contains(&yllcorner)
-        && (-90.0..=90.0).contains(&north);
-    let any = nodata_count < cells;
-    Ok(Dem {
-        path: path.to_path_buf(),
-        ncols,
-        nrows,
-        xllcorner,
-        yllcorner,
-        cellsize,
-        nodata,
-        units: if geographic {
-            Units::Geographic
-        } else {
-            Units::Projected
-        },
+    Ok(Rows {
         values,
         row_lines,
         nodata_count,
-        min: any.then_some(min),
-        max: any.then_some(max),
+        min,
+        max,
     })
 }
 

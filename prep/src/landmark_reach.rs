@@ -8,8 +8,8 @@
 //! search over the landmarks), no network and no planner can find a route, and the search's
 //! frontier is the proof.
 
-use crate::build::local;
 use crate::frame::LocalFrame;
+use crate::local::local;
 use crate::scenario::Scenario;
 
 /// `Some(proof)` when the straight-leg condition rules out every route in weather `w` (index

@@ -7,6 +7,7 @@ pub mod frame;
 pub mod landmark;
 pub mod landmark_mission;
 pub mod landmark_reach;
+pub mod local;
 pub mod mission;
 pub mod output;
 pub mod plan_checks;

@@ -2,10 +2,10 @@
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
-use skyroute_prep::build::local;
 use skyroute_prep::build::{build, BuildOptions};
 use skyroute_prep::landmark_mission::{landmark_route_json, plan_landmark, LandmarkPlanError};
 use skyroute_prep::landmark_reach::no_route_proof;
+use skyroute_prep::local::local;
 use skyroute_prep::mission::{plan_mission_with, LocalPopup, MissionOptions};
 use skyroute_prep::output::{refuse_overwriting_inputs, write_atomically};
 use skyroute_prep::plan_checks::{check_query, gather_popups, PopupInput, PopupSource};
@@ -352,8 +352,7 @@ fn plan_command(req: &PlanRequest) -> CliResult {
         std::fs::read(req.network).map_err(|e| format!("{}: {e}", req.network.display()))?;
     let net = skyroute::Network::from_bytes(&bytes)
         .map_err(|e| format!("{}: {e}", req.network.display()))?;
-    let is_landmark = net.landmark().is_some();
-    if let (Some(w), false) = (req.weather, is_landmark) {
+    if let (Some(w), None) = (req.weather, net.landmark()) {
         return Err(format!(
             "--weather {w}: {} is not a landmark network, so it has no weather",
             req.network.display()
@@ -378,10 +377,14 @@ fn plan_command(req: &PlanRequest) -> CliResult {
         );
     }
     let local_popups: Vec<LocalPopup> = popups.iter().map(|p| p.local(&frame)).collect();
-    let mut json = if is_landmark {
-        plan_landmark_route(req, &s, &bytes, &frame, &local_popups, t0)?
-    } else {
-        plan_mission_route(req, &s, &bytes, &frame, &local_popups, t0)?
+    // `check_binding` has established that the scenario's mode is the network's.
+    let mut json = match s.planner.mode {
+        scenario::Mode::Landmark => {
+            plan_landmark_route(req, &s, &bytes, &frame, &local_popups, t0)?
+        }
+        scenario::Mode::Roadmap | scenario::Mode::Terrain => {
+            plan_mission_route(req, &s, &bytes, &frame, &local_popups, t0)?
+        }
     };
     json["popups"] = popups_json(&popups, &frame);
     json["scenario_popups_applied"] = serde_json::json!(req.scenario_popups);

@@ -7,8 +7,8 @@
 //! leg by leg with the first-found heading would not be). A waypoint none of whose copies has a
 //! collision-free way out is reported, by name, as an inevitable-collision state.
 
-use crate::build::{local, local_heading};
 use crate::frame::LocalFrame;
+use crate::local::{local, local_heading};
 use crate::scenario::{Endpoint, Scenario};
 use rayon::prelude::*;
 use skyroute::network::Mode;
@@ -205,7 +205,7 @@ fn explain(
     };
     match error {
         PlanError::InsideObstacle { field, obstacle } => {
-            match crate::build::obstacle_containing(scenario, frame, at(field)) {
+            match crate::local::obstacle_containing(scenario, frame, at(field)) {
                 Some(name) => format!("{name} contains it"),
                 None => format!("network obstacle {obstacle} contains it"),
             }
@@ -334,7 +334,49 @@ fn plan_mission_in_pool(
     popups: &[LocalPopup],
     options: &MissionOptions,
 ) -> Result<Mission, MissionError> {
-    let adaptive = options.connect_radius_m.is_none();
+    let stages = mission_stages(scenario, frame)?;
+    let mut queries = 0;
+    let mut work = Work::default();
+    // best[i][k]: cheapest cost to stage i copy k, and the copy of stage i−1 it came from.
+    let mut best: Vec<StageBest> = vec![vec![Some((0.0, 0))]];
+    let inputs = Inputs {
+        bytes,
+        scenario,
+        frame,
+        popups,
+        options,
+    };
+    for i in 1..stages.len() {
+        let (prev, next) = (&stages[i - 1], &stages[i]);
+        let (stage_best, n) = best_into(&inputs, prev, next, &best[i - 1], i == 1, &mut work)?;
+        queries += n;
+        best.push(stage_best);
+    }
+    let chosen = walk_back(&stages, &best)?;
+    let (legs, length) = plan_legs(bytes, popups, options, &stages, &chosen)?;
+    Ok(Mission {
+        legs,
+        length,
+        queries,
+        work,
+    })
+}
+
+/// Per copy of a stage: the cheapest cost to reach it and the copy of the previous stage it
+/// came from; `None` if it was not reached.
+type StageBest = Vec<Option<(f64, usize)>>;
+
+/// What a mission is planned from.
+struct Inputs<'a> {
+    bytes: &'a [u8],
+    scenario: &'a Scenario,
+    frame: &'a LocalFrame,
+    popups: &'a [LocalPopup],
+    options: &'a MissionOptions,
+}
+
+/// The stages: the start (its pose), the waypoints, the goal.
+fn mission_stages(scenario: &Scenario, frame: &LocalFrame) -> Result<Vec<Stage>, MissionError> {
     let start = scenario
         .start
         .as_ref()
@@ -360,84 +402,102 @@ fn plan_mission_in_pool(
     stages.extend(scenario.waypoints.iter().map(|w| stage(frame, w, false)));
     stages.push(stage(frame, goal, true));
 
-    let budget = u64::MAX;
-    let mut queries = 0;
-    let mut work = Work::default();
-    // best[i][k]: cheapest cost to stage i copy k, and the copy of stage i−1 it came from.
-    let mut best: Vec<Vec<Option<(f64, usize)>>> = vec![vec![Some((0.0, 0))]];
-    for i in 1..stages.len() {
-        let (prev, next) = (&stages[i - 1], &stages[i]);
-        let pairs: Vec<(usize, usize)> = (0..prev.headings.len())
-            .filter(|&a| best[i - 1][a].is_some())
-            .flat_map(|a| (0..next.headings.len()).map(move |b| (a, b)))
-            .collect();
-        let costs: Vec<(usize, usize, Result<RouteSummary, PlanError>)> = pairs
-            .par_iter()
-            .map_init(
-                || planner(bytes, popups, options),
-                |p, &(a, b)| {
-                    let Ok(p) = p else {
-                        return (a, b, Err(PlanError::Internal));
-                    };
-                    let q = Query {
-                        start: Pose {
-                            position: prev.position,
-                            heading: prev.headings[a].unwrap_or(0.0),
-                        },
-                        goal: Goal {
-                            position: next.position,
-                            heading: next.headings[b],
-                        },
-                        search: Search::AStar,
-                    };
-                    (a, b, plan_query(p, &q, budget, adaptive).0)
-                },
-            )
-            .collect();
-        // A failure to load or add pop-ups shows up identically in every pair: report it.
-        planner(bytes, popups, options)?;
-        queries += costs.len();
-        let mut stage_best: Vec<Option<(f64, usize)>> = vec![None; next.headings.len()];
-        let mut last_error = PlanError::NoRoute;
-        let mut way_out = vec![false; prev.headings.len()];
-        for (a, b, r) in costs {
-            match r {
-                Ok(s) => {
-                    work += s.work;
-                    way_out[a] = true;
-                    let total = best[i - 1][a].map_or(f64::INFINITY, |x| x.0) + s.length as f64;
-                    if stage_best[b].is_none_or(|x| total < x.0) {
-                        stage_best[b] = Some((total, a));
-                    }
-                }
-                Err(e) => last_error = e,
-            }
-        }
-        if !way_out.iter().any(|w| *w) {
-            if i >= 2 {
-                // `prev` is a waypoint that was reached, but from no pose it was reached in is
-                // there a collision-free way on.
-                return Err(MissionError::InevitableCollision(prev.name.clone()));
-            }
-            return Err(MissionError::Unreachable {
-                from: prev.name.clone(),
-                to: next.name.clone(),
-                error: last_error,
-                detail: explain(
-                    last_error,
-                    prev.position,
-                    next.position,
-                    bytes,
-                    scenario,
-                    frame,
-                    options,
-                ),
-            });
-        }
-        best.push(stage_best);
-    }
+    Ok(stages)
+}
 
-    // Walk back the chosen copies, then plan the chosen legs once more to keep their geometry.
+/// The cheapest way into each copy of stage `next` from the copies of `prev` that were reached
+/// (`best_prev`): one query per pair of copies, in parallel. Returns, per copy of `next`, its
+/// cost and the copy of `prev` it came from, and the number of queries; adds their work to
+/// `work`. `first_leg`: `prev` is the start.
+fn best_into(
+    inputs: &Inputs,
+    prev: &Stage,
+    next: &Stage,
+    best_prev: &[Option<(f64, usize)>],
+    first_leg: bool,
+    work: &mut Work,
+) -> Result<(StageBest, usize), MissionError> {
+    let Inputs {
+        bytes,
+        scenario,
+        frame,
+        popups,
+        options,
+    } = *inputs;
+    let adaptive = options.connect_radius_m.is_none();
+    let budget = u64::MAX;
+    let pairs: Vec<(usize, usize)> = (0..prev.headings.len())
+        .filter(|&a| best_prev[a].is_some())
+        .flat_map(|a| (0..next.headings.len()).map(move |b| (a, b)))
+        .collect();
+    let costs: Vec<(usize, usize, Result<RouteSummary, PlanError>)> = pairs
+        .par_iter()
+        .map_init(
+            || planner(bytes, popups, options),
+            |p, &(a, b)| {
+                let Ok(p) = p else {
+                    return (a, b, Err(PlanError::Internal));
+                };
+                let q = Query {
+                    start: Pose {
+                        position: prev.position,
+                        heading: prev.headings[a].unwrap_or(0.0),
+                    },
+                    goal: Goal {
+                        position: next.position,
+                        heading: next.headings[b],
+                    },
+                    search: Search::AStar,
+                };
+                (a, b, plan_query(p, &q, budget, adaptive).0)
+            },
+        )
+        .collect();
+    // A failure to load or add pop-ups shows up identically in every pair: report it.
+    planner(bytes, popups, options)?;
+    let queries = costs.len();
+    let mut stage_best: Vec<Option<(f64, usize)>> = vec![None; next.headings.len()];
+    let mut last_error = PlanError::NoRoute;
+    let mut way_out = vec![false; prev.headings.len()];
+    for (a, b, r) in costs {
+        match r {
+            Ok(s) => {
+                *work += s.work;
+                way_out[a] = true;
+                let total = best_prev[a].map_or(f64::INFINITY, |x| x.0) + s.length as f64;
+                if stage_best[b].is_none_or(|x| total < x.0) {
+                    stage_best[b] = Some((total, a));
+                }
+            }
+            Err(e) => last_error = e,
+        }
+    }
+    if !way_out.iter().any(|w| *w) {
+        if !first_leg {
+            // `prev` is a waypoint that was reached, but from no pose it was reached in is
+            // there a collision-free way on.
+            return Err(MissionError::InevitableCollision(prev.name.clone()));
+        }
+        return Err(MissionError::Unreachable {
+            from: prev.name.clone(),
+            to: next.name.clone(),
+            error: last_error,
+            detail: explain(
+                last_error,
+                prev.position,
+                next.position,
+                bytes,
+                scenario,
+                frame,
+                options,
+            ),
+        });
+    }
+    Ok((stage_best, queries))
+}
+
+/// Walks back from the cheapest copy of the goal: the copy of each stage the route takes.
+fn walk_back(stages: &[Stage], best: &[StageBest]) -> Result<Vec<usize>, MissionError> {
     let last = stages.len() - 1;
     let mut k = (0..stages[last].headings.len())
         .filter(|&b| best[last][b].is_some())
@@ -458,6 +518,20 @@ fn plan_mission_in_pool(
         chosen[i] = k;
         k = best[i][k].map(|v| v.1).unwrap_or(0);
     }
+    Ok(chosen)
+}
+
+/// Plans the chosen legs once more to keep their geometry, post-processed; returns them and
+/// the route's length.
+fn plan_legs(
+    bytes: &[u8],
+    popups: &[LocalPopup],
+    options: &MissionOptions,
+    stages: &[Stage],
+    chosen: &[usize],
+) -> Result<(Vec<Leg>, f64), MissionError> {
+    let adaptive = options.connect_radius_m.is_none();
+    let budget = u64::MAX;
     let mut p = planner(bytes, popups, options)?;
     let mut legs = Vec::new();
     let mut length = 0.0;
@@ -498,10 +572,5 @@ fn plan_mission_in_pool(
             widened,
         });
     }
-    Ok(Mission {
-        legs,
-        length,
-        queries,
-        work,
-    })
+    Ok((legs, length))
 }

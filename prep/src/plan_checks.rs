@@ -39,7 +39,7 @@ impl PopupInput {
     pub fn local(&self, frame: &LocalFrame) -> LocalPopup {
         LocalPopup {
             name: self.name.clone(),
-            centre: crate::build::local(frame, self.lon, self.lat),
+            centre: crate::local::local(frame, self.lon, self.lat),
             radius: self.radius_m as f32,
         }
     }

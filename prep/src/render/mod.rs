@@ -1,0 +1,165 @@
+//! `skyroute render`: a picture of a network, and optionally a planned route, a scenario's
+//! endpoints and pop-up threats, as SVG (written by hand) or PNG (the same SVG rasterised with
+//! resvg).
+//!
+//! The map is drawn in the network's local frame with grid north up and the same scale on both
+//! axes. Layers, bottom to top: a 100 m / 500 m grid; the clearance band around every obstacle;
+//! obstacles (grey); for a terrain network, the cells blocked at its altitude (grey); the network's edges (thin, light); pop-ups (red); the route, one colour per
+//! leg, with a white casing and arrowheads every so often in the direction of flight; start,
+//! waypoints and goal, labelled by name, with heading ticks where the heading is fixed. A panel
+//! on the right holds the title, a legend, the legs with their lengths, the route's smallest
+//! distance to any obstacle or pop-up (in red when it is below the network's clearance) and a
+//! scale bar.
+
+mod draw;
+mod mark_layer;
+mod network_layer;
+mod obstacle_layer;
+mod panel;
+mod picture;
+mod png;
+mod route_file;
+mod route_layer;
+mod svg;
+#[cfg(test)]
+mod tests;
+
+pub use picture::{scenario_marks, EndpointMark, Picture, PopupMark, Route, RouteLeg};
+pub use png::svg_to_png;
+pub use route_file::{parse_route, primitive_from_json, read_route};
+pub use svg::render_svg;
+
+use crate::export::{network_frame, read_network};
+use crate::scenario;
+use skyroute::Network;
+use std::path::{Path, PathBuf};
+
+/// What `skyroute render` is asked to draw.
+#[derive(Clone, Debug, Default)]
+pub struct RenderRequest {
+    /// The network image.
+    pub network: PathBuf,
+    /// A route file from `skyroute plan`.
+    pub route: Option<PathBuf>,
+    /// A scenario for the start, waypoints, goal and pop-ups.
+    pub scenario: Option<PathBuf>,
+    /// Extra pop-ups, `(lon, lat, radius_m)`.
+    pub popups: Vec<(f64, f64, f64)>,
+    /// The picture: SVG, or PNG when the name ends in `.png`.
+    pub output: PathBuf,
+    /// Also a PNG here.
+    pub png: Option<PathBuf>,
+    /// Width of the map, pixels.
+    pub map_width_px: f64,
+    /// Leave out the network's edges.
+    pub no_edges: bool,
+    /// Draw only this part of the frame, `(min_x, min_y, max_x, max_y)` metres.
+    pub area: Option<(f64, f64, f64, f64)>,
+}
+
+fn is_png(p: &Path) -> bool {
+    p.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"))
+}
+
+/// Reads the inputs, draws, writes the picture(s). Returns the files written. Errors name the
+/// file concerned.
+pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::Error>> {
+    let bytes = read_network(&req.network)?;
+    let net = Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", req.network.display()))?;
+    let frame = network_frame(&net);
+    let route = req.route.as_deref().map(read_route).transpose()?;
+    if let (Some(r), Some(path)) = (&route, &req.route) {
+        let (lat, lon) = net.origin_deg();
+        if (r.origin_deg.0 - lat).abs() > 1e-9 || (r.origin_deg.1 - lon).abs() > 1e-9 {
+            return Err(format!(
+                "{}: the route's frame origin ({}, {}) is not the network's ({lat}, {lon}): was it \
+                 planned on {}?",
+                path.display(),
+                r.origin_deg.0,
+                r.origin_deg.1,
+                req.network.display()
+            )
+            .into());
+        }
+    }
+    let s = req.scenario.as_deref().map(scenario::load).transpose()?;
+    if let Some(s) = &s {
+        // Drawn over a network it does not match, a scenario's zones would be missing from
+        // the picture and from its clearance figures.
+        crate::provenance::check_binding(s, &net)
+            .map_err(|e| format!("{} on {}: {e}", s.path.display(), req.network.display()))?;
+    }
+    let (endpoints, mut popups) = s
+        .as_ref()
+        .map(|s| scenario_marks(s, &frame))
+        .unwrap_or_default();
+    // The pop-ups the route was planned round, unless the scenario already drew them.
+    for p in route.iter().flat_map(|r| r.popups.iter()) {
+        if !popups
+            .iter()
+            .any(|q| q.centre == p.centre && q.radius == p.radius)
+        {
+            popups.push(p.clone());
+        }
+    }
+    popups.extend(
+        req.popups
+            .iter()
+            .enumerate()
+            .map(|(i, &(lon, lat, r))| PopupMark {
+                name: format!("--popup #{}", i + 1),
+                centre: frame.to_local(lon, lat),
+                radius: r,
+            }),
+    );
+    let title = s
+        .as_ref()
+        .map(|s| s.name.clone())
+        .or_else(|| {
+            route
+                .as_ref()
+                .map(|r| r.scenario.clone())
+                .filter(|n| !n.is_empty())
+        })
+        .unwrap_or_else(|| req.network.display().to_string());
+    let pic = Picture {
+        title,
+        network: Some(net),
+        edges: !req.no_edges,
+        route,
+        endpoints,
+        popups,
+        map_width_px: if req.map_width_px > 0.0 {
+            req.map_width_px
+        } else {
+            1200.0
+        },
+        area: req.area,
+    };
+    let svg = render_svg(&pic);
+    let mut written = Vec::new();
+    let mut png = None;
+    let mut write_png = |path: &Path| -> Result<(), String> {
+        if png.is_none() {
+            png = Some(svg_to_png(&svg).map_err(|e| format!("{}: {e}", path.display()))?);
+        }
+        crate::output::write_atomically(path, png.as_deref().unwrap_or_default())
+    };
+    let mut inputs = vec![req.network.as_path()];
+    inputs.extend(req.route.as_deref());
+    inputs.extend(req.scenario.as_deref());
+    for out in std::iter::once(&req.output).chain(req.png.iter()) {
+        crate::output::refuse_overwriting_inputs(out, &inputs)?;
+    }
+    if is_png(&req.output) {
+        write_png(&req.output)?;
+    } else {
+        crate::output::write_atomically(&req.output, svg.as_bytes())?;
+    }
+    written.push(req.output.clone());
+    if let Some(p) = &req.png {
+        write_png(p)?;
+        written.push(p.clone());
+    }
+    Ok(written)
+}

@@ -1,0 +1,125 @@
+//! Reading route files written by `skyroute plan`.
+
+use super::picture::{PopupMark, Route, RouteLeg};
+use serde_json::Value;
+use skyroute::{Arc, Primitive, Segment, Vec2};
+use std::path::Path;
+
+fn num(v: &Value, field: &str) -> Result<f64, String> {
+    v.get(field)
+        .and_then(Value::as_f64)
+        .ok_or_else(|| format!("{field}: missing or not a number"))
+}
+
+fn point(v: &Value, field: &str) -> Result<Vec2, String> {
+    match v.get(field).and_then(Value::as_array).map(|a| a.as_slice()) {
+        Some([x, y]) => match (x.as_f64(), y.as_f64()) {
+            (Some(x), Some(y)) => Ok(Vec2::new(x as f32, y as f32)),
+            _ => Err(format!("{field}: expected [x, y] numbers")),
+        },
+        _ => Err(format!("{field}: expected [x, y]")),
+    }
+}
+
+/// A primitive from the JSON written by [`crate::route_json::primitive_json`].
+pub fn primitive_from_json(v: &Value) -> Result<Primitive, String> {
+    match v.get("type").and_then(Value::as_str) {
+        Some("line") => Ok(Primitive::Line(Segment::new(
+            point(v, "start")?,
+            point(v, "end")?,
+        ))),
+        Some("arc") => {
+            let radius = num(v, "radius")?;
+            if !radius.is_finite() || radius <= 0.0 {
+                return Err(format!("radius: {radius} is not positive"));
+            }
+            Ok(Primitive::Arc(Arc {
+                centre: point(v, "centre")?,
+                radius: radius as f32,
+                start_angle: num(v, "start_angle")? as f32,
+                sweep: num(v, "sweep")? as f32,
+            }))
+        }
+        Some(t) => Err(format!("type: unknown primitive type {t:?}")),
+        None => Err("type: missing".to_string()),
+    }
+}
+
+/// A route from the JSON text of a route file.
+pub fn parse_route(text: &str) -> Result<Route, String> {
+    let v: Value = serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
+    let frame = v.get("frame").ok_or("frame: missing")?;
+    let origin_deg = (
+        num(frame, "origin_lat_deg").map_err(|e| format!("frame.{e}"))?,
+        num(frame, "origin_lon_deg").map_err(|e| format!("frame.{e}"))?,
+    );
+    let legs = v
+        .get("legs")
+        .and_then(Value::as_array)
+        .ok_or("legs: missing or not an array")?;
+    let mut out = Vec::new();
+    for (i, leg) in legs.iter().enumerate() {
+        let name = |k: &str| {
+            leg.get(k)
+                .and_then(Value::as_str)
+                .unwrap_or("?")
+                .to_string()
+        };
+        let prims = leg
+            .get("primitives")
+            .and_then(Value::as_array)
+            .ok_or_else(|| format!("legs[{i}].primitives: missing or not an array"))?;
+        let primitives = prims
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                primitive_from_json(p).map_err(|e| format!("legs[{i}].primitives[{k}].{e}"))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let length_m = leg
+            .get("length_m")
+            .and_then(Value::as_f64)
+            .unwrap_or_else(|| primitives.iter().map(|p| p.length() as f64).sum());
+        out.push(RouteLeg {
+            from: name("from"),
+            to: name("to"),
+            length_m,
+            primitives,
+        });
+    }
+    let mut popups = Vec::new();
+    for (i, p) in v
+        .get("popups")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .enumerate()
+    {
+        let centre = point(p, "centre").map_err(|e| format!("popups[{i}].{e}"))?;
+        popups.push(PopupMark {
+            name: p
+                .get("name")
+                .and_then(Value::as_str)
+                .unwrap_or("?")
+                .to_string(),
+            centre: (centre.x as f64, centre.y as f64),
+            radius: num(p, "radius_m").map_err(|e| format!("popups[{i}].{e}"))?,
+        });
+    }
+    Ok(Route {
+        popups,
+        scenario: v
+            .get("scenario")
+            .and_then(Value::as_str)
+            .unwrap_or("")
+            .to_string(),
+        origin_deg,
+        legs: out,
+    })
+}
+
+/// Reads a route file; errors name it.
+pub fn read_route(path: &Path) -> Result<Route, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    parse_route(&text).map_err(|e| format!("{}: {e}", path.display()))
+}

@@ -1,0 +1,115 @@
+//! The SVG document: the map's extent and view, then the layers bottom to top, then the panel.
+
+use super::draw::{xml, BBox, View, FONT, MARGIN_PX, PANEL_PX};
+use super::picture::Picture;
+use super::{mark_layer, network_layer, obstacle_layer, panel, route_layer};
+use std::fmt::Write as _;
+
+/// Draws the picture as an SVG document.
+pub fn render_svg(pic: &Picture) -> String {
+    let net = pic.network.as_ref();
+    let clearance = net.map_or(0.0, |n| n.clearance() as f64);
+    let bb = extent(pic);
+    let pad = 0.03 * (bb.2 - bb.0).max(bb.3 - bb.1).max(1.0);
+    let bb = match pic.area {
+        Some((x0, y0, x1, y1)) => BBox(x0, y0, x1, y1),
+        None => BBox(bb.0 - pad, bb.1 - pad, bb.2 + pad, bb.3 + pad),
+    };
+    let (w_m, h_m) = (bb.2 - bb.0, bb.3 - bb.1);
+    let map_w = pic.map_width_px.max(200.0);
+    let scale = map_w / w_m;
+    let map_h = h_m * scale;
+    let view = View {
+        min_x: bb.0,
+        max_y: bb.3,
+        scale,
+    };
+    let width = map_w + 2.0 * MARGIN_PX + PANEL_PX;
+    let height = (map_h + 2.0 * MARGIN_PX).max(700.0);
+
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 0 {width:.0} {height:.0}" font-family="{FONT}">"##
+    );
+    let _ = writeln!(svg, "<title>{}</title>", xml(&pic.title));
+    let _ = writeln!(svg, r##"<rect width="100%" height="100%" fill="#fff"/>"##);
+    let _ = writeln!(
+        svg,
+        r##"<defs><clipPath id="map"><rect x="{MARGIN_PX}" y="{MARGIN_PX}" width="{map_w:.1}" height="{map_h:.1}"/></clipPath></defs>"##
+    );
+    let _ = writeln!(
+        svg,
+        r##"<rect x="{MARGIN_PX}" y="{MARGIN_PX}" width="{map_w:.1}" height="{map_h:.1}" fill="#fbfbf8" stroke="#888" stroke-width="1"/>"##
+    );
+    let _ = writeln!(svg, r##"<g clip-path="url(#map)">"##);
+
+    let (fine, coarse) = network_layer::grid(&mut svg, &view, bb, map_w, map_h);
+    if let Some(net) = net {
+        obstacle_layer::obstacles(&mut svg, net, &view, clearance);
+        obstacle_layer::terrain_cells(&mut svg, net, &view);
+        if pic.edges {
+            network_layer::edges(&mut svg, net, &view);
+        }
+    }
+    mark_layer::popups(&mut svg, &pic.popups, &view, clearance);
+    if let Some(route) = &pic.route {
+        route_layer::route(&mut svg, route, &view);
+    }
+    mark_layer::endpoints(&mut svg, &pic.endpoints, &view);
+    let _ = writeln!(svg, "</g>");
+    mark_layer::labels(&mut svg, &pic.endpoints, &pic.popups, &view);
+    mark_layer::north_arrow(&mut svg);
+    let px0 = MARGIN_PX * 2.0 + map_w;
+    panel::panel(&mut svg, pic, px0);
+    panel::scale_bar(&mut svg, px0, height, scale, (fine, coarse));
+    svg.push_str("</svg>\n");
+    svg
+}
+
+/// The box of everything drawn (obstacles, edges or vertices, route, endpoints, pop-ups), or a
+/// 200 m square round the origin when there is nothing.
+fn extent(pic: &Picture) -> BBox {
+    let net = pic.network.as_ref();
+    let mut bb = BBox::empty();
+    if let Some(net) = net {
+        for i in 0..net.obstacle_count() {
+            if let Some((_, (lo, hi))) = net.obstacle(i) {
+                bb.add_box(lo, hi);
+            }
+        }
+        if pic.edges {
+            for i in 0..net.edge_count() {
+                if let Some(path) = net.edge_path(i) {
+                    for p in path.primitives().iter().flatten() {
+                        let (lo, hi) = p.bounding_box();
+                        bb.add_box(lo, hi);
+                    }
+                }
+            }
+        } else {
+            for i in 0..net.vertex_count() {
+                if let Some(v) = net.vertex(i) {
+                    bb.add(v.position.x as f64, v.position.y as f64);
+                }
+            }
+        }
+    }
+    if let Some(route) = &pic.route {
+        for p in route.legs.iter().flat_map(|l| l.primitives.iter()) {
+            let (lo, hi) = p.bounding_box();
+            bb.add_box(lo, hi);
+        }
+    }
+    for e in &pic.endpoints {
+        bb.add(e.position.0, e.position.1);
+    }
+    for c in &pic.popups {
+        bb.add(c.centre.0 - c.radius, c.centre.1 - c.radius);
+        bb.add(c.centre.0 + c.radius, c.centre.1 + c.radius);
+    }
+    if bb.is_empty() {
+        bb = BBox(-100.0, -100.0, 100.0, 100.0);
+    }
+    bb
+}
