@@ -13,7 +13,13 @@ For every ROOT (a crate's source folder) it reports
       one level deeper (`planner::search`). Edges come from `use` trees and paths that start
       with `crate::`, `super::`, `self::` or a child module the file declares (`mod x;`, then
       `use x::Y` or `x::f()`). Cycles are looked for among the top-level
-      modules (a folder's edges counted together) and among the modules of each folder.
+      modules (a folder's edges counted together) and among the child modules of each folder
+      (its `mod.rs` contains them: a parent's declarations and re-exports of its children, and
+      the children's `super::` uses of it, are not edges between modules).
+
+Without arguments it also reports (d) mode presence checks (`terrain().is_some()`,
+`landmark().is_none()`, `mode() ==`, ...) under src/, prep/src/, host-tests/src/ and
+firmware-example/src/: the mode is dispatched with a `match` (docs/ADDING_A_MODE.md).
 
 Exits 1 if anything is reported, 0 otherwise. Python 3 standard library only.
 """
@@ -328,7 +334,10 @@ def check(root):
         if a[0] != b[0]:
             g = "<top level>"
             na, nb = a[0], b[0]
-        elif len(a) <= 2 and len(b) <= 2:
+        elif len(a) == 2 and len(b) == 2:
+            # Siblings in one folder. The folder's own `mod.rs` contains its children: its
+            # `mod`/`pub use` of them and their `super::` uses of it are not edges between
+            # modules, so cycles are looked for among the children.
             g = a[0] + "/"
             na, nb = "::".join(a), "::".join(b)
         else:
@@ -351,6 +360,25 @@ def check(root):
     return problems
 
 
+# Mode presence checks: the mode is dispatched by a `match` (docs/ADDING_A_MODE.md).
+PRESENCE = re.compile(r"\b(terrain|landmark)\(\)\s*\.\s*is_(some|none)\(\)|\bmode\(\)\s*[!=]=")
+PRESENCE_ROOTS = ["src", "prep/src", "host-tests/src", "firmware-example/src"]
+
+
+def presence_checks(repo):
+    """Every `terrain().is_some()`, `landmark().is_none()`, `mode() ==` ... outside comments
+    and strings under PRESENCE_ROOTS."""
+    problems = []
+    for root in PRESENCE_ROOTS:
+        for path in rust_files(os.path.join(repo, root)):
+            with open(path, encoding="utf-8") as f:
+                clean = blank(f.read())
+            for m in PRESENCE.finditer(clean):
+                problems.append(f"{os.path.relpath(path, repo)}:{line_of(clean, m.start())}: "
+                                f"mode presence check `{m.group(0)}` (dispatch with a match)")
+    return problems
+
+
 def main(argv):
     here = os.path.dirname(os.path.abspath(__file__))
     repo = os.path.dirname(here)
@@ -362,6 +390,12 @@ def main(argv):
         for p in problems:
             print(p)
         print(f"{root}: {len(problems)} problem(s)")
+        total += len(problems)
+    if not argv[1:]:
+        problems = presence_checks(repo)
+        for p in problems:
+            print(p)
+        print(f"mode presence checks: {len(problems)}")
         total += len(problems)
     return 1 if total else 0
 

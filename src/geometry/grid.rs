@@ -604,55 +604,7 @@ pub fn arc_cells<F: FnMut(u32, u32) -> bool>(
     let s = s0 + 2.0 * ea;
     let full = !(s < TAU);
 
-    // The sector's quadrant pieces.
-    let mut pieces = [Piece {
-        q: 0,
-        from: axis(0),
-        to: axis(1),
-    }; 5];
-    let mut n_pieces = 0;
-    if full {
-        for (k, piece) in pieces.iter_mut().take(4).enumerate() {
-            *piece = Piece {
-                q: k as u8,
-                from: axis(k as u32),
-                to: axis(k as u32 + 1),
-            };
-        }
-        n_pieces = 4;
-    } else {
-        let a = a0 - ea;
-        let from = Vec2::from_angle(a);
-        let to = Vec2::from_angle(a + s);
-        let mut t0 = libm::atan2f(from.y, from.x);
-        if t0 < 0.0 {
-            t0 += TAU;
-        }
-        let t1 = t0 + s;
-        let mut q = (libm::floorf(t0 / FRAC_PI_2) as u32).min(3);
-        let mut start = from;
-        while n_pieces < 5 {
-            let boundary = (q + 1) as f32 * FRAC_PI_2;
-            if t1 > boundary && n_pieces < 4 {
-                pieces[n_pieces] = Piece {
-                    q: (q % 4) as u8,
-                    from: start,
-                    to: axis(q + 1),
-                };
-                start = axis(q + 1);
-                q += 1;
-            } else {
-                pieces[n_pieces] = Piece {
-                    q: (q % 4) as u8,
-                    from: start,
-                    to,
-                };
-                n_pieces += 1;
-                break;
-            }
-            n_pieces += 1;
-        }
-    }
+    let (pieces, n_pieces) = sector_pieces(a0 - ea, s, full);
     let pieces = &pieces[..n_pieces];
     let r1 = (r - w).max(0.0);
     let r2 = r + w;
@@ -719,6 +671,59 @@ pub fn arc_cells<F: FnMut(u32, u32) -> bool>(
         }
     }
     Ok(count)
+}
+
+/// The counter-clockwise sector from angle `a` through `s` radians (the whole circle when
+/// `full`) cut at the axes into at most five quadrant pieces; returns them and their count.
+fn sector_pieces(a: f32, s: f32, full: bool) -> ([Piece; 5], usize) {
+    let mut pieces = [Piece {
+        q: 0,
+        from: axis(0),
+        to: axis(1),
+    }; 5];
+    let mut n_pieces = 0;
+    if full {
+        for (k, piece) in pieces.iter_mut().take(4).enumerate() {
+            *piece = Piece {
+                q: k as u8,
+                from: axis(k as u32),
+                to: axis(k as u32 + 1),
+            };
+        }
+        n_pieces = 4;
+    } else {
+        let from = Vec2::from_angle(a);
+        let to = Vec2::from_angle(a + s);
+        let mut t0 = libm::atan2f(from.y, from.x);
+        if t0 < 0.0 {
+            t0 += TAU;
+        }
+        let t1 = t0 + s;
+        let mut q = (libm::floorf(t0 / FRAC_PI_2) as u32).min(3);
+        let mut start = from;
+        while n_pieces < 5 {
+            let boundary = (q + 1) as f32 * FRAC_PI_2;
+            if t1 > boundary && n_pieces < 4 {
+                pieces[n_pieces] = Piece {
+                    q: (q % 4) as u8,
+                    from: start,
+                    to: axis(q + 1),
+                };
+                start = axis(q + 1);
+                q += 1;
+            } else {
+                pieces[n_pieces] = Piece {
+                    q: (q % 4) as u8,
+                    from: start,
+                    to,
+                };
+                n_pieces += 1;
+                break;
+            }
+            n_pieces += 1;
+        }
+    }
+    (pieces, n_pieces)
 }
 
 /// [`segment_cells`] or [`arc_cells`], by the primitive's kind.

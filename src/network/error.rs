@@ -412,6 +412,27 @@ impl fmt::Display for LoadError {
                 f,
                 "terrain search needs {needed} states (edges + start links), capacity is {capacity}"
             ),
+            EdgeOutsideTerrain { .. }
+            | EdgeElevationUnderstated { .. }
+            | LandmarkVertexCount { .. }
+            | EndpointVertexMismatch { .. }
+            | VertexOffLandmark { .. }
+            | QualityOutOfRange { .. }
+            | ElementSpeed { .. }
+            | ChainTooShort { .. }
+            | CoincidentElements { .. }
+            | ChainMissesVertex { .. }
+            | ChainShorterThanChords { .. }
+            | EdgeOutsideGrid { .. } => self.fmt_mode_section(f),
+        }
+    }
+}
+
+impl LoadError {
+    /// The messages of the terrain and landmark sections' errors.
+    fn fmt_mode_section(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use LoadError::*;
+        match *self {
             EdgeOutsideTerrain { edge } => {
                 write!(f, "edge {edge} reaches outside the elevation grid")
             }
@@ -467,6 +488,8 @@ impl fmt::Display for LoadError {
             EdgeOutsideGrid { edge } => {
                 write!(f, "grid index does not cover the reach of edge {edge}")
             }
+            // The other variants are written by `Display::fmt`, which sends only these here.
+            _ => Ok(()),
         }
     }
 }

@@ -183,6 +183,7 @@ impl<'a> Network<'a> {
         }
         Ok(most)
     }
+
     /// Landmark mode: a chain edge's params are `[length, 0, 0]` with the cost not below the
     /// length and the length not below the polyline through its elements; its first element
     /// is its source vertex's line element and its last its target's; consecutive elements are
@@ -253,6 +254,7 @@ impl<'a> Network<'a> {
         }
         Ok(())
     }
+
     /// The box that holds every curve of length `length` from `a` to `b`: the ellipse
     /// `|PA| + |PB| ≤ length` lies within `length / 2` of the midpoint (widened by 10⁻⁴ of the
     /// length plus 1 cm against rounding).
@@ -261,6 +263,7 @@ impl<'a> Network<'a> {
         let r = 0.5 * length + 1e-4 * length + 0.01;
         (mid - Vec2::new(r, r), mid + Vec2::new(r, r))
     }
+
     /// Landmark mode: the landmark record.
     pub fn landmark(&self) -> Option<&LandmarkRecord> {
         match &self.section {
@@ -268,6 +271,7 @@ impl<'a> Network<'a> {
             _ => None,
         }
     }
+
     /// Landmark mode: the vehicle limits every piece was checked against.
     pub fn fly_limits(&self) -> Option<FlyLimits> {
         self.landmark().map(|l| FlyLimits {
@@ -278,6 +282,7 @@ impl<'a> Network<'a> {
             a_lat_max: l.a_lat_max,
         })
     }
+
     /// Landmark mode: landmark `l`'s position and `d_max` (metres).
     pub fn landmark_site(&self, l: u32) -> Option<(Vec2, f32)> {
         self.landmark_site_of(self.landmark()?, l)
@@ -294,6 +299,7 @@ impl<'a> Network<'a> {
             self.record(self.layout.landmarks, LandmarkSiteRecord::SIZE, l as usize)?;
         Some((Vec2::new(r.x, r.y), r.d_max))
     }
+
     /// Landmark mode: the stored quality `q(direction, weather)` of landmark `l`, in `[0, 1]`.
     pub fn rosette_quality(&self, l: u32, weather: u32, direction: u32) -> Option<f32> {
         self.rosette_quality_of(self.landmark()?, l, weather, direction)
@@ -317,13 +323,18 @@ impl<'a> Network<'a> {
         self.record::<F32Record>(self.layout.rosettes, F32Record::SIZE, i)
             .map(|r| r.0)
     }
+
     /// Landmark mode: the indices of edge `e`'s line elements (empty for other modes).
     pub fn chain_elements(&self, e: u32) -> core::ops::Range<u32> {
-        if self.landmark().is_none() || e >= self.header.edge_count {
+        let ModeSection::Landmark { .. } = self.section else {
+            return 0..0;
+        };
+        if e >= self.header.edge_count {
             return 0..0;
         }
         self.offset(self.layout.chain_offsets, e)..self.offset(self.layout.chain_offsets, e + 1)
     }
+
     /// Landmark mode: line element `k` (an index into all chains' elements).
     pub fn chain_element(&self, k: u32) -> Option<LineElement> {
         if k >= self.landmark()?.element_count {
@@ -333,10 +344,12 @@ impl<'a> Network<'a> {
             self.record(self.layout.elements, ElementRecord::SIZE, k as usize)?;
         Some(LineElement::new(Vec2::new(r.x, r.y), Vec2::new(r.vx, r.vy)))
     }
+
     /// Landmark mode: the number of Hermite pieces of edge `e` (its elements minus one).
     pub fn chain_piece_count(&self, e: u32) -> u32 {
         (self.chain_elements(e).len() as u32).saturating_sub(1)
     }
+
     /// Landmark mode: the most pieces of any edge.
     pub fn max_chain_pieces(&self) -> u32 {
         match self.section {
@@ -346,6 +359,7 @@ impl<'a> Network<'a> {
             _ => 0,
         }
     }
+
     /// Landmark mode: piece `k` of edge `e`, rebuilt from its two line elements with
     /// [`HermiteSegment::new`] at the nominal speed — bit for bit the segment the ground tool
     /// built and checked. Work: one segment construction (a few Newton steps of adaptive

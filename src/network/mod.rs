@@ -156,6 +156,7 @@ impl PolygonView for PolygonRef<'_> {
     fn vertex_count(&self) -> usize {
         self.count as usize
     }
+
     fn vertex(&self, i: usize) -> Option<Vec2> {
         if i >= self.count as usize {
             return None;

@@ -123,6 +123,7 @@ impl<'a> Network<'a> {
         }
         Ok(())
     }
+
     /// Terrain mode: the elevation table's grid and coding record.
     pub fn terrain(&self) -> Option<&TerrainRecord> {
         match &self.section {
@@ -130,11 +131,13 @@ impl<'a> Network<'a> {
             _ => None,
         }
     }
+
     /// Terrain mode: the elevation table's grid.
     pub fn terrain_grid(&self) -> Option<CellGrid> {
         self.terrain()
             .map(|t| CellGrid::new(Vec2::new(t.origin_x, t.origin_y), t.cell_m, t.cols, t.rows))
     }
+
     /// Terrain mode: how elevation codes map to metres.
     pub fn elevation_coding(&self) -> Option<ElevationCoding> {
         self.terrain().map(|t| ElevationCoding {
@@ -142,6 +145,7 @@ impl<'a> Network<'a> {
             step_m: t.elevation_step_m,
         })
     }
+
     /// Terrain mode: the elevation code of cell `(col, row)`; [`ELEVATION_BLOCKED`] outside
     /// the grid or without terrain.
     pub fn elevation_code(&self, col: u32, row: u32) -> u8 {
@@ -157,6 +161,7 @@ impl<'a> Network<'a> {
             .copied()
             .unwrap_or(ELEVATION_BLOCKED)
     }
+
     /// Terrain mode: the highest elevation code within the widening of line edge `i`.
     pub fn edge_highest_code(&self, i: u32) -> Option<u8> {
         self.terrain()?;

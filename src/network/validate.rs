@@ -37,6 +37,7 @@ impl<'a> Network<'a> {
             ModeSection::Landmark { record, .. } => self.validate_landmark_parameters(record),
         }
     }
+
     pub(super) fn validate_vertices(&self) -> Result<(), LoadError> {
         for i in 0..self.header.vertex_count {
             let v: VertexRecord = self.checked_record(
@@ -54,6 +55,7 @@ impl<'a> Network<'a> {
         }
         Ok(())
     }
+
     pub(super) fn validate_edges(&self) -> Result<(), LoadError> {
         let (v, e) = (self.header.vertex_count, self.header.edge_count);
         self.validate_offsets(Section::EdgeOffsets, self.layout.edge_offsets, v, e)?;
@@ -110,6 +112,7 @@ impl<'a> Network<'a> {
         }
         Ok(())
     }
+
     pub(super) fn validate_obstacles(&self) -> Result<(), LoadError> {
         let points = self.header.obstacle_point_count;
         for i in 0..self.header.obstacle_point_count {
@@ -178,6 +181,7 @@ impl<'a> Network<'a> {
         }
         Ok(())
     }
+
     pub(super) fn validate_grid(&self) -> Result<(), LoadError> {
         let h = &self.header;
         let cells = h
@@ -231,6 +235,7 @@ impl<'a> Network<'a> {
         }
         Ok(())
     }
+
     /// Checks that `count + 1` offsets at `base` run non-decreasing from 0 to `total`.
     pub(super) fn validate_offsets(
         &self,

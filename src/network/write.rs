@@ -276,43 +276,7 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
             },
         );
     }
-    let mut point_count = 0u32;
-    for o in &spec.obstacles {
-        let record = match o {
-            ObstacleSpec::Polygon(points) => {
-                let (lo, hi) = o.bounding_box();
-                let r = ObstacleRecord {
-                    kind: OBSTACLE_POLYGON,
-                    first_point: point_count,
-                    point_count: count(points.len(), "polygon points")?,
-                    circle: [0.0; 3],
-                    bbox: [lo.x, lo.y, hi.x, hi.y],
-                };
-                point_count = point_count
-                    .checked_add(r.point_count)
-                    .ok_or(WriteError::TooLarge("polygon points"))?;
-                r
-            }
-            ObstacleSpec::Circle { centre, radius } => ObstacleRecord {
-                kind: OBSTACLE_CIRCLE,
-                first_point: 0,
-                point_count: 0,
-                circle: [centre.x, centre.y, *radius],
-                bbox: {
-                    let (lo, hi) = o.bounding_box();
-                    [lo.x, lo.y, hi.x, hi.y]
-                },
-            },
-        };
-        push(&mut body, &record);
-    }
-    for o in &spec.obstacles {
-        if let ObstacleSpec::Polygon(points) = o {
-            for p in points {
-                push(&mut body, &PointRecord { x: p.x, y: p.y });
-            }
-        }
-    }
+    let point_count = write_obstacles(&mut body, &spec.obstacles)?;
     let grid = GridIndex::build(spec, &edges, &chains)?;
     for o in &grid.offsets {
         push(&mut body, &U32Record(*o));
@@ -321,75 +285,10 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
         push(&mut body, &U32Record(*e));
     }
     if let Some(t) = &spec.terrain {
-        push(
-            &mut body,
-            &TerrainRecord {
-                origin_x: t.grid.origin.x,
-                origin_y: t.grid.origin.y,
-                cell_m: t.grid.cell,
-                cols: t.grid.cols,
-                rows: t.grid.rows,
-                elevation_base_m: t.coding.base_m,
-                elevation_step_m: t.coding.step_m,
-                widen_m: t.widen_m,
-                altitude_m: t.altitude_m,
-                safety_height_m: t.safety_height_m,
-            },
-        );
-        body.extend_from_slice(&t.codes);
+        write_terrain_section(&mut body, t);
     }
     if let Some(l) = &spec.landmark {
-        let element_count = count(chains.iter().map(|c| c.len()).sum(), "line elements")?;
-        push(
-            &mut body,
-            &LandmarkRecord {
-                landmark_count: count(l.landmarks.len(), "landmarks")?,
-                directions: l.directions,
-                weather_count: l.weather_count,
-                v_nominal: l.v_nominal,
-                v_min: l.limits.v_min,
-                v_max: l.limits.v_max,
-                a_long_min: l.limits.a_long_min,
-                a_long_max: l.limits.a_long_max,
-                a_lat_max: l.limits.a_lat_max,
-                start_vertex: l.start_vertex.unwrap_or(LandmarkRecord::ABSENT),
-                goal_vertex: l.goal_vertex.unwrap_or(LandmarkRecord::ABSENT),
-                start_range_m: l.start_range_m,
-                element_count,
-            },
-        );
-        for site in &l.landmarks {
-            push(
-                &mut body,
-                &LandmarkSiteRecord {
-                    x: site.position.x,
-                    y: site.position.y,
-                    d_max: site.d_max_m,
-                },
-            );
-        }
-        for q in &l.qualities {
-            push(&mut body, &F32Record(*q));
-        }
-        let mut at = 0u32;
-        push(&mut body, &U32Record(0));
-        for c in &chains {
-            at += c.len() as u32;
-            push(&mut body, &U32Record(at));
-        }
-        for c in &chains {
-            for el in c.iter() {
-                push(
-                    &mut body,
-                    &ElementRecord {
-                        x: el.position.x,
-                        y: el.position.y,
-                        vx: el.velocity.x,
-                        vy: el.velocity.y,
-                    },
-                );
-            }
-        }
+        write_landmark_section(&mut body, l, &chains)?;
     }
     for record in &spec.provenance {
         push(&mut body, record);
@@ -431,6 +330,129 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     out[Header::CHECKED_SIZE..Header::SIZE].copy_from_slice(&crc.to_le_bytes());
     Network::from_bytes(&out).map_err(WriteError::Invalid)?;
     Ok(out)
+}
+
+/// Writes the obstacle records, then their polygons' points; returns the number of points.
+fn write_obstacles(body: &mut Vec<u8>, obstacles: &[ObstacleSpec]) -> Result<u32, WriteError> {
+    let mut point_count = 0u32;
+    for o in obstacles {
+        let record = match o {
+            ObstacleSpec::Polygon(points) => {
+                let (lo, hi) = o.bounding_box();
+                let r = ObstacleRecord {
+                    kind: OBSTACLE_POLYGON,
+                    first_point: point_count,
+                    point_count: count(points.len(), "polygon points")?,
+                    circle: [0.0; 3],
+                    bbox: [lo.x, lo.y, hi.x, hi.y],
+                };
+                point_count = point_count
+                    .checked_add(r.point_count)
+                    .ok_or(WriteError::TooLarge("polygon points"))?;
+                r
+            }
+            ObstacleSpec::Circle { centre, radius } => ObstacleRecord {
+                kind: OBSTACLE_CIRCLE,
+                first_point: 0,
+                point_count: 0,
+                circle: [centre.x, centre.y, *radius],
+                bbox: {
+                    let (lo, hi) = o.bounding_box();
+                    [lo.x, lo.y, hi.x, hi.y]
+                },
+            },
+        };
+        push(body, &record);
+    }
+    for o in obstacles {
+        if let ObstacleSpec::Polygon(points) = o {
+            for p in points {
+                push(body, &PointRecord { x: p.x, y: p.y });
+            }
+        }
+    }
+    Ok(point_count)
+}
+
+/// Terrain mode: writes the terrain record and the elevation table.
+fn write_terrain_section(body: &mut Vec<u8>, t: &TerrainSpec) {
+    push(
+        body,
+        &TerrainRecord {
+            origin_x: t.grid.origin.x,
+            origin_y: t.grid.origin.y,
+            cell_m: t.grid.cell,
+            cols: t.grid.cols,
+            rows: t.grid.rows,
+            elevation_base_m: t.coding.base_m,
+            elevation_step_m: t.coding.step_m,
+            widen_m: t.widen_m,
+            altitude_m: t.altitude_m,
+            safety_height_m: t.safety_height_m,
+        },
+    );
+    body.extend_from_slice(&t.codes);
+}
+
+/// Landmark mode: writes the landmark record, the landmarks, the rosettes, the chain offsets
+/// and the chains' line elements.
+fn write_landmark_section(
+    body: &mut Vec<u8>,
+    l: &LandmarkSpec,
+    chains: &[&[LineElement]],
+) -> Result<(), WriteError> {
+    let element_count = count(chains.iter().map(|c| c.len()).sum(), "line elements")?;
+    push(
+        body,
+        &LandmarkRecord {
+            landmark_count: count(l.landmarks.len(), "landmarks")?,
+            directions: l.directions,
+            weather_count: l.weather_count,
+            v_nominal: l.v_nominal,
+            v_min: l.limits.v_min,
+            v_max: l.limits.v_max,
+            a_long_min: l.limits.a_long_min,
+            a_long_max: l.limits.a_long_max,
+            a_lat_max: l.limits.a_lat_max,
+            start_vertex: l.start_vertex.unwrap_or(LandmarkRecord::ABSENT),
+            goal_vertex: l.goal_vertex.unwrap_or(LandmarkRecord::ABSENT),
+            start_range_m: l.start_range_m,
+            element_count,
+        },
+    );
+    for site in &l.landmarks {
+        push(
+            body,
+            &LandmarkSiteRecord {
+                x: site.position.x,
+                y: site.position.y,
+                d_max: site.d_max_m,
+            },
+        );
+    }
+    for q in &l.qualities {
+        push(body, &F32Record(*q));
+    }
+    let mut at = 0u32;
+    push(body, &U32Record(0));
+    for c in chains {
+        at += c.len() as u32;
+        push(body, &U32Record(at));
+    }
+    for c in chains {
+        for el in c.iter() {
+            push(
+                body,
+                &ElementRecord {
+                    x: el.position.x,
+                    y: el.position.y,
+                    vx: el.velocity.x,
+                    vy: el.velocity.y,
+                },
+            );
+        }
+    }
+    Ok(())
 }
 
 /// Landmark mode: the tables agree with the vertices and edges.

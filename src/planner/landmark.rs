@@ -10,18 +10,11 @@
 
 use super::popup::{Popup, PopupSummary};
 use super::search::{Arrival, Ends};
-use super::state::{LandmarkState, ModeState};
+use super::state::{LandmarkState, ModeState, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
 use super::{Meter, PlanError, Planner, Query, RouteSummary};
 use crate::geometry::{wrap_to_pi, Vec2};
 use crate::network::format::LandmarkRecord;
 use heapless::Vec;
-
-/// The most overflight directions a rosette override holds (the network may have more; then
-/// [`Planner::update_rosette`] refuses).
-pub const MAX_ROSETTE_DIRECTIONS: usize = 24;
-
-/// The most landmarks whose rosettes may be overridden at once.
-pub const MAX_ROSETTE_OVERRIDES: usize = 8;
 
 /// Chords per Hermite piece in pop-up tests
 /// ([`HermiteSegment::conflicts_with_circle`](crate::geometry::hermite::HermiteSegment::conflicts_with_circle)):

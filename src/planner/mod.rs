@@ -21,10 +21,10 @@ mod terrain;
 pub mod work;
 
 pub use error::{PlanError, PopupError, QueryField};
-pub use landmark::{MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES, POPUP_CHORDS_PER_PIECE};
+pub use landmark::POPUP_CHORDS_PER_PIECE;
 pub use popup::{Popup, PopupSummary, MAX_POPUP_VERTICES};
 pub use smooth::SmoothSummary;
-pub use terrain::ArcCheckStats;
+pub use state::{ArcCheckStats, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
 pub use work::{
     cells_bound, landmark_plan_work_bound, landmark_popup_work_bound, plan_work_bound,
     popup_work_bound, terrain_plan_work_bound, TerrainBoundInputs, Work, WorkBoundInputs,

@@ -7,10 +7,27 @@
 //! [`Planner`]: super::Planner
 //! [`Planner::load`]: super::Planner::load
 
-use super::landmark::{MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
-use super::terrain::ArcCheckStats;
 use crate::network::Network;
 use heapless::Vec;
+
+/// The most overflight directions a rosette override holds (the network may have more; then
+/// [`Planner::update_rosette`](super::Planner::update_rosette) refuses).
+pub const MAX_ROSETTE_DIRECTIONS: usize = 24;
+
+/// The most landmarks whose rosettes may be overridden at once.
+pub const MAX_ROSETTE_OVERRIDES: usize = 8;
+
+/// Cells visited and the most for one check, over the turn-arc checks of the last query.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ArcCheckStats {
+    /// Turn arcs checked.
+    pub arcs: u64,
+    /// Cells visited by those checks.
+    pub cells: u64,
+    /// The most cells one check visited.
+    pub most_cells: u64,
+}
 
 /// Terrain mode's state: the altitude in force and what the last query's turn checks cost.
 #[derive(Clone, Copy, Debug)]

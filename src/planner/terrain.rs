@@ -41,7 +41,7 @@
 
 use super::heap::ItemState;
 use super::search::{Arrival, Ends};
-use super::state::ModeState;
+use super::state::{ArcCheckStats, ModeState};
 use super::work::{cells_bound, TerrainBoundInputs};
 use super::{Goal, Link, Meter, PlanError, Planner, Query, QueryField, RouteSummary, MAX_LINKS};
 use super::{MAX_CANDIDATES, MAX_POPUP_VERTICES};
@@ -114,18 +114,6 @@ struct Arrived {
     from: Option<u32>,
 }
 
-/// Cells visited and the most for one check, over the turn-arc checks of the last query.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ArcCheckStats {
-    /// Turn arcs checked.
-    pub arcs: u64,
-    /// Cells visited by those checks.
-    pub cells: u64,
-    /// The most cells one check visited.
-    pub most_cells: u64,
-}
-
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
     /// Terrain mode: sets the flight altitude and the safety height kept above the terrain.
     /// Cells whose stored elevation bound is at least `altitude_m − safety_height_m` become
@@ -170,7 +158,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// Terrain mode: the inputs of [`terrain_plan_work_bound`] for the loaded network and the
+    /// Terrain mode: the inputs of [`terrain_plan_work_bound`](super::work::terrain_plan_work_bound) for the loaded network and the
     /// configuration. Work: O(|V| + |E|) (degrees are counted from the CSR offsets and targets).
     pub fn terrain_bound_inputs(&self) -> TerrainBoundInputs {
         let net = &self.network;
