@@ -22,7 +22,7 @@ heading east at C (range ~1.8 km for a 6 km leg) and flies C -> G through Z1.  T
 overflies B in a good heading (north-ish or south-ish), turns to C, and goes round Z1.
 The ground tool's Hermite chains are longer than the straight legs (turns, the detour round
 Z1), so the ranges leave margin.  Seed 1.  (Seed 4 once left C unconnected to the goal; the
-density-scaled neighbour radius in prep/src/landmark.rs fixed that, also with C's range at
+density-scaled neighbour radius in prep/src/landmark/mod.rs fixed that, also with C's range at
 13 km.)
 
 Run: python3 scenarios/landmark-figure4.py > scenarios/landmark-figure4.geojson

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The project's whole check, as CI runs it (.ci/run): installs what is missing, then
-#   format → clippy (host, thumbv7em, thumbv7em+defmt) → core docs → OMPL reference → tests →
+#   format → structure check → clippy (host, thumbv7em, thumbv7em+defmt) → core docs → OMPL reference → tests →
 #   firmware fixture → firmware build → firmware clippy → firmware under QEMU → sizes, for the
 #   roadmap (niendorf-urban, binary `roadmap`), again for terrain (medeiros-jacksboro, binary
 #   `terrain`) and for landmarks (babel-II-N, binary `landmark`: plan, lose a landmark in
@@ -240,6 +240,8 @@ EOF
 
 step "install missing tools" install_missing
 step "cargo fmt --check" fmt_check
+step "structure (file and function sizes, import cycles, mode dispatch)" \
+    python3 scripts/check_structure.py
 step "clippy (host, all targets)" cargo clippy --workspace --all-targets -- -D warnings
 step "clippy (skyroute, thumbv7em-none-eabihf)" \
     cargo clippy -p skyroute --target thumbv7em-none-eabihf -- -D warnings
