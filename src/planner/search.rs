@@ -270,32 +270,55 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Ok(false)
     }
 
-    /// Walks the predecessors back from vertex `to`: calls `visit` with each network edge,
-    /// goal end first. Returns the number of edges and the start link the walk ends at
-    /// (`None` when it ends at a vertex the search started from). The one walk-back of the
-    /// searches over vertices (roadmap and landmark modes).
+    /// The one walk-back of every search: follows search states back along their
+    /// predecessors from `from`. `step` is given each state (one vertex scan each) and returns
+    /// the state before it, or `None` at a start. The predecessors form a tree over at most
+    /// `limit + 1` states, so more steps mean a broken invariant ([`PlanError::Internal`]).
+    /// Returns the number of steps taken before the start: the route's network edges.
+    pub(super) fn walk_states(
+        &self,
+        from: u32,
+        limit: u32,
+        meter: &mut Meter,
+        mut step: impl FnMut(u32) -> Result<Option<u32>, PlanError>,
+    ) -> Result<u32, PlanError> {
+        let mut s = from;
+        for taken in 0..=limit {
+            meter.work.vertex_scans += 1;
+            match step(s)? {
+                Some(previous) => s = previous,
+                None => return Ok(taken),
+            }
+        }
+        Err(PlanError::Internal)
+    }
+
+    /// [`Planner::walk_states`] over vertices (roadmap and landmark searches): calls `visit`
+    /// with each network edge, goal end first, from vertex `to`. Returns the number of edges
+    /// and the start link the walk ends at.
     pub(super) fn walk_vertices(
         &self,
         to: u32,
         meter: &mut Meter,
         mut visit: impl FnMut(u32) -> Result<(), PlanError>,
     ) -> Result<(u32, Option<usize>), PlanError> {
-        let mut v = to;
-        // Predecessors form a tree over at most |V| vertices: more steps mean a broken invariant.
-        for edges in 0..=self.network.vertex_count() {
-            meter.work.vertex_scans += 1;
+        let mut start = None;
+        let edges = self.walk_states(to, self.network.vertex_count(), meter, |v| {
             let via = self
                 .via
                 .get(v as usize)
                 .copied()
                 .ok_or(PlanError::Internal)?;
             if via >= FROM_START {
-                return Ok((edges, Some((via - FROM_START) as usize)));
+                start = Some((via - FROM_START) as usize);
+                return Ok(None);
             }
             visit(via)?;
-            v = self.network.edge_source(via).ok_or(PlanError::Internal)?;
-        }
-        Err(PlanError::Internal)
+            Ok(Some(
+                self.network.edge_source(via).ok_or(PlanError::Internal)?,
+            ))
+        })?;
+        Ok((edges, start))
     }
 
     /// Walks back from the goal link: calls `visit` with each path of the route, goal end first.

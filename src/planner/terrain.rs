@@ -640,17 +640,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
         };
 
-        let mut s = state;
-        let mut at = self.arrived(s)?;
+        let mut at = self.arrived(state)?;
         let goal_out = Vec2::from_angle(link.path.start.heading);
         let fillet = Fillet::new(at.direction, goal_out, r);
         let last = (link.path.lengths[2] > 0.0)
             .then(|| (link.path.word.letters().2, link.path.lengths[2]));
         visit(&leg(&at, &fillet, link.path.lengths[1] - fillet.cut, last));
         let mut next_cut = fillet.cut;
-        // States form a tree over at most |E| + Ks states: more steps mean a broken invariant.
-        for network_edges in 0..=edges + MAX_LINKS as u32 {
-            meter.work.vertex_scans += 1;
+        // States form a tree over at most |E| + Ks states.
+        self.walk_states(state, edges + MAX_LINKS as u32, meter, |s| {
             if s >= edges {
                 // A start link: its straight ends where the first turn begins.
                 let start = self
@@ -660,7 +658,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 let mut path = start.path;
                 path.lengths[1] = (path.lengths[1] - next_cut).max(0.0);
                 visit(&path);
-                return Ok(network_edges);
+                return Ok(None);
             }
             let previous = *self.via.get(s as usize).ok_or(PlanError::Internal)?;
             if previous == NO_PREVIOUS {
@@ -671,10 +669,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             let length = 2.0 * at.share;
             visit(&leg(&before, &fillet, length - fillet.cut - next_cut, None));
             next_cut = fillet.cut;
-            s = previous;
             at = before;
-        }
-        Err(PlanError::Internal)
+            Ok(Some(previous))
+        })
     }
 
     /// Replaces the route with the one `arrival` describes, if it fits in `R` paths and `R`
