@@ -4,9 +4,7 @@
 //! (unknown weather or landmark, NaN or out-of-range qualities, a full override table) are
 //! refused with an error and change nothing.
 
-mod common;
-
-use common::Rng;
+use host_tests::Rng;
 use skyroute::network::format::{Header, ProvenanceRecord};
 use skyroute::network::image_checksum;
 use skyroute::planner::{Goal, PlanError, Popup, Query, Search};
@@ -169,7 +167,10 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
         return Ok(());
     };
     let _ = planner.add_popup(Popup::Circle {
-        centre: Vec2::new(rng.range(-20_000.0, 20_000.0), rng.range(-4000.0, 4000.0)),
+        centre: Vec2::new(
+            rng.range_f32(-20_000.0, 20_000.0),
+            rng.range_f32(-4000.0, 4000.0),
+        ),
         radius: 500.0,
     });
     let _ = planner.update_rosette(rng.below(12) as u32, &[0.0; 12]);

@@ -25,10 +25,8 @@ use skyroute::geometry::hermite::{
 use skyroute::geometry::Vec2;
 
 // --------------------------------------------------------------------------------------------
-// A tiny deterministic RNG (SplitMix64).
 
-mod rng64;
-use rng64::Rng;
+use host_tests::Rng;
 
 // --------------------------------------------------------------------------------------------
 // f64 helpers.

@@ -6,11 +6,8 @@
 //! start–goal pairs, the counted work against the documented bound, the cells per arc check
 //! against the paper's Table 4, and bad inputs.
 
-mod raw_dem;
-mod rng64;
-
-use raw_dem::{raw_navigable, route_violations};
-use rng64::Rng;
+use crate::raw_dem::{raw_navigable, route_violations};
+use host_tests::Rng;
 use skyroute::network::format::ProvenanceRecord;
 use skyroute::planner::{Goal, PlanError, Query, QueryField, Search};
 use skyroute::{LoadError, Network, Planner, Pose, Primitive, Vec2};

@@ -1,9 +1,8 @@
 //! The loader: a valid image round-trips; each kind of damage gets its own `LoadError`; random
 //! mutations never panic the loader or a planner using what it accepted.
 
-mod common;
-
-use common::{world, Rng};
+use host_tests::world::world;
+use host_tests::Rng;
 use skyroute::network::format::{
     EdgeRecord, Header, ProvenanceRecord, U32Record, VertexRecord, FORMAT_VERSION,
 };
@@ -273,7 +272,7 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
     planner.load(bytes)?;
     let net = *planner.network();
     let _ = planner.add_popup(Popup::Circle {
-        centre: Vec2::new(rng.range(0.0, 600.0), rng.range(0.0, 600.0)),
+        centre: Vec2::new(rng.range_f32(0.0, 600.0), rng.range_f32(0.0, 600.0)),
         radius: 50.0,
     });
     for v in 0..net.vertex_count().min(8) {
@@ -283,9 +282,9 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
         }
     }
     let q = Query {
-        start: skyroute::Pose::new(rng.range(0.0, 600.0), rng.range(0.0, 600.0), 0.3),
+        start: skyroute::Pose::new(rng.range_f32(0.0, 600.0), rng.range_f32(0.0, 600.0), 0.3),
         goal: Goal {
-            position: Vec2::new(rng.range(0.0, 600.0), rng.range(0.0, 600.0)),
+            position: Vec2::new(rng.range_f32(0.0, 600.0), rng.range_f32(0.0, 600.0)),
             heading: None,
         },
         search: Search::Dijkstra,

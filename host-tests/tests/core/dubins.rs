@@ -45,8 +45,7 @@ use std::time::Instant;
 
 use skyroute::geometry::{DubinsPath, DubinsWord, Pose, Primitive};
 
-mod rng64;
-use rng64::Rng;
+use host_tests::Rng;
 
 // --------------------------------------------------------------------------------------------
 // Cases: two poses and a radius, all f32 (the brute force evaluates the very same numbers).

@@ -3,9 +3,7 @@
 //! traversal: every edge is sampled densely across its whole clearance band, every sample mapped
 //! back to longitude/latitude with the frame and looked up in the DEM's own cells.
 
-mod raw_dem;
-
-use raw_dem::{raw_navigable, Check};
+use crate::raw_dem::{raw_navigable, Check};
 use rayon::prelude::*;
 use skyroute_prep::dem::{self, Dem};
 use skyroute_prep::frame::LocalFrame;

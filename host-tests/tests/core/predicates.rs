@@ -32,8 +32,7 @@ use skyroute::geometry::predicates::{
 };
 use skyroute::geometry::{Arc, Primitive, Segment, Vec2};
 
-mod rng64;
-use rng64::Rng;
+use host_tests::Rng;
 
 // --------------------------------------------------------------------------------------------
 // Inputs: f32 values on the 2⁻⁴⁰ grid (so that the exact integer references apply).
