@@ -26,7 +26,7 @@ use skyroute::geometry::Vec2;
 
 // --------------------------------------------------------------------------------------------
 
-use host_tests::Rng;
+use host_tests::{reference, Rng};
 
 // --------------------------------------------------------------------------------------------
 // f64 helpers.
@@ -89,32 +89,11 @@ fn ddq(b: &[V; 6], s: f64) -> V {
     acc
 }
 
-fn point_segment_distance(p: V, a: V, b: V) -> f64 {
-    let d = sub(b, a);
-    let l2 = dot(d, d);
-    if l2 == 0.0 {
-        return dist(p, a);
-    }
-    let t = (dot(sub(p, a), d) / l2).clamp(0.0, 1.0);
-    dist(p, add(a, scale(d, t)))
-}
+// The point–segment distance and containment are the shared f64 reference
+// (`host_tests::reference`), on this file's `[f64; 2]` points.
 
-/// Even–odd containment (f64; the reference does not care about points exactly on the
-/// boundary: those are within any clearance ≥ 0 anyway).
-fn inside(p: V, poly: &[V]) -> bool {
-    let mut c = false;
-    let mut j = poly.len() - 1;
-    for i in 0..poly.len() {
-        let (a, b) = (poly[i], poly[j]);
-        if (a[1] > p[1]) != (b[1] > p[1]) {
-            let x = a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
-            if p[0] < x {
-                c = !c;
-            }
-        }
-        j = i;
-    }
-    c
+fn point_segment_distance(p: V, a: V, b: V) -> f64 {
+    reference::dist_point_segment((p[0], p[1]), (a[0], a[1]), (b[0], b[1]))
 }
 
 // --------------------------------------------------------------------------------------------
@@ -790,6 +769,7 @@ fn collision_enclosure_never_misses_a_conflict() {
                 let pc = add(anchor, [(size + gap) * a.cos(), (size + gap) * a.sin()]);
                 let poly64 = star_polygon(&mut rng, pc, size);
                 let poly: Vec<Vec2> = poly64.iter().map(|p| f32v(*p)).collect();
+                let poly_ref: Vec<reference::P> = poly64.iter().map(|v| (v[0], v[1])).collect();
                 // (Points farther than the clearance from the polygon's box cannot conflict.)
                 let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
                 for v in &poly64 {
@@ -803,7 +783,7 @@ fn collision_enclosure_never_misses_a_conflict() {
                         && p[1] >= lo[1] - c
                         && p[1] <= hi[1] + c;
                     let n = poly64.len();
-                    near && (inside(*p, &poly64)
+                    near && (reference::inside((p[0], p[1]), &poly_ref)
                         || (0..n).any(|j| {
                             point_segment_distance(*p, poly64[j], poly64[(j + 1) % n]) <= c
                         }))

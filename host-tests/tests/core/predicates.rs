@@ -73,17 +73,9 @@ fn dist(a: P, b: P) -> f64 {
     (a.0 - b.0).hypot(a.1 - b.1)
 }
 
-/// The trivially correct f64 distance from `p` to the segment `a`–`b` (clamped projection).
-fn pt_seg(p: P, a: P, b: P) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len_sq = dx * dx + dy * dy;
-    let t = if len_sq > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len_sq).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    dist(p, (a.0 + t * dx, a.1 + t * dy))
-}
+/// The trivially correct f64 distance from `p` to the segment `a`–`b` (clamped projection):
+/// the shared reference.
+use host_tests::reference::dist_point_segment as pt_seg;
 
 fn seg_ends(s: &Segment) -> (P, P) {
     (p64(s.start), p64(s.end))

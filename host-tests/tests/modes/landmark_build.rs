@@ -16,6 +16,8 @@ use std::collections::HashSet;
 use std::path::PathBuf;
 use std::time::Instant;
 
+use host_tests::reference::{dist_polygon, Poly64, P};
+
 fn scenario_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../scenarios")
@@ -65,78 +67,7 @@ fn report(name: &str, net: &LandmarkNetwork, secs: f64) {
 }
 
 // ------------------------------------------------------------------------------------------------
-// Independent f64 reference
-
-type P = (f64, f64);
-
-fn dist_point_segment(p: P, a: P, b: P) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    ((p.0 - a.0 - t * dx).powi(2) + (p.1 - a.1 - t * dy).powi(2)).sqrt()
-}
-
-/// Even–odd crossing test.
-fn inside(p: P, poly: &[P]) -> bool {
-    let mut c = false;
-    let n = poly.len();
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a.1 > p.1) != (b.1 > p.1) && p.0 < a.0 + (p.1 - a.1) * (b.0 - a.0) / (b.1 - a.1) {
-            c = !c;
-        }
-    }
-    c
-}
-
-/// Distance from `p` to the polygon's area (0 inside).
-fn dist_polygon(p: P, poly: &[P]) -> f64 {
-    if inside(p, poly) {
-        return 0.0;
-    }
-    (0..poly.len())
-        .map(|i| dist_point_segment(p, poly[i], poly[(i + 1) % poly.len()]))
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// A piece in f64 from its normalised coefficients: position, velocity, acceleration at `s`.
-struct Poly64 {
-    b: [P; 6],
-    t: f64,
-}
-
-impl Poly64 {
-    fn new(seg: &HermiteSegment) -> Self {
-        let c = seg.normalized_coefficients();
-        Self {
-            b: c.map(|v| (v.x as f64, v.y as f64)),
-            t: seg.t_max() as f64,
-        }
-    }
-    fn eval(&self, s: f64) -> (P, P, P) {
-        let (mut p, mut v, mut a) = ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0));
-        for (k, bk) in self.b.iter().enumerate() {
-            let kf = k as f64;
-            p.0 += bk.0 * s.powi(k as i32);
-            p.1 += bk.1 * s.powi(k as i32);
-            if k >= 1 {
-                let f = kf * s.powi(k as i32 - 1) / self.t;
-                v.0 += bk.0 * f;
-                v.1 += bk.1 * f;
-            }
-            if k >= 2 {
-                let f = kf * (kf - 1.0) * s.powi(k as i32 - 2) / (self.t * self.t);
-                a.0 += bk.0 * f;
-                a.1 += bk.1 * f;
-            }
-        }
-        (p, v, a)
-    }
-}
+// Independent f64 reference: `host_tests::reference`
 
 /// What the independent check measured over a network.
 #[derive(Default, Debug)]

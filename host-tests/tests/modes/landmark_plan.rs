@@ -6,7 +6,6 @@
 //!
 //! Run with `--release -- --nocapture` to see the counts, headings and figures.
 
-use skyroute::geometry::hermite::HermiteSegment;
 use skyroute::network::write::ObstacleSpec;
 use skyroute::network::Network;
 use skyroute::planner::{Goal, Popup, Query, Search};
@@ -15,6 +14,8 @@ use skyroute_prep::build::{build, BuildOptions, Built};
 use skyroute_prep::scenario::{self, ParseOptions, Scenario};
 use std::path::PathBuf;
 use std::time::Instant;
+
+use host_tests::reference::{dist_polygon, Poly64, P};
 
 type Lp<'n> = Planner<'n, 1024, 40000, 4, 128>;
 
@@ -41,80 +42,7 @@ fn build_scenario(name: &str) -> (Scenario, Built) {
 }
 
 // ------------------------------------------------------------------------------------------------
-// Independent f64 reference
-
-type P = (f64, f64);
-
-fn dist_point_segment(p: P, a: P, b: P) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    ((p.0 - a.0 - t * dx).powi(2) + (p.1 - a.1 - t * dy).powi(2)).sqrt()
-}
-
-fn inside(p: P, poly: &[P]) -> bool {
-    let mut c = false;
-    let n = poly.len();
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a.1 > p.1) != (b.1 > p.1) && p.0 < a.0 + (p.1 - a.1) * (b.0 - a.0) / (b.1 - a.1) {
-            c = !c;
-        }
-    }
-    c
-}
-
-/// Signed-free distance from a point to a polygon: 0 inside.
-fn dist_polygon(p: P, poly: &[P]) -> f64 {
-    if inside(p, poly) {
-        return 0.0;
-    }
-    (0..poly.len())
-        .map(|i| dist_point_segment(p, poly[i], poly[(i + 1) % poly.len()]))
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// A piece in f64 from its normalised coefficients.
-struct Poly64 {
-    b: [P; 6],
-    t: f64,
-}
-
-impl Poly64 {
-    fn new(seg: &HermiteSegment) -> Self {
-        Self {
-            b: seg
-                .normalized_coefficients()
-                .map(|v| (v.x as f64, v.y as f64)),
-            t: seg.t_max() as f64,
-        }
-    }
-    /// Position, velocity, acceleration at `s ∈ [0, 1]`.
-    fn eval(&self, s: f64) -> (P, P, P) {
-        let (mut p, mut v, mut a) = ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0));
-        for (k, bk) in self.b.iter().enumerate() {
-            let kf = k as f64;
-            let sk = s.powi(k as i32);
-            p.0 += bk.0 * sk;
-            p.1 += bk.1 * sk;
-            if k >= 1 {
-                let f = kf * s.powi(k as i32 - 1) / self.t;
-                v.0 += bk.0 * f;
-                v.1 += bk.1 * f;
-            }
-            if k >= 2 {
-                let f = kf * (kf - 1.0) * s.powi(k as i32 - 2) / (self.t * self.t);
-                a.0 += bk.0 * f;
-                a.1 += bk.1 * f;
-            }
-        }
-        (p, v, a)
-    }
-}
+// Independent f64 reference: `host_tests::reference`
 
 fn polygons(obstacles: &[ObstacleSpec]) -> Vec<Vec<P>> {
     obstacles
