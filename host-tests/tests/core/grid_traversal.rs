@@ -27,7 +27,7 @@ use std::time::Instant;
 
 // ------------------------------------------------------------------------------------------------
 
-use host_tests::Rng;
+use host_tests::{cases, Rng};
 
 // ------------------------------------------------------------------------------------------------
 // f64 reference geometry
@@ -755,12 +755,17 @@ fn run(name: &str, seed: u64, n: usize, gen: fn(&mut Rng) -> Case) {
 
 #[test]
 fn segments_visit_every_touched_cell() {
-    run("segments", 0x5EED_0001, 100_000, random_segment_case);
+    run(
+        "segments",
+        0x5EED_0001,
+        cases(10_000, 100_000),
+        random_segment_case,
+    );
 }
 
 #[test]
 fn arcs_visit_every_touched_cell() {
-    run("arcs", 0x5EED_0002, 100_000, random_arc_case);
+    run("arcs", 0x5EED_0002, cases(10_000, 100_000), random_arc_case);
 }
 
 // ------------------------------------------------------------------------------------------------

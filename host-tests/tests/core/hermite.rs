@@ -26,7 +26,7 @@ use skyroute::geometry::Vec2;
 
 // --------------------------------------------------------------------------------------------
 
-use host_tests::{reference, Rng};
+use host_tests::{cases, reference, Rng};
 
 // --------------------------------------------------------------------------------------------
 // f64 helpers.
@@ -215,7 +215,7 @@ const EPS: f64 = f32::EPSILON as f64;
 #[test]
 fn boundary_conditions_hold_to_f32_rounding() {
     let t0 = Instant::now();
-    let (segs, fails) = segments(1, 20_000);
+    let (segs, fails) = segments(1, cases(2_000, 20_000));
     let build = t0.elapsed();
     let (mut worst_api, mut worst_f64) = ([0.0f64; 3], [0.0f64; 3]);
     for (c, seg) in &segs {
@@ -320,7 +320,7 @@ fn cramer(p0: V, v0: V, p1: V, v1: V, t: f64) -> [V; 3] {
 #[test]
 fn solve_matches_independent_f64_solutions() {
     let t0 = Instant::now();
-    let (segs, _) = segments(2, 10_000);
+    let (segs, _) = segments(2, cases(1_000, 10_000));
     let (mut worst, mut worst_refs) = (0.0f64, 0.0f64);
     for (c, seg) in &segs {
         let t = seg.t_max() as f64;
@@ -378,7 +378,7 @@ fn polyline_length(b: &[V; 6], n: usize) -> f64 {
 #[test]
 fn length_matches_dense_polyline_and_equals_v_t() {
     let t0 = Instant::now();
-    let (segs, _) = segments(3, 3_000);
+    let (segs, _) = segments(3, cases(300, 3_000));
     let rows: Vec<(f64, f64, f64, f64)> = segs
         .par_iter()
         .map(|(c, seg)| {
@@ -444,7 +444,7 @@ fn straight_line_gives_the_straight_line_at_constant_speed() {
     let mut rng = Rng(4);
     let mut worst = [0.0f64; 5];
     let mut ratios = [0.0f64; 3];
-    for i in 0..2_000 {
+    for i in 0..cases(200, 2_000) {
         let vehicle = VEHICLES[rng.below(3) as usize];
         let v = vehicle.v;
         let h = rng.range(-std::f64::consts::PI, std::f64::consts::PI);
@@ -580,7 +580,7 @@ fn slack(e: &[f64; 5], l: &FlyLimits) -> f64 {
 #[test]
 fn flyability_check_never_accepts_a_violating_segment() {
     let t0 = Instant::now();
-    let (segs, _) = segments(5, 12_000);
+    let (segs, _) = segments(5, cases(1_200, 12_000));
     // Half the cases with the vehicle's own limits; the other half with one limit moved to the
     // dense extreme ± a gap of 10⁻⁶…10⁻¹ of the limit's range (log-uniform, either side): the
     // hardest place for a sampled check, and a map of its over-conservatism against the gap.
@@ -707,7 +707,7 @@ fn star_polygon(rng: &mut Rng, centre: V, r: f64) -> Vec<V> {
 #[test]
 fn collision_enclosure_never_misses_a_conflict() {
     let t0 = Instant::now();
-    let (segs, _) = segments(6, 3_000);
+    let (segs, _) = segments(6, cases(300, 3_000));
     const DENSE: usize = 20_000;
     const PIECES: [usize; 3] = [8, 32, 128];
     // Per pieces: [circle conflicts found by dense, circle over-approx, polygon conflicts,

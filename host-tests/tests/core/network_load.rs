@@ -2,7 +2,7 @@
 //! mutations never panic the loader or a planner using what it accepted.
 
 use host_tests::world::world;
-use host_tests::Rng;
+use host_tests::{cases, Rng};
 use skyroute::network::format::{
     EdgeRecord, Header, ProvenanceRecord, U32Record, VertexRecord, FORMAT_VERSION,
 };
@@ -298,8 +298,8 @@ fn random_mutations_never_panic() {
     let w = world(3, 600.0, 70.0, 40.0, 3);
     let mut rng = Rng(99);
     let (mut accepted, mut rejected) = (0u32, 0u32);
-    const CASES: u32 = 100_000;
-    for case in 0..CASES {
+    let n = cases(10_000, 100_000) as u32;
+    for case in 0..n {
         let mut b = w.bytes.clone();
         let flips = 1 + rng.below(4);
         for _ in 0..flips {
@@ -324,6 +324,6 @@ fn random_mutations_never_panic() {
             Err(_) => rejected += 1,
         }
     }
-    assert_eq!(accepted + rejected, CASES);
+    assert_eq!(accepted + rejected, n);
     println!("random mutations: {accepted} accepted, {rejected} rejected, no panic");
 }

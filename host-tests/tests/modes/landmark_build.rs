@@ -3,7 +3,8 @@
 //! clearance from the no-fly polygons, continuity, rebuilding from the stored line elements),
 //! and the same network on any number of threads.
 //!
-//! Run with `--nocapture` to see the counts and build times.
+//! Run with `--nocapture` to see the counts and build times. The whole-network tests run in the
+//! full tier, on the process's cached builds.
 
 use skyroute::geometry::hermite::{HermiteSegment, LineElement};
 use skyroute::network::write::ObstacleSpec;
@@ -17,6 +18,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use host_tests::reference::{dist_polygon, Poly64, P};
+use host_tests::{full_tier_only, scenarios};
 
 fn scenario_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -327,13 +329,17 @@ fn check_network(name: &str, net: &LandmarkNetwork) -> Checked {
     out
 }
 
-/// Builds, reports and checks one scenario.
-fn build_and_check(name: &str) -> LandmarkNetwork {
-    let s = load(&format!("{name}.geojson"));
+/// Reports and checks one scenario's landmark network: the process's cached build
+/// (`skyroute_prep::build::build` keeps `build_landmark_network`'s network as it is; babel-I
+/// with hull repair), shared with `landmark_plan` and `network_images`.
+fn build_and_check(name: &str) -> &'static LandmarkNetwork {
     let t = Instant::now();
-    let net = build_landmark_network(&s, &|_, _| {}).expect("builds");
-    report(name, &net, t.elapsed().as_secs_f64());
-    let checked = check_network(name, &net);
+    let net = scenarios::built(name)
+        .landmark
+        .as_deref()
+        .expect("a landmark network");
+    report(name, net, t.elapsed().as_secs_f64());
+    let checked = check_network(name, net);
     assert!(checked.pieces > 0);
     net
 }
@@ -343,6 +349,12 @@ fn build_and_check(name: &str) -> LandmarkNetwork {
 
 #[test]
 fn babel_ii_n_and_s_beside_the_paper_every_edge_checked() {
+    if !full_tier_only(
+        "landmark_build::babel_ii_n_and_s_beside_the_paper_every_edge_checked",
+        "builds babel-II-N and babel-II-S",
+    ) {
+        return;
+    }
     println!(
         "paper, scenario II: 240 vertices, ~6000 edges, 500 line elements per basic network, \
          preprocessing ~30 min (Matlab, 2.2 GHz i7)"
@@ -369,6 +381,12 @@ fn babel_ii_n_and_s_beside_the_paper_every_edge_checked() {
 
 #[test]
 fn babel_i_with_hull_repair_and_babel_iii_every_edge_checked() {
+    if !full_tier_only(
+        "landmark_build::babel_i_with_hull_repair_and_babel_iii_every_edge_checked",
+        "builds babel-I and babel-III",
+    ) {
+        return;
+    }
     let s = load("babel-I.geojson");
     assert!(!s.warnings.is_empty(), "babel-I needs the hull repair");
     for name in ["babel-I", "babel-III"] {
@@ -379,6 +397,12 @@ fn babel_i_with_hull_repair_and_babel_iii_every_edge_checked() {
 
 #[test]
 fn same_network_on_any_number_of_threads() {
+    if !full_tier_only(
+        "landmark_build::same_network_on_any_number_of_threads",
+        "three babel-II-N builds",
+    ) {
+        return;
+    }
     let s = load("babel-II-N.geojson");
     let mut params = LandmarkParams::from_scenario(&s);
     params.line_elements_per_pair = 150;

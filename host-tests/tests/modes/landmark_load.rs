@@ -4,28 +4,18 @@
 //! (unknown weather or landmark, NaN or out-of-range qualities, a full override table) are
 //! refused with an error and change nothing.
 
-use host_tests::Rng;
+use host_tests::{cases, scenarios, Rng};
 use skyroute::network::format::{Header, ProvenanceRecord};
 use skyroute::network::image_checksum;
 use skyroute::planner::{Goal, PlanError, Popup, Query, Search};
 use skyroute::{LoadError, Network, Planner, Vec2};
-use skyroute_prep::build::build;
-use skyroute_prep::scenario::{self, ParseOptions};
-use std::path::PathBuf;
 
 type Lp<'n> = Planner<'n, 256, 4096, 4, 256>;
 
-/// A landmark network: babel-I-bridged as the ground tool builds it.
+/// A landmark network: babel-I-bridged as the ground tool builds it (built once per process
+/// and shared by the tests here and in `landmark_plan` and `network_images`).
 fn network() -> Vec<u8> {
-    let path =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenarios/babel-I-bridged.geojson");
-    let options = ParseOptions {
-        hull_self_intersecting_no_fly: true,
-    };
-    let s = scenario::load_with(&path, &options).expect("scenario");
-    build(&s, &Default::default(), &|_, _| {})
-        .expect("builds")
-        .bytes
+    scenarios::built("babel-I-bridged").bytes.clone()
 }
 
 fn fix_crc(bytes: &mut [u8]) {
@@ -203,8 +193,8 @@ fn random_landmark_mutations_never_panic() {
     let rec = landmark_record_at(&good);
     let mut rng = Rng(4);
     let (mut accepted, mut rejected) = (0u32, 0u32);
-    const CASES: u32 = 2000;
-    for case in 0..CASES {
+    let n = cases(200, 2000) as u32;
+    for case in 0..n {
         let mut b = good.clone();
         for _ in 0..1 + rng.below(3) {
             // Two thirds of the hits in the landmark sections (record, sites, rosettes, chain
@@ -229,7 +219,7 @@ fn random_landmark_mutations_never_panic() {
         }
     }
     println!("landmark mutations: {accepted} accepted, {rejected} rejected, no panic");
-    assert!(rejected > CASES / 4, "damage is noticed");
+    assert!(rejected > n / 4, "damage is noticed");
 }
 
 #[test]

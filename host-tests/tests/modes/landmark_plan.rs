@@ -4,41 +4,33 @@
 //! densely from the pieces' coefficients, clearance from every no-fly polygon, C² joints);
 //! rosette updates and pop-ups on Hermite edges.
 //!
-//! Run with `--release -- --nocapture` to see the counts, headings and figures.
+//! Run with `--release -- --nocapture` to see the counts, headings and figures. These tests
+//! build whole Babel networks: they run in the full tier, on the process's cached builds.
 
 use skyroute::network::write::ObstacleSpec;
 use skyroute::network::Network;
 use skyroute::planner::{Goal, Popup, Query, Search};
 use skyroute::Planner;
-use skyroute_prep::build::{build, BuildOptions, Built};
-use skyroute_prep::scenario::{self, ParseOptions, Scenario};
-use std::path::PathBuf;
+use skyroute_prep::build::Built;
+use skyroute_prep::scenario::Scenario;
 use std::time::Instant;
 
 use host_tests::reference::{dist_polygon, Poly64, P};
+use host_tests::{full_tier_only, scenarios};
 
 type Lp<'n> = Planner<'n, 1024, 40000, 4, 128>;
 
-fn load(name: &str) -> Scenario {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios")
-        .join(name);
-    let options = ParseOptions {
-        hull_self_intersecting_no_fly: true,
-    };
-    scenario::load_with(&path, &options).expect("scenario loads")
-}
-
-fn build_scenario(name: &str) -> (Scenario, Built) {
-    let s = load(&format!("{name}.geojson"));
+/// The scenario and its network: the process's cached build (shared with `landmark_build`,
+/// `landmark_load` and `network_images`; babel-I with hull repair).
+fn build_scenario(name: &str) -> (&'static Scenario, &'static Built) {
     let t = Instant::now();
-    let built = build(&s, &BuildOptions::default(), &|_, _| {}).expect("landmark network builds");
+    let built = scenarios::built(name);
     println!(
-        "{name}: built and encoded in {:.1} s, {} bytes",
+        "{name}: built and encoded (or cached) in {:.1} s, {} bytes",
         t.elapsed().as_secs_f64(),
         built.bytes.len()
     );
-    (s, built)
+    (scenarios::scenario(name), built)
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -410,6 +402,12 @@ fn north_lean(route: &[(f64, f64)]) -> f64 {
 
 #[test]
 fn babel_ii_n_and_s_plan_and_check() {
+    if !full_tier_only(
+        "landmark_plan::babel_ii_n_and_s_plan_and_check",
+        "builds babel-II-N and babel-II-S",
+    ) {
+        return;
+    }
     for (name, sign) in [("babel-II-N", 1.0), ("babel-II-S", -1.0)] {
         let (s, built) = build_scenario(name);
         let outcomes = plan_all_weathers(name, &s, &built);
@@ -438,6 +436,12 @@ fn babel_ii_n_and_s_plan_and_check() {
 /// side to the goal's, so there too the planner must find none.
 #[test]
 fn babel_i_and_iii_and_their_reachable_variants() {
+    if !full_tier_only(
+        "landmark_plan::babel_i_and_iii_and_their_reachable_variants",
+        "builds babel-I, babel-I-bridged, babel-III and babel-III-reach",
+    ) {
+        return;
+    }
     for (name, plans) in [
         ("babel-I", [false, false]),
         ("babel-I-bridged", [true, true]),
@@ -468,6 +472,12 @@ fn edge_min_distance(net: &Network, e: u32, centre: P) -> f64 {
 
 #[test]
 fn rosette_update_and_popup_on_babel_ii_s() {
+    if !full_tier_only(
+        "landmark_plan::rosette_update_and_popup_on_babel_ii_s",
+        "builds babel-II-S",
+    ) {
+        return;
+    }
     let (_s, built) = build_scenario("babel-II-S");
     let mut planner: Box<Lp> = Box::new(Planner::new());
     planner.load(&built.bytes).unwrap();

@@ -9,17 +9,18 @@
 
 use serde_json::Value;
 use skyroute::Network;
-use skyroute_prep::build::{build, BuildOptions};
+
 use skyroute_prep::export::network_json;
 use skyroute_prep::frame::LocalFrame;
 use skyroute_prep::mission::plan_mission;
 use skyroute_prep::route_json::mission_json;
-use skyroute_prep::scenario;
+
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::path::PathBuf;
 use std::time::Instant;
 
 use host_tests::reference::{dist, dist_polygon, P};
+use host_tests::scenarios;
 
 /// Largest spacing of the samples along a primitive, metres.
 const STEP: f64 = 0.5;
@@ -269,8 +270,9 @@ fn local_heading(frame: &LocalFrame, lon: f64, lat: f64, compass_deg: f64) -> f6
 #[test]
 fn niendorf_network_and_route_keep_clearance_from_every_building() {
     let t0 = Instant::now();
-    let s = scenario::load(&scenario_path()).unwrap();
-    let built = build(&s, &BuildOptions::default(), &|_, _| {}).unwrap();
+    // The one niendorf-urban build of this process (shared with `roadmap_build`).
+    let s = scenarios::scenario("niendorf-urban");
+    let built = scenarios::built("niendorf-urban");
     let net = Network::from_bytes(&built.bytes).unwrap();
     let text = serde_json::to_string(&network_json(&net)).unwrap();
     let t_build = t0.elapsed();

@@ -1,6 +1,9 @@
 //! The roadmap builder on the real `niendorf-urban` scenario: deterministic over thread counts,
-//! parameters honoured, both collision checks compared.
+//! parameters honoured, both collision checks compared. The default build is the process's
+//! cached one (shared with `niendorf_clearance`); the tests that need further full-size builds
+//! (other thread counts, no CCC words, the discretised check) run in the full tier.
 
+use host_tests::{full_tier_only, scenarios};
 use skyroute::geometry::predicates::point_segment_distance;
 use skyroute::network::write::ObstacleSpec;
 use skyroute::{Network, Segment};
@@ -25,6 +28,12 @@ fn build_with_threads(threads: usize, options: &BuildOptions) -> Built {
 
 #[test]
 fn same_bytes_on_any_number_of_threads() {
+    if !full_tier_only(
+        "roadmap_build::same_bytes_on_any_number_of_threads",
+        "two full niendorf-urban builds",
+    ) {
+        return;
+    }
     let one = build_with_threads(1, &BuildOptions::default());
     let three = build_with_threads(3, &BuildOptions::default());
     assert_eq!(one.bytes, three.bytes);
@@ -32,11 +41,11 @@ fn same_bytes_on_any_number_of_threads() {
 }
 
 #[test]
-fn samples_keep_spacing_and_clearance_and_ccc_can_be_excluded() {
-    let s = scenario::load(&scenario_path("niendorf-urban.geojson")).unwrap();
+fn samples_keep_spacing_and_clearance_and_use_ccc_words() {
+    let s = scenarios::scenario("niendorf-urban");
     let spacing = s.planner.sample_spacing_m.unwrap() as f32;
     let clearance = s.planner.clearance_m.unwrap() as f32;
-    let built = build(&s, &BuildOptions::default(), &|_, _| {}).unwrap();
+    let built = scenarios::built("niendorf-urban");
     let v = &built.roadmap.as_ref().unwrap().vertices;
     for (i, a) in v.iter().enumerate() {
         for b in &v[i + 1..] {
@@ -62,7 +71,17 @@ fn samples_keep_spacing_and_clearance_and_ccc_can_be_excluded() {
         .filter(|&e| net.edge(e).unwrap().word.is_ccc())
         .count();
     assert!(ccc > 0, "with allow_ccc the roadmap uses some CCC words");
+}
 
+#[test]
+fn ccc_words_can_be_excluded() {
+    if !full_tier_only(
+        "roadmap_build::ccc_words_can_be_excluded",
+        "a second full niendorf-urban build",
+    ) {
+        return;
+    }
+    let s = scenarios::scenario("niendorf-urban");
     let mut no_ccc = s.clone();
     no_ccc.planner.allow_ccc = Some(false);
     let built = build(&no_ccc, &BuildOptions::default(), &|_, _| {}).unwrap();
@@ -72,7 +91,13 @@ fn samples_keep_spacing_and_clearance_and_ccc_can_be_excluded() {
 
 #[test]
 fn exact_and_discretised_checks_are_both_reported() {
-    let exact = build_with_threads(2, &BuildOptions::default());
+    if !full_tier_only(
+        "roadmap_build::exact_and_discretised_checks_are_both_reported",
+        "a discretised full niendorf-urban build",
+    ) {
+        return;
+    }
+    let exact = scenarios::built("niendorf-urban");
     let discretised = build_with_threads(
         2,
         &BuildOptions {
@@ -93,7 +118,7 @@ fn exact_and_discretised_checks_are_both_reported() {
             .map(|x| (x.source, x.target))
             .collect::<std::collections::BTreeSet<_>>()
     };
-    let (pe, pd) = (pairs(&exact), pairs(&discretised));
+    let (pe, pd) = (pairs(exact), pairs(&discretised));
     let unsafe_accepted = pd.difference(&pe).count();
     let safe_rejected = pe.difference(&pd).count();
     println!(
