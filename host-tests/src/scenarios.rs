@@ -33,11 +33,12 @@ pub fn all_scenario_names() -> Vec<String> {
     names
 }
 
-/// How a scenario is parsed: strict, except babel-I, whose self-intersecting no-fly polygon
-/// (feature 1, Z2) is replaced by its convex hull, as `skyroute build --hull-repair` does.
+/// How a scenario is parsed: strict, except babel-I and its variant babel-I-bridged, whose
+/// self-intersecting no-fly polygon (feature 1, Z2) is replaced by its convex hull, as
+/// `skyroute build --hull-repair` does.
 pub fn parse_options(name: &str) -> ParseOptions {
     ParseOptions {
-        hull_self_intersecting_no_fly: name == "babel-I",
+        hull_self_intersecting_no_fly: matches!(name, "babel-I" | "babel-I-bridged"),
     }
 }
 

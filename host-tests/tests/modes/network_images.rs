@@ -1,6 +1,6 @@
 //! Every scenario's network image is byte-identical to the recorded one: each
 //! `scenarios/*.geojson` is built through `skyroute_prep::build::build` with the default
-//! options (babel-I with hull repair, as `skyroute build --hull-repair`), and the image's
+//! options (babel-I and babel-I-bridged with hull repair, as `skyroute build --hull-repair`), and the image's
 //! length and the CRC-32 in its header (which covers the whole image) are compared with
 //! `host-tests/expected-images.txt`. Full tier only (it builds every scenario).
 //!
@@ -18,7 +18,8 @@ fn expected_path() -> PathBuf {
 
 const HEADER: &str = "\
 # The network image of every scenario in scenarios/*.geojson, built by
-# skyroute_prep::build::build with the default BuildOptions (babel-I with hull repair):
+# skyroute_prep::build::build with the default BuildOptions (babel-I and babel-I-bridged with
+# hull repair, as `skyroute build --hull-repair`):
 #   name  bytes  crc32 (hex, the header's image_crc, covering the whole image)
 # Checked by the full tier (host-tests/tests/modes/network_images.rs). A change here is only
 # allowed together with a network format change (docs/FORMAT.md) or a deliberate change of
