@@ -410,7 +410,7 @@ fn babel_ii_n_and_s_plan_and_check() {
     }
     for (name, sign) in [("babel-II-N", 1.0), ("babel-II-S", -1.0)] {
         let (s, built) = build_scenario(name);
-        let outcomes = plan_all_weathers(name, &s, &built);
+        let outcomes = plan_all_weathers(name, s, built);
         let (length, route) = outcomes[0].clone().expect("babel-II plans");
         // Type N landmarks see best heading north, type S south: the route's overflights lean
         // that way (weighted by the leg they allow), more so on the long legs.
@@ -449,7 +449,7 @@ fn babel_i_and_iii_and_their_reachable_variants() {
         ("babel-III-reach", [true, false]),
     ] {
         let (s, built) = build_scenario(name);
-        let outcomes = plan_all_weathers(name, &s, &built);
+        let outcomes = plan_all_weathers(name, s, built);
         assert_eq!(outcomes.len(), s.weather.len());
         for (w, o) in outcomes.iter().enumerate() {
             assert_eq!(o.is_some(), plans[w], "{name} weather {}", s.weather[w]);

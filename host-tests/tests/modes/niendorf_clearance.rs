@@ -426,7 +426,7 @@ fn niendorf_network_and_route_keep_clearance_from_every_building() {
     );
 
     // ---- The mission, from the route file's JSON.
-    let m = plan_mission(&built.bytes, &s, &built.frame, &[]).unwrap();
+    let m = plan_mission(&built.bytes, s, &built.frame, &[]).unwrap();
     let route_text = serde_json::to_string(&mission_json(&m, &built.frame, &s.name)).unwrap();
     let route: Value = serde_json::from_str(&route_text).unwrap();
     assert_eq!(f(&route["frame"], "origin_lat_deg"), frame.origin().0);

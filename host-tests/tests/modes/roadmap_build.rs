@@ -1,9 +1,10 @@
 //! The roadmap builder on the real `niendorf-urban` scenario: deterministic over thread counts,
 //! parameters honoured, both collision checks compared. The default build is the process's
-//! cached one (shared with `niendorf_clearance`); the tests that need further full-size builds
-//! (other thread counts, no CCC words, the discretised check) run in the full tier.
+//! cached one (shared with `niendorf_clearance` and `network_images`); the further builds
+//! (other thread counts, no CCC words, the discretised check) take about a second each, so
+//! every test here runs in both tiers.
 
-use host_tests::{full_tier_only, scenarios};
+use host_tests::scenarios;
 use skyroute::geometry::predicates::point_segment_distance;
 use skyroute::network::write::ObstacleSpec;
 use skyroute::{Network, Segment};
@@ -28,12 +29,6 @@ fn build_with_threads(threads: usize, options: &BuildOptions) -> Built {
 
 #[test]
 fn same_bytes_on_any_number_of_threads() {
-    if !full_tier_only(
-        "roadmap_build::same_bytes_on_any_number_of_threads",
-        "two full niendorf-urban builds",
-    ) {
-        return;
-    }
     let one = build_with_threads(1, &BuildOptions::default());
     let three = build_with_threads(3, &BuildOptions::default());
     assert_eq!(one.bytes, three.bytes);
@@ -75,12 +70,6 @@ fn samples_keep_spacing_and_clearance_and_use_ccc_words() {
 
 #[test]
 fn ccc_words_can_be_excluded() {
-    if !full_tier_only(
-        "roadmap_build::ccc_words_can_be_excluded",
-        "a second full niendorf-urban build",
-    ) {
-        return;
-    }
     let s = scenarios::scenario("niendorf-urban");
     let mut no_ccc = s.clone();
     no_ccc.planner.allow_ccc = Some(false);
@@ -91,12 +80,6 @@ fn ccc_words_can_be_excluded() {
 
 #[test]
 fn exact_and_discretised_checks_are_both_reported() {
-    if !full_tier_only(
-        "roadmap_build::exact_and_discretised_checks_are_both_reported",
-        "a discretised full niendorf-urban build",
-    ) {
-        return;
-    }
     let exact = scenarios::built("niendorf-urban");
     let discretised = build_with_threads(
         2,

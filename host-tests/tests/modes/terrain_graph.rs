@@ -301,12 +301,6 @@ fn jacksboro_graph_at_1000_m_is_clear_of_the_raw_dem() {
 
 #[test]
 fn same_graph_on_any_number_of_threads() {
-    if !full_tier_only(
-        "terrain_graph::same_graph_on_any_number_of_threads",
-        "two full Jacksboro graphs",
-    ) {
-        return;
-    }
     let (s, dem, frame) = load();
     let t = s.terrain.as_ref().unwrap();
     let run = |threads: usize| {

@@ -208,12 +208,6 @@ fn jacksboro_route_at_750_m_is_clear_of_the_raw_dem() {
 
 #[test]
 fn jacksboro_routes_at_850_and_1000_m_are_clear_of_the_raw_dem() {
-    if !full_tier_only(
-        "terrain_plan::jacksboro_routes_at_850_and_1000_m_are_clear_of_the_raw_dem",
-        "two more full medeiros-jacksboro builds",
-    ) {
-        return;
-    }
     plan_scenario_at(850.0);
     plan_scenario_at(1000.0);
 }
