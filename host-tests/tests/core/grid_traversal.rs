@@ -27,7 +27,7 @@ use std::time::Instant;
 
 // ------------------------------------------------------------------------------------------------
 
-use host_tests::{cases, Rng};
+use host_tests::{cases, reference, Rng};
 
 // ------------------------------------------------------------------------------------------------
 // f64 reference geometry
@@ -54,14 +54,9 @@ fn cross(a: P, b: P) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
+/// The shared f64 reference (`host_tests::reference`) on this file's points.
 fn point_segment(q: P, a: P, b: P) -> f64 {
-    let d = sub(b, a);
-    let l2 = d.x * d.x + d.y * d.y;
-    if l2 == 0.0 {
-        return dist(q, a);
-    }
-    let t = (((q.x - a.x) * d.x + (q.y - a.y) * d.y) / l2).clamp(0.0, 1.0);
-    dist(q, p(a.x + t * d.x, a.y + t * d.y))
+    reference::dist_point_segment((q.x, q.y), (a.x, a.y), (b.x, b.y))
 }
 
 #[derive(Clone, Copy, Debug)]
