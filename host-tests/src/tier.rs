@@ -47,7 +47,7 @@ pub fn full_tier_only(test: &str, why: &str) -> bool {
     if full_tier() {
         return true;
     }
-    skipped(test, why);
+    skipped(test, &format!("{why}; run with SKYROUTE_TIER=full"));
     false
 }
 
@@ -57,6 +57,6 @@ pub fn skipped(test: &str, why: &str) {
     use std::io::Write;
     let _ = writeln!(
         std::io::stderr(),
-        "SKIPPED in the fast tier: {test} ({why}); run with SKYROUTE_TIER=full"
+        "SKIPPED in the fast tier: {test} ({why})"
     );
 }
