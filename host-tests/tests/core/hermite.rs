@@ -24,8 +24,7 @@ use skyroute::geometry::hermite::{
 };
 use skyroute::geometry::Vec2;
 
-// --------------------------------------------------------------------------------------------
-
+// The shared SplitMix64, case counts by tier, and f64 reference geometry.
 use host_tests::{cases, reference, Rng};
 
 // --------------------------------------------------------------------------------------------
