@@ -250,7 +250,7 @@ step "clippy (skyroute, thumbv7em-none-eabihf, defmt)" \
 step "core docs (cargo doc, warnings denied)" \
     env RUSTDOCFLAGS="-D warnings" cargo doc -p skyroute --no-deps
 step "OMPL Dubins reference" ompl_reference
-step "cargo test --workspace" cargo test --workspace
+step "cargo test --workspace (full tier)" env SKYROUTE_TIER=full cargo test --workspace
 step "firmware fixture" fixture
 step "firmware build (release, bin roadmap)" firmware_build roadmap
 step "firmware clippy (bin roadmap)" firmware_clippy roadmap

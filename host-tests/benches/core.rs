@@ -13,32 +13,21 @@ use skyroute::{Arc, DubinsPath, Planner, Pose, Primitive, Segment, Vec2};
 use std::f32::consts::PI;
 use std::path::Path;
 
-struct Rng(u64);
-impl Rng {
-    fn unit(&mut self) -> f32 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-}
+use host_tests::Rng;
 
 fn geometry(c: &mut Criterion) {
     let mut rng = Rng(0x1234_5678);
     let poses: Vec<(Pose, Pose)> = (0..1024)
         .map(|_| {
             let a = Pose::new(
-                rng.range(-500.0, 500.0),
-                rng.range(-500.0, 500.0),
-                rng.range(-PI, PI),
+                rng.range_f32(-500.0, 500.0),
+                rng.range_f32(-500.0, 500.0),
+                rng.range_f32(-PI, PI),
             );
             let b = Pose::new(
-                rng.range(-500.0, 500.0),
-                rng.range(-500.0, 500.0),
-                rng.range(-PI, PI),
+                rng.range_f32(-500.0, 500.0),
+                rng.range_f32(-500.0, 500.0),
+                rng.range_f32(-PI, PI),
             );
             (a, b)
         })
@@ -53,17 +42,17 @@ fn geometry(c: &mut Criterion) {
     let segs: Vec<Segment> = (0..1024)
         .map(|_| {
             Segment::new(
-                Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0)),
-                Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0)),
+                Vec2::new(rng.range_f32(-100.0, 100.0), rng.range_f32(-100.0, 100.0)),
+                Vec2::new(rng.range_f32(-100.0, 100.0), rng.range_f32(-100.0, 100.0)),
             )
         })
         .collect();
     let arcs: Vec<Arc> = (0..1024)
         .map(|_| Arc {
-            centre: Vec2::new(rng.range(-100.0, 100.0), rng.range(-100.0, 100.0)),
-            radius: rng.range(10.0, 80.0),
-            start_angle: rng.range(-PI, PI),
-            sweep: rng.range(-6.0, 6.0),
+            centre: Vec2::new(rng.range_f32(-100.0, 100.0), rng.range_f32(-100.0, 100.0)),
+            radius: rng.range_f32(10.0, 80.0),
+            start_angle: rng.range_f32(-PI, PI),
+            sweep: rng.range_f32(-6.0, 6.0),
         })
         .collect();
     let mut j = 0;

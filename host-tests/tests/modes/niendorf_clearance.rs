@@ -9,15 +9,18 @@
 
 use serde_json::Value;
 use skyroute::Network;
-use skyroute_prep::build::{build, BuildOptions};
+
 use skyroute_prep::export::network_json;
 use skyroute_prep::frame::LocalFrame;
 use skyroute_prep::mission::plan_mission;
 use skyroute_prep::route_json::mission_json;
-use skyroute_prep::scenario;
+
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::path::PathBuf;
 use std::time::Instant;
+
+use host_tests::reference::{dist, dist_polygon, P};
+use host_tests::scenarios;
 
 /// Largest spacing of the samples along a primitive, metres.
 const STEP: f64 = 0.5;
@@ -37,8 +40,6 @@ const ARRIVAL_TOL: f64 = 0.05;
 fn scenario_path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenarios/niendorf-urban.geojson")
 }
-
-type P = (f64, f64);
 
 // ------------------------------------------------------------------------------------------------
 // Geometry, in f64, independent of the core
@@ -138,54 +139,12 @@ fn angle_diff(a: f64, b: f64) -> f64 {
     (a - b).rem_euclid(TAU).min((b - a).rem_euclid(TAU))
 }
 
-fn dist(a: P, b: P) -> f64 {
-    (a.0 - b.0).hypot(a.1 - b.1)
-}
-
 /// A building footprint in the local frame, with its bounding box.
 struct Building {
     name: String,
     ring: Vec<P>,
     lo: P,
     hi: P,
-}
-
-fn point_segment_distance(p: P, a: P, b: P) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    dist(p, (a.0 + t * dx, a.1 + t * dy))
-}
-
-/// Even–odd crossing test.
-fn inside(p: P, ring: &[P]) -> bool {
-    let mut odd = false;
-    let n = ring.len();
-    for i in 0..n {
-        let (a, b) = (ring[i], ring[(i + 1) % n]);
-        if (a.1 > p.1) != (b.1 > p.1) {
-            let x = a.0 + (p.1 - a.1) / (b.1 - a.1) * (b.0 - a.0);
-            if p.0 < x {
-                odd = !odd;
-            }
-        }
-    }
-    odd
-}
-
-/// Distance from a point to a polygon: 0 inside, else to the nearest boundary edge.
-fn point_polygon_distance(p: P, ring: &[P]) -> f64 {
-    if inside(p, ring) {
-        return 0.0;
-    }
-    let n = ring.len();
-    (0..n)
-        .map(|i| point_segment_distance(p, ring[i], ring[(i + 1) % n]))
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// The smallest distance from the primitive to any building, sampled every ≤ STEP metres, and
@@ -203,7 +162,7 @@ fn closest_building(p: &Prim, buildings: &[Building], reach: f64) -> Option<(f64
             continue;
         }
         for q in p.samples() {
-            let d = point_polygon_distance(q, &b.ring);
+            let d = dist_polygon(q, &b.ring);
             if best.is_none_or(|x| d < x.0) {
                 best = Some((d, k, q));
             }
@@ -311,8 +270,9 @@ fn local_heading(frame: &LocalFrame, lon: f64, lat: f64, compass_deg: f64) -> f6
 #[test]
 fn niendorf_network_and_route_keep_clearance_from_every_building() {
     let t0 = Instant::now();
-    let s = scenario::load(&scenario_path()).unwrap();
-    let built = build(&s, &BuildOptions::default(), &|_, _| {}).unwrap();
+    // The one niendorf-urban build of this process (shared with `roadmap_build`).
+    let s = scenarios::scenario("niendorf-urban");
+    let built = scenarios::built("niendorf-urban");
     let net = Network::from_bytes(&built.bytes).unwrap();
     let text = serde_json::to_string(&network_json(&net)).unwrap();
     let t_build = t0.elapsed();
@@ -466,7 +426,7 @@ fn niendorf_network_and_route_keep_clearance_from_every_building() {
     );
 
     // ---- The mission, from the route file's JSON.
-    let m = plan_mission(&built.bytes, &s, &built.frame, &[]).unwrap();
+    let m = plan_mission(&built.bytes, s, &built.frame, &[]).unwrap();
     let route_text = serde_json::to_string(&mission_json(&m, &built.frame, &s.name)).unwrap();
     let route: Value = serde_json::from_str(&route_text).unwrap();
     assert_eq!(f(&route["frame"], "origin_lat_deg"), frame.origin().0);

@@ -4,30 +4,18 @@
 //! (unknown weather or landmark, NaN or out-of-range qualities, a full override table) are
 //! refused with an error and change nothing.
 
-mod common;
-
-use common::Rng;
+use host_tests::{cases, scenarios, Rng};
 use skyroute::network::format::{Header, ProvenanceRecord};
 use skyroute::network::image_checksum;
 use skyroute::planner::{Goal, PlanError, Popup, Query, Search};
 use skyroute::{LoadError, Network, Planner, Vec2};
-use skyroute_prep::build::build;
-use skyroute_prep::scenario::{self, ParseOptions};
-use std::path::PathBuf;
 
 type Lp<'n> = Planner<'n, 256, 4096, 4, 256>;
 
-/// A landmark network: babel-I-bridged as the ground tool builds it.
+/// A landmark network: babel-I-bridged as the ground tool builds it (built once per process
+/// and shared by the tests here and in `landmark_plan` and `network_images`).
 fn network() -> Vec<u8> {
-    let path =
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenarios/babel-I-bridged.geojson");
-    let options = ParseOptions {
-        hull_self_intersecting_no_fly: true,
-    };
-    let s = scenario::load_with(&path, &options).expect("scenario");
-    build(&s, &Default::default(), &|_, _| {})
-        .expect("builds")
-        .bytes
+    scenarios::built("babel-I-bridged").bytes.clone()
 }
 
 fn fix_crc(bytes: &mut [u8]) {
@@ -169,7 +157,10 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
         return Ok(());
     };
     let _ = planner.add_popup(Popup::Circle {
-        centre: Vec2::new(rng.range(-20_000.0, 20_000.0), rng.range(-4000.0, 4000.0)),
+        centre: Vec2::new(
+            rng.range_f32(-20_000.0, 20_000.0),
+            rng.range_f32(-4000.0, 4000.0),
+        ),
         radius: 500.0,
     });
     let _ = planner.update_rosette(rng.below(12) as u32, &[0.0; 12]);
@@ -202,8 +193,8 @@ fn random_landmark_mutations_never_panic() {
     let rec = landmark_record_at(&good);
     let mut rng = Rng(4);
     let (mut accepted, mut rejected) = (0u32, 0u32);
-    const CASES: u32 = 2000;
-    for case in 0..CASES {
+    let n = cases(200, 2000) as u32;
+    for case in 0..n {
         let mut b = good.clone();
         for _ in 0..1 + rng.below(3) {
             // Two thirds of the hits in the landmark sections (record, sites, rosettes, chain
@@ -228,7 +219,7 @@ fn random_landmark_mutations_never_panic() {
         }
     }
     println!("landmark mutations: {accepted} accepted, {rejected} rejected, no panic");
-    assert!(rejected > CASES / 4, "damage is noticed");
+    assert!(rejected > n / 4, "damage is noticed");
 }
 
 #[test]

@@ -8,9 +8,7 @@
 //! The cheapest walk must cost what the planner's route measures, and the planner must find a
 //! route exactly when a walk exists.
 
-mod rng64;
-
-use rng64::Rng;
+use host_tests::Rng;
 use skyroute::geometry::grid::{arc_cells, primitive_cells, CellGrid};
 use skyroute::network::elevation::ElevationCoding;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, TerrainSpec};

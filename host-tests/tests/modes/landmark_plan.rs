@@ -4,117 +4,37 @@
 //! densely from the pieces' coefficients, clearance from every no-fly polygon, C² joints);
 //! rosette updates and pop-ups on Hermite edges.
 //!
-//! Run with `--release -- --nocapture` to see the counts, headings and figures.
+//! Run with `--release -- --nocapture` to see the counts, headings and figures. These tests
+//! build whole Babel networks: they run in the full tier, on the process's cached builds.
 
-use skyroute::geometry::hermite::HermiteSegment;
 use skyroute::network::write::ObstacleSpec;
 use skyroute::network::Network;
 use skyroute::planner::{Goal, Popup, Query, Search};
 use skyroute::Planner;
-use skyroute_prep::build::{build, BuildOptions, Built};
-use skyroute_prep::scenario::{self, ParseOptions, Scenario};
-use std::path::PathBuf;
+use skyroute_prep::build::Built;
+use skyroute_prep::scenario::Scenario;
 use std::time::Instant;
+
+use host_tests::reference::{dist_polygon, Poly64, P};
+use host_tests::{full_tier_only, scenarios};
 
 type Lp<'n> = Planner<'n, 1024, 40000, 4, 128>;
 
-fn load(name: &str) -> Scenario {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../scenarios")
-        .join(name);
-    let options = ParseOptions {
-        hull_self_intersecting_no_fly: true,
-    };
-    scenario::load_with(&path, &options).expect("scenario loads")
-}
-
-fn build_scenario(name: &str) -> (Scenario, Built) {
-    let s = load(&format!("{name}.geojson"));
+/// The scenario and its network: the process's cached build (shared with `landmark_build`,
+/// `landmark_load` and `network_images`; babel-I with hull repair).
+fn build_scenario(name: &str) -> (&'static Scenario, &'static Built) {
     let t = Instant::now();
-    let built = build(&s, &BuildOptions::default(), &|_, _| {}).expect("landmark network builds");
+    let built = scenarios::built(name);
     println!(
-        "{name}: built and encoded in {:.1} s, {} bytes",
+        "{name}: built and encoded (or cached) in {:.1} s, {} bytes",
         t.elapsed().as_secs_f64(),
         built.bytes.len()
     );
-    (s, built)
+    (scenarios::scenario(name), built)
 }
 
 // ------------------------------------------------------------------------------------------------
-// Independent f64 reference
-
-type P = (f64, f64);
-
-fn dist_point_segment(p: P, a: P, b: P) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    ((p.0 - a.0 - t * dx).powi(2) + (p.1 - a.1 - t * dy).powi(2)).sqrt()
-}
-
-fn inside(p: P, poly: &[P]) -> bool {
-    let mut c = false;
-    let n = poly.len();
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a.1 > p.1) != (b.1 > p.1) && p.0 < a.0 + (p.1 - a.1) * (b.0 - a.0) / (b.1 - a.1) {
-            c = !c;
-        }
-    }
-    c
-}
-
-/// Signed-free distance from a point to a polygon: 0 inside.
-fn dist_polygon(p: P, poly: &[P]) -> f64 {
-    if inside(p, poly) {
-        return 0.0;
-    }
-    (0..poly.len())
-        .map(|i| dist_point_segment(p, poly[i], poly[(i + 1) % poly.len()]))
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// A piece in f64 from its normalised coefficients.
-struct Poly64 {
-    b: [P; 6],
-    t: f64,
-}
-
-impl Poly64 {
-    fn new(seg: &HermiteSegment) -> Self {
-        Self {
-            b: seg
-                .normalized_coefficients()
-                .map(|v| (v.x as f64, v.y as f64)),
-            t: seg.t_max() as f64,
-        }
-    }
-    /// Position, velocity, acceleration at `s ∈ [0, 1]`.
-    fn eval(&self, s: f64) -> (P, P, P) {
-        let (mut p, mut v, mut a) = ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0));
-        for (k, bk) in self.b.iter().enumerate() {
-            let kf = k as f64;
-            let sk = s.powi(k as i32);
-            p.0 += bk.0 * sk;
-            p.1 += bk.1 * sk;
-            if k >= 1 {
-                let f = kf * s.powi(k as i32 - 1) / self.t;
-                v.0 += bk.0 * f;
-                v.1 += bk.1 * f;
-            }
-            if k >= 2 {
-                let f = kf * (kf - 1.0) * s.powi(k as i32 - 2) / (self.t * self.t);
-                a.0 += bk.0 * f;
-                a.1 += bk.1 * f;
-            }
-        }
-        (p, v, a)
-    }
-}
+// Independent f64 reference: `host_tests::reference`
 
 fn polygons(obstacles: &[ObstacleSpec]) -> Vec<Vec<P>> {
     obstacles
@@ -482,9 +402,15 @@ fn north_lean(route: &[(f64, f64)]) -> f64 {
 
 #[test]
 fn babel_ii_n_and_s_plan_and_check() {
+    if !full_tier_only(
+        "landmark_plan::babel_ii_n_and_s_plan_and_check",
+        "builds babel-II-N and babel-II-S",
+    ) {
+        return;
+    }
     for (name, sign) in [("babel-II-N", 1.0), ("babel-II-S", -1.0)] {
         let (s, built) = build_scenario(name);
-        let outcomes = plan_all_weathers(name, &s, &built);
+        let outcomes = plan_all_weathers(name, s, built);
         let (length, route) = outcomes[0].clone().expect("babel-II plans");
         // Type N landmarks see best heading north, type S south: the route's overflights lean
         // that way (weighted by the leg they allow), more so on the long legs.
@@ -510,6 +436,12 @@ fn babel_ii_n_and_s_plan_and_check() {
 /// side to the goal's, so there too the planner must find none.
 #[test]
 fn babel_i_and_iii_and_their_reachable_variants() {
+    if !full_tier_only(
+        "landmark_plan::babel_i_and_iii_and_their_reachable_variants",
+        "builds babel-I, babel-I-bridged, babel-III and babel-III-reach",
+    ) {
+        return;
+    }
     for (name, plans) in [
         ("babel-I", [false, false]),
         ("babel-I-bridged", [true, true]),
@@ -517,7 +449,7 @@ fn babel_i_and_iii_and_their_reachable_variants() {
         ("babel-III-reach", [true, false]),
     ] {
         let (s, built) = build_scenario(name);
-        let outcomes = plan_all_weathers(name, &s, &built);
+        let outcomes = plan_all_weathers(name, s, built);
         assert_eq!(outcomes.len(), s.weather.len());
         for (w, o) in outcomes.iter().enumerate() {
             assert_eq!(o.is_some(), plans[w], "{name} weather {}", s.weather[w]);
@@ -540,6 +472,12 @@ fn edge_min_distance(net: &Network, e: u32, centre: P) -> f64 {
 
 #[test]
 fn rosette_update_and_popup_on_babel_ii_s() {
+    if !full_tier_only(
+        "landmark_plan::rosette_update_and_popup_on_babel_ii_s",
+        "builds babel-II-S",
+    ) {
+        return;
+    }
     let (_s, built) = build_scenario("babel-II-S");
     let mut planner: Box<Lp> = Box::new(Planner::new());
     planner.load(&built.bytes).unwrap();

@@ -1,6 +1,10 @@
 //! The roadmap builder on the real `niendorf-urban` scenario: deterministic over thread counts,
-//! parameters honoured, both collision checks compared.
+//! parameters honoured, both collision checks compared. The default build is the process's
+//! cached one (shared with `niendorf_clearance` and `network_images`); the further builds
+//! (other thread counts, no CCC words, the discretised check) take about a second each, so
+//! every test here runs in both tiers.
 
+use host_tests::scenarios;
 use skyroute::geometry::predicates::point_segment_distance;
 use skyroute::network::write::ObstacleSpec;
 use skyroute::{Network, Segment};
@@ -32,11 +36,11 @@ fn same_bytes_on_any_number_of_threads() {
 }
 
 #[test]
-fn samples_keep_spacing_and_clearance_and_ccc_can_be_excluded() {
-    let s = scenario::load(&scenario_path("niendorf-urban.geojson")).unwrap();
+fn samples_keep_spacing_and_clearance_and_use_ccc_words() {
+    let s = scenarios::scenario("niendorf-urban");
     let spacing = s.planner.sample_spacing_m.unwrap() as f32;
     let clearance = s.planner.clearance_m.unwrap() as f32;
-    let built = build(&s, &BuildOptions::default(), &|_, _| {}).unwrap();
+    let built = scenarios::built("niendorf-urban");
     let v = &built.roadmap.as_ref().unwrap().vertices;
     for (i, a) in v.iter().enumerate() {
         for b in &v[i + 1..] {
@@ -62,7 +66,11 @@ fn samples_keep_spacing_and_clearance_and_ccc_can_be_excluded() {
         .filter(|&e| net.edge(e).unwrap().word.is_ccc())
         .count();
     assert!(ccc > 0, "with allow_ccc the roadmap uses some CCC words");
+}
 
+#[test]
+fn ccc_words_can_be_excluded() {
+    let s = scenarios::scenario("niendorf-urban");
     let mut no_ccc = s.clone();
     no_ccc.planner.allow_ccc = Some(false);
     let built = build(&no_ccc, &BuildOptions::default(), &|_, _| {}).unwrap();
@@ -72,7 +80,7 @@ fn samples_keep_spacing_and_clearance_and_ccc_can_be_excluded() {
 
 #[test]
 fn exact_and_discretised_checks_are_both_reported() {
-    let exact = build_with_threads(2, &BuildOptions::default());
+    let exact = scenarios::built("niendorf-urban");
     let discretised = build_with_threads(
         2,
         &BuildOptions {
@@ -93,7 +101,7 @@ fn exact_and_discretised_checks_are_both_reported() {
             .map(|x| (x.source, x.target))
             .collect::<std::collections::BTreeSet<_>>()
     };
-    let (pe, pd) = (pairs(&exact), pairs(&discretised));
+    let (pe, pd) = (pairs(exact), pairs(&discretised));
     let unsafe_accepted = pd.difference(&pe).count();
     let safe_rejected = pe.difference(&pd).count();
     println!(

@@ -1,9 +1,8 @@
 //! The planner against independent references: Bellman–Ford over the same graph, a scan of
 //! every edge for pop-up pruning, and the documented work bound.
 
-mod common;
-
-use common::{free_pose, world, Rng, World};
+use host_tests::world::{free_pose, world, World};
+use host_tests::Rng;
 use skyroute::geometry::predicates::{conflicts_with_circle, conflicts_with_polygon};
 use skyroute::planner::{Goal, PlanError, PlannerConfig, Popup, Query, QueryField, Search};
 use skyroute::{DubinsPath, Planner, Pose, Primitive, Vec2};
@@ -253,14 +252,14 @@ fn popup_pruning_matches_a_scan_of_every_edge() {
     let mut ids = Vec::new();
     let mut union: std::collections::BTreeSet<u32> = Default::default();
     for k in 0..10 {
-        let c = Vec2::new(rng.range(-100.0, 1600.0), rng.range(-100.0, 1600.0));
+        let c = Vec2::new(rng.range_f32(-100.0, 1600.0), rng.range_f32(-100.0, 1600.0));
         let popup = if k % 2 == 0 {
             Popup::Circle {
                 centre: c,
-                radius: rng.range(5.0, 200.0),
+                radius: rng.range_f32(5.0, 200.0),
             }
         } else {
-            let s = rng.range(20.0, 150.0);
+            let s = rng.range_f32(20.0, 150.0);
             let pts = [
                 Vec2::new(c.x - s, c.y - s),
                 Vec2::new(c.x + s, c.y - 0.5 * s),

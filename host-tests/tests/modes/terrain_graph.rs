@@ -3,15 +3,15 @@
 //! traversal: every edge is sampled densely across its whole clearance band, every sample mapped
 //! back to longitude/latitude with the frame and looked up in the DEM's own cells.
 
-mod raw_dem;
-
-use raw_dem::{raw_navigable, Check};
+use crate::raw_dem::{raw_navigable, Check};
+use host_tests::full_tier_only;
 use rayon::prelude::*;
 use skyroute_prep::dem::{self, Dem};
 use skyroute_prep::frame::LocalFrame;
 use skyroute_prep::scenario::{self, Scenario};
 use skyroute_prep::terrain::{blocked_cells_at, build_terrain_graph, TerrainGraph, TerrainParams};
 use std::path::PathBuf;
+use std::sync::OnceLock;
 use std::time::Instant;
 
 fn load() -> (Scenario, Dem, LocalFrame) {
@@ -121,6 +121,13 @@ fn raw_dem_violations(
             c
         })
         .reduce(Check::default, Check::merge)
+}
+
+/// The graph at the scenario's 750 m with the default parameters, built and checked once per
+/// process (shared by the 750 m test and the thinning test).
+fn graph_at_750_m() -> &'static TerrainGraph {
+    static GRAPH: OnceLock<TerrainGraph> = OnceLock::new();
+    GRAPH.get_or_init(|| build_and_check(750.0, &TerrainParams::default()))
 }
 
 /// Builds the graph at `altitude` and checks it; returns the graph.
@@ -266,16 +273,29 @@ fn jacksboro_graph_at_750_m_is_clear_of_the_raw_dem() {
             dem.elevation_at(u, v).unwrap()
         );
     }
-    build_and_check(t.altitude_m, &TerrainParams::default());
+    assert_eq!(t.altitude_m, 750.0);
+    graph_at_750_m();
 }
 
 #[test]
 fn jacksboro_graph_at_850_m_is_clear_of_the_raw_dem() {
+    if !full_tier_only(
+        "terrain_graph::jacksboro_graph_at_850_m_is_clear_of_the_raw_dem",
+        "a full Jacksboro graph at 850 m",
+    ) {
+        return;
+    }
     build_and_check(850.0, &TerrainParams::default());
 }
 
 #[test]
 fn jacksboro_graph_at_1000_m_is_clear_of_the_raw_dem() {
+    if !full_tier_only(
+        "terrain_graph::jacksboro_graph_at_1000_m_is_clear_of_the_raw_dem",
+        "a full Jacksboro graph at 1000 m",
+    ) {
+        return;
+    }
     build_and_check(1000.0, &TerrainParams::default());
 }
 
@@ -327,7 +347,9 @@ fn thinning_keeps_the_spacing() {
         )
         .unwrap()
     };
-    let (full, thin) = (build(0.0), build(300.0));
+    // (The unthinned graph is the 750 m one of `graph_at_750_m`, built once.)
+    assert_eq!(t.altitude_m, 750.0);
+    let (full, thin) = (graph_at_750_m(), build(300.0));
     eprintln!(
         "thinning to 300 m: {} → {} nodes, {} → {} undirected edges",
         full.stats.nodes,

@@ -24,11 +24,8 @@ use skyroute::geometry::hermite::{
 };
 use skyroute::geometry::Vec2;
 
-// --------------------------------------------------------------------------------------------
-// A tiny deterministic RNG (SplitMix64).
-
-mod rng64;
-use rng64::Rng;
+// The shared SplitMix64, case counts by tier, and f64 reference geometry.
+use host_tests::{cases, reference, Rng};
 
 // --------------------------------------------------------------------------------------------
 // f64 helpers.
@@ -91,32 +88,11 @@ fn ddq(b: &[V; 6], s: f64) -> V {
     acc
 }
 
-fn point_segment_distance(p: V, a: V, b: V) -> f64 {
-    let d = sub(b, a);
-    let l2 = dot(d, d);
-    if l2 == 0.0 {
-        return dist(p, a);
-    }
-    let t = (dot(sub(p, a), d) / l2).clamp(0.0, 1.0);
-    dist(p, add(a, scale(d, t)))
-}
+// The point–segment distance and containment are the shared f64 reference
+// (`host_tests::reference`), on this file's `[f64; 2]` points.
 
-/// Even–odd containment (f64; the reference does not care about points exactly on the
-/// boundary: those are within any clearance ≥ 0 anyway).
-fn inside(p: V, poly: &[V]) -> bool {
-    let mut c = false;
-    let mut j = poly.len() - 1;
-    for i in 0..poly.len() {
-        let (a, b) = (poly[i], poly[j]);
-        if (a[1] > p[1]) != (b[1] > p[1]) {
-            let x = a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
-            if p[0] < x {
-                c = !c;
-            }
-        }
-        j = i;
-    }
-    c
+fn point_segment_distance(p: V, a: V, b: V) -> f64 {
+    reference::dist_point_segment((p[0], p[1]), (a[0], a[1]), (b[0], b[1]))
 }
 
 // --------------------------------------------------------------------------------------------
@@ -238,7 +214,7 @@ const EPS: f64 = f32::EPSILON as f64;
 #[test]
 fn boundary_conditions_hold_to_f32_rounding() {
     let t0 = Instant::now();
-    let (segs, fails) = segments(1, 20_000);
+    let (segs, fails) = segments(1, cases(2_000, 20_000));
     let build = t0.elapsed();
     let (mut worst_api, mut worst_f64) = ([0.0f64; 3], [0.0f64; 3]);
     for (c, seg) in &segs {
@@ -343,7 +319,7 @@ fn cramer(p0: V, v0: V, p1: V, v1: V, t: f64) -> [V; 3] {
 #[test]
 fn solve_matches_independent_f64_solutions() {
     let t0 = Instant::now();
-    let (segs, _) = segments(2, 10_000);
+    let (segs, _) = segments(2, cases(1_000, 10_000));
     let (mut worst, mut worst_refs) = (0.0f64, 0.0f64);
     for (c, seg) in &segs {
         let t = seg.t_max() as f64;
@@ -401,7 +377,7 @@ fn polyline_length(b: &[V; 6], n: usize) -> f64 {
 #[test]
 fn length_matches_dense_polyline_and_equals_v_t() {
     let t0 = Instant::now();
-    let (segs, _) = segments(3, 3_000);
+    let (segs, _) = segments(3, cases(300, 3_000));
     let rows: Vec<(f64, f64, f64, f64)> = segs
         .par_iter()
         .map(|(c, seg)| {
@@ -467,7 +443,7 @@ fn straight_line_gives_the_straight_line_at_constant_speed() {
     let mut rng = Rng(4);
     let mut worst = [0.0f64; 5];
     let mut ratios = [0.0f64; 3];
-    for i in 0..2_000 {
+    for i in 0..cases(200, 2_000) {
         let vehicle = VEHICLES[rng.below(3) as usize];
         let v = vehicle.v;
         let h = rng.range(-std::f64::consts::PI, std::f64::consts::PI);
@@ -603,7 +579,7 @@ fn slack(e: &[f64; 5], l: &FlyLimits) -> f64 {
 #[test]
 fn flyability_check_never_accepts_a_violating_segment() {
     let t0 = Instant::now();
-    let (segs, _) = segments(5, 12_000);
+    let (segs, _) = segments(5, cases(1_200, 12_000));
     // Half the cases with the vehicle's own limits; the other half with one limit moved to the
     // dense extreme ± a gap of 10⁻⁶…10⁻¹ of the limit's range (log-uniform, either side): the
     // hardest place for a sampled check, and a map of its over-conservatism against the gap.
@@ -730,7 +706,7 @@ fn star_polygon(rng: &mut Rng, centre: V, r: f64) -> Vec<V> {
 #[test]
 fn collision_enclosure_never_misses_a_conflict() {
     let t0 = Instant::now();
-    let (segs, _) = segments(6, 3_000);
+    let (segs, _) = segments(6, cases(300, 3_000));
     const DENSE: usize = 20_000;
     const PIECES: [usize; 3] = [8, 32, 128];
     // Per pieces: [circle conflicts found by dense, circle over-approx, polygon conflicts,
@@ -792,6 +768,7 @@ fn collision_enclosure_never_misses_a_conflict() {
                 let pc = add(anchor, [(size + gap) * a.cos(), (size + gap) * a.sin()]);
                 let poly64 = star_polygon(&mut rng, pc, size);
                 let poly: Vec<Vec2> = poly64.iter().map(|p| f32v(*p)).collect();
+                let poly_ref: Vec<reference::P> = poly64.iter().map(|v| (v[0], v[1])).collect();
                 // (Points farther than the clearance from the polygon's box cannot conflict.)
                 let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
                 for v in &poly64 {
@@ -805,7 +782,7 @@ fn collision_enclosure_never_misses_a_conflict() {
                         && p[1] >= lo[1] - c
                         && p[1] <= hi[1] + c;
                     let n = poly64.len();
-                    near && (inside(*p, &poly64)
+                    near && (reference::inside((p[0], p[1]), &poly_ref)
                         || (0..n).any(|j| {
                             point_segment_distance(*p, poly64[j], poly64[(j + 1) % n]) <= c
                         }))

@@ -1,9 +1,8 @@
 //! The loader: a valid image round-trips; each kind of damage gets its own `LoadError`; random
 //! mutations never panic the loader or a planner using what it accepted.
 
-mod common;
-
-use common::{world, Rng};
+use host_tests::world::world;
+use host_tests::{cases, Rng};
 use skyroute::network::format::{
     EdgeRecord, Header, ProvenanceRecord, U32Record, VertexRecord, FORMAT_VERSION,
 };
@@ -273,7 +272,7 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
     planner.load(bytes)?;
     let net = *planner.network();
     let _ = planner.add_popup(Popup::Circle {
-        centre: Vec2::new(rng.range(0.0, 600.0), rng.range(0.0, 600.0)),
+        centre: Vec2::new(rng.range_f32(0.0, 600.0), rng.range_f32(0.0, 600.0)),
         radius: 50.0,
     });
     for v in 0..net.vertex_count().min(8) {
@@ -283,9 +282,9 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
         }
     }
     let q = Query {
-        start: skyroute::Pose::new(rng.range(0.0, 600.0), rng.range(0.0, 600.0), 0.3),
+        start: skyroute::Pose::new(rng.range_f32(0.0, 600.0), rng.range_f32(0.0, 600.0), 0.3),
         goal: Goal {
-            position: Vec2::new(rng.range(0.0, 600.0), rng.range(0.0, 600.0)),
+            position: Vec2::new(rng.range_f32(0.0, 600.0), rng.range_f32(0.0, 600.0)),
             heading: None,
         },
         search: Search::Dijkstra,
@@ -299,8 +298,8 @@ fn random_mutations_never_panic() {
     let w = world(3, 600.0, 70.0, 40.0, 3);
     let mut rng = Rng(99);
     let (mut accepted, mut rejected) = (0u32, 0u32);
-    const CASES: u32 = 100_000;
-    for case in 0..CASES {
+    let n = cases(10_000, 100_000) as u32;
+    for case in 0..n {
         let mut b = w.bytes.clone();
         let flips = 1 + rng.below(4);
         for _ in 0..flips {
@@ -325,6 +324,6 @@ fn random_mutations_never_panic() {
             Err(_) => rejected += 1,
         }
     }
-    assert_eq!(accepted + rejected, CASES);
+    assert_eq!(accepted + rejected, n);
     println!("random mutations: {accepted} accepted, {rejected} rejected, no panic");
 }

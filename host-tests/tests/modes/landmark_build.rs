@@ -3,7 +3,8 @@
 //! clearance from the no-fly polygons, continuity, rebuilding from the stored line elements),
 //! and the same network on any number of threads.
 //!
-//! Run with `--nocapture` to see the counts and build times.
+//! Run with `--nocapture` to see the counts and build times. The whole-network tests run in the
+//! full tier, on the process's cached builds.
 
 use skyroute::geometry::hermite::{HermiteSegment, LineElement};
 use skyroute::network::write::ObstacleSpec;
@@ -15,6 +16,9 @@ use skyroute_prep::scenario::{self, ParseOptions, Scenario};
 use std::collections::HashSet;
 use std::path::PathBuf;
 use std::time::Instant;
+
+use host_tests::reference::{dist_polygon, Poly64, P};
+use host_tests::{full_tier_only, scenarios};
 
 fn scenario_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -65,78 +69,7 @@ fn report(name: &str, net: &LandmarkNetwork, secs: f64) {
 }
 
 // ------------------------------------------------------------------------------------------------
-// Independent f64 reference
-
-type P = (f64, f64);
-
-fn dist_point_segment(p: P, a: P, b: P) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    ((p.0 - a.0 - t * dx).powi(2) + (p.1 - a.1 - t * dy).powi(2)).sqrt()
-}
-
-/// Even–odd crossing test.
-fn inside(p: P, poly: &[P]) -> bool {
-    let mut c = false;
-    let n = poly.len();
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a.1 > p.1) != (b.1 > p.1) && p.0 < a.0 + (p.1 - a.1) * (b.0 - a.0) / (b.1 - a.1) {
-            c = !c;
-        }
-    }
-    c
-}
-
-/// Distance from `p` to the polygon's area (0 inside).
-fn dist_polygon(p: P, poly: &[P]) -> f64 {
-    if inside(p, poly) {
-        return 0.0;
-    }
-    (0..poly.len())
-        .map(|i| dist_point_segment(p, poly[i], poly[(i + 1) % poly.len()]))
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// A piece in f64 from its normalised coefficients: position, velocity, acceleration at `s`.
-struct Poly64 {
-    b: [P; 6],
-    t: f64,
-}
-
-impl Poly64 {
-    fn new(seg: &HermiteSegment) -> Self {
-        let c = seg.normalized_coefficients();
-        Self {
-            b: c.map(|v| (v.x as f64, v.y as f64)),
-            t: seg.t_max() as f64,
-        }
-    }
-    fn eval(&self, s: f64) -> (P, P, P) {
-        let (mut p, mut v, mut a) = ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0));
-        for (k, bk) in self.b.iter().enumerate() {
-            let kf = k as f64;
-            p.0 += bk.0 * s.powi(k as i32);
-            p.1 += bk.1 * s.powi(k as i32);
-            if k >= 1 {
-                let f = kf * s.powi(k as i32 - 1) / self.t;
-                v.0 += bk.0 * f;
-                v.1 += bk.1 * f;
-            }
-            if k >= 2 {
-                let f = kf * (kf - 1.0) * s.powi(k as i32 - 2) / (self.t * self.t);
-                a.0 += bk.0 * f;
-                a.1 += bk.1 * f;
-            }
-        }
-        (p, v, a)
-    }
-}
+// Independent f64 reference: `host_tests::reference`
 
 /// What the independent check measured over a network.
 #[derive(Default, Debug)]
@@ -396,13 +329,17 @@ fn check_network(name: &str, net: &LandmarkNetwork) -> Checked {
     out
 }
 
-/// Builds, reports and checks one scenario.
-fn build_and_check(name: &str) -> LandmarkNetwork {
-    let s = load(&format!("{name}.geojson"));
+/// Reports and checks one scenario's landmark network: the process's cached build
+/// (`skyroute_prep::build::build` keeps `build_landmark_network`'s network as it is; babel-I
+/// with hull repair), shared with `landmark_plan` and `network_images`.
+fn build_and_check(name: &str) -> &'static LandmarkNetwork {
     let t = Instant::now();
-    let net = build_landmark_network(&s, &|_, _| {}).expect("builds");
-    report(name, &net, t.elapsed().as_secs_f64());
-    let checked = check_network(name, &net);
+    let net = scenarios::built(name)
+        .landmark
+        .as_deref()
+        .expect("a landmark network");
+    report(name, net, t.elapsed().as_secs_f64());
+    let checked = check_network(name, net);
     assert!(checked.pieces > 0);
     net
 }
@@ -412,6 +349,12 @@ fn build_and_check(name: &str) -> LandmarkNetwork {
 
 #[test]
 fn babel_ii_n_and_s_beside_the_paper_every_edge_checked() {
+    if !full_tier_only(
+        "landmark_build::babel_ii_n_and_s_beside_the_paper_every_edge_checked",
+        "builds babel-II-N and babel-II-S",
+    ) {
+        return;
+    }
     println!(
         "paper, scenario II: 240 vertices, ~6000 edges, 500 line elements per basic network, \
          preprocessing ~30 min (Matlab, 2.2 GHz i7)"
@@ -438,6 +381,12 @@ fn babel_ii_n_and_s_beside_the_paper_every_edge_checked() {
 
 #[test]
 fn babel_i_with_hull_repair_and_babel_iii_every_edge_checked() {
+    if !full_tier_only(
+        "landmark_build::babel_i_with_hull_repair_and_babel_iii_every_edge_checked",
+        "builds babel-I and babel-III",
+    ) {
+        return;
+    }
     let s = load("babel-I.geojson");
     assert!(!s.warnings.is_empty(), "babel-I needs the hull repair");
     for name in ["babel-I", "babel-III"] {
@@ -448,6 +397,12 @@ fn babel_i_with_hull_repair_and_babel_iii_every_edge_checked() {
 
 #[test]
 fn same_network_on_any_number_of_threads() {
+    if !full_tier_only(
+        "landmark_build::same_network_on_any_number_of_threads",
+        "three babel-II-N builds",
+    ) {
+        return;
+    }
     let s = load("babel-II-N.geojson");
     let mut params = LandmarkParams::from_scenario(&s);
     params.line_elements_per_pair = 150;

@@ -24,7 +24,6 @@
 //! Run with `cargo test --release -p host-tests --test landmark_figure4 -- --nocapture` to see the
 //! baselines' failure reasons and the route.
 
-use skyroute::geometry::hermite::HermiteSegment;
 use skyroute::network::Network;
 use skyroute::planner::{Goal, Query, Search};
 use skyroute::Planner;
@@ -33,6 +32,10 @@ use skyroute_prep::frame::LocalFrame;
 use skyroute_prep::scenario::{self, ParseOptions, Scenario};
 use std::path::PathBuf;
 use std::time::Instant;
+
+use host_tests::reference::{
+    dist, dist_point_segment, dist_polygon, dist_segment_polygon, Poly64, P,
+};
 
 type Lp<'n> = Planner<'n, 1024, 40000, 4, 128>;
 
@@ -49,80 +52,6 @@ fn load() -> Scenario {
         .join("../scenarios")
         .join(SCENARIO);
     scenario::load_with(&path, &ParseOptions::default()).expect("scenario loads")
-}
-
-// ------------------------------------------------------------------------------------------------
-// f64 geometry
-
-type P = (f64, f64);
-
-fn dist(a: P, b: P) -> f64 {
-    (b.0 - a.0).hypot(b.1 - a.1)
-}
-
-fn dist_point_segment(p: P, a: P, b: P) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    ((p.0 - a.0 - t * dx).powi(2) + (p.1 - a.1 - t * dy).powi(2)).sqrt()
-}
-
-fn cross(o: P, a: P, b: P) -> f64 {
-    (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
-}
-
-/// Whether the closed segments `ab` and `cd` cross (proper crossings; touching counts through
-/// the distance test of the caller).
-fn segments_cross(a: P, b: P, c: P, d: P) -> bool {
-    let (d1, d2) = (cross(c, d, a), cross(c, d, b));
-    let (d3, d4) = (cross(a, b, c), cross(a, b, d));
-    d1 * d2 < 0.0 && d3 * d4 < 0.0
-}
-
-fn dist_segment_segment(a: P, b: P, c: P, d: P) -> f64 {
-    if segments_cross(a, b, c, d) {
-        return 0.0;
-    }
-    dist_point_segment(a, c, d)
-        .min(dist_point_segment(b, c, d))
-        .min(dist_point_segment(c, a, b))
-        .min(dist_point_segment(d, a, b))
-}
-
-fn inside(p: P, poly: &[P]) -> bool {
-    let mut c = false;
-    let n = poly.len();
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a.1 > p.1) != (b.1 > p.1) && p.0 < a.0 + (p.1 - a.1) * (b.0 - a.0) / (b.1 - a.1) {
-            c = !c;
-        }
-    }
-    c
-}
-
-/// Distance from a point to a polygon: 0 inside.
-fn dist_polygon(p: P, poly: &[P]) -> f64 {
-    if inside(p, poly) {
-        return 0.0;
-    }
-    (0..poly.len())
-        .map(|i| dist_point_segment(p, poly[i], poly[(i + 1) % poly.len()]))
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// Distance from a segment to a polygon: 0 if it enters it.
-fn dist_segment_polygon(a: P, b: P, poly: &[P]) -> f64 {
-    if inside(a, poly) || inside(b, poly) {
-        return 0.0;
-    }
-    (0..poly.len())
-        .map(|i| dist_segment_segment(a, b, poly[i], poly[(i + 1) % poly.len()]))
-        .fold(f64::INFINITY, f64::min)
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -311,44 +240,6 @@ fn best_guess(w: &World, weather: usize) -> Result<Vec<String>, Vec<String>> {
 
 // ------------------------------------------------------------------------------------------------
 // Independent check of the planner's route
-
-/// A piece in f64 from its normalised coefficients.
-struct Poly64 {
-    b: [P; 6],
-    t: f64,
-}
-
-impl Poly64 {
-    fn new(seg: &HermiteSegment) -> Self {
-        Self {
-            b: seg
-                .normalized_coefficients()
-                .map(|v| (v.x as f64, v.y as f64)),
-            t: seg.t_max() as f64,
-        }
-    }
-    /// Position, velocity, acceleration at `s ∈ [0, 1]`.
-    fn eval(&self, s: f64) -> (P, P, P) {
-        let (mut p, mut v, mut a) = ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0));
-        for (k, bk) in self.b.iter().enumerate() {
-            let kf = k as f64;
-            let sk = s.powi(k as i32);
-            p.0 += bk.0 * sk;
-            p.1 += bk.1 * sk;
-            if k >= 1 {
-                let f = kf * s.powi(k as i32 - 1) / self.t;
-                v.0 += bk.0 * f;
-                v.1 += bk.1 * f;
-            }
-            if k >= 2 {
-                let f = kf * (kf - 1.0) * s.powi(k as i32 - 2) / (self.t * self.t);
-                a.0 += bk.0 * f;
-                a.1 += bk.1 * f;
-            }
-        }
-        (p, v, a)
-    }
-}
 
 /// An overflight on the route, with the leg that leaves it.
 struct Overflight {

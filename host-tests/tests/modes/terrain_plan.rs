@@ -6,11 +6,8 @@
 //! start–goal pairs, the counted work against the documented bound, the cells per arc check
 //! against the paper's Table 4, and bad inputs.
 
-mod raw_dem;
-mod rng64;
-
-use raw_dem::{raw_navigable, route_violations};
-use rng64::Rng;
+use crate::raw_dem::{raw_navigable, route_violations};
+use host_tests::{full_tier_only, scenarios, Rng};
 use skyroute::network::format::ProvenanceRecord;
 use skyroute::planner::{Goal, PlanError, Query, QueryField, Search};
 use skyroute::{LoadError, Network, Planner, Pose, Primitive, Vec2};
@@ -41,7 +38,12 @@ fn scenario_at(altitude: Option<f64>) -> Scenario {
     s
 }
 
+/// The network for `s`: the process's cached medeiros-jacksboro build when `s` is the scenario
+/// as stored (shared by the tests here and `network_images`), else a build of its own.
 fn built(s: &Scenario) -> Built {
+    if s == scenarios::scenario("medeiros-jacksboro") {
+        return scenarios::built("medeiros-jacksboro").clone();
+    }
     build(s, &BuildOptions::default(), &|_, _| {}).unwrap()
 }
 
@@ -289,6 +291,12 @@ fn component_at(dem: &Dem, frame: &LocalFrame, labels: &[u32], v: Vec2) -> u32 {
 /// check are compared with the paper's Table 4.
 #[test]
 fn random_queries_at_three_altitudes_are_clear_of_the_raw_dem() {
+    if !full_tier_only(
+        "terrain_plan::random_queries_at_three_altitudes_are_clear_of_the_raw_dem",
+        "a full medeiros-jacksboro build with a 700 m level, 90 queries",
+    ) {
+        return;
+    }
     let s = scenario_at(None);
     let b = built_with_700_m_level(&s);
     let dem = dem_of(&s);

@@ -26,10 +26,8 @@ use std::f64::consts::{PI, TAU};
 use std::time::Instant;
 
 // ------------------------------------------------------------------------------------------------
-// Random numbers
 
-mod rng64;
-use rng64::Rng;
+use host_tests::{cases, reference, Rng};
 
 // ------------------------------------------------------------------------------------------------
 // f64 reference geometry
@@ -56,14 +54,9 @@ fn cross(a: P, b: P) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
+/// The shared f64 reference (`host_tests::reference`) on this file's points.
 fn point_segment(q: P, a: P, b: P) -> f64 {
-    let d = sub(b, a);
-    let l2 = d.x * d.x + d.y * d.y;
-    if l2 == 0.0 {
-        return dist(q, a);
-    }
-    let t = (((q.x - a.x) * d.x + (q.y - a.y) * d.y) / l2).clamp(0.0, 1.0);
-    dist(q, p(a.x + t * d.x, a.y + t * d.y))
+    reference::dist_point_segment((q.x, q.y), (a.x, a.y), (b.x, b.y))
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -757,12 +750,17 @@ fn run(name: &str, seed: u64, n: usize, gen: fn(&mut Rng) -> Case) {
 
 #[test]
 fn segments_visit_every_touched_cell() {
-    run("segments", 0x5EED_0001, 100_000, random_segment_case);
+    run(
+        "segments",
+        0x5EED_0001,
+        cases(10_000, 100_000),
+        random_segment_case,
+    );
 }
 
 #[test]
 fn arcs_visit_every_touched_cell() {
-    run("arcs", 0x5EED_0002, 100_000, random_arc_case);
+    run("arcs", 0x5EED_0002, cases(10_000, 100_000), random_arc_case);
 }
 
 // ------------------------------------------------------------------------------------------------

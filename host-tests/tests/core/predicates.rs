@@ -32,8 +32,7 @@ use skyroute::geometry::predicates::{
 };
 use skyroute::geometry::{Arc, Primitive, Segment, Vec2};
 
-mod rng64;
-use rng64::Rng;
+use host_tests::{cases, Rng};
 
 // --------------------------------------------------------------------------------------------
 // Inputs: f32 values on the 2⁻⁴⁰ grid (so that the exact integer references apply).
@@ -74,17 +73,9 @@ fn dist(a: P, b: P) -> f64 {
     (a.0 - b.0).hypot(a.1 - b.1)
 }
 
-/// The trivially correct f64 distance from `p` to the segment `a`–`b` (clamped projection).
-fn pt_seg(p: P, a: P, b: P) -> f64 {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let len_sq = dx * dx + dy * dy;
-    let t = if len_sq > 0.0 {
-        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len_sq).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    dist(p, (a.0 + t * dx, a.1 + t * dy))
-}
+/// The trivially correct f64 distance from `p` to the segment `a`–`b` (clamped projection):
+/// the shared reference.
+use host_tests::reference::dist_point_segment as pt_seg;
 
 fn seg_ends(s: &Segment) -> (P, P) {
     (p64(s.start), p64(s.end))
@@ -579,7 +570,10 @@ impl Report {
     }
 }
 
-const N: usize = 100_000;
+/// The random cases per predicate: 10 000 in the fast tier, 100 000 in the full tier.
+fn n_cases() -> usize {
+    cases(10_000, 100_000)
+}
 
 // --------------------------------------------------------------------------------------------
 // Distances.
@@ -600,7 +594,7 @@ fn check_point_segment(n: usize, seed: u64, f: &dyn Fn(Vec2, &Segment) -> f32) -
 
 #[test]
 fn point_segment_distance_matches_sampling() {
-    check_point_segment(N, 0xD157_0001, &point_segment_distance).finish(N);
+    check_point_segment(n_cases(), 0xD157_0001, &point_segment_distance).finish(n_cases());
 }
 
 #[test]
@@ -609,7 +603,7 @@ fn segment_segment_distance_and_intersection_match_references() {
     let mut rep = Report::new("segment_segment_distance");
     let mut inter = Report::new("segments_intersect (exact i128)");
     let mut crossing = 0;
-    for _ in 0..N {
+    for _ in 0..n_cases() {
         let s = random_segment(&mut rng);
         let cs = Curve::of(&Primitive::Line(s));
         let q = point_near(&mut rng, &cs, 50.0);
@@ -639,8 +633,8 @@ fn segment_segment_distance_and_intersection_match_references() {
         }
     }
     println!("  ({crossing} of the pairs intersect)");
-    rep.finish(N);
-    inter.finish(N);
+    rep.finish(n_cases());
+    inter.finish(n_cases());
 }
 
 fn check_point_arc(n: usize, seed: u64, f: &dyn Fn(Vec2, &Arc) -> f32) -> Report {
@@ -659,7 +653,7 @@ fn check_point_arc(n: usize, seed: u64, f: &dyn Fn(Vec2, &Arc) -> f32) -> Report
 
 #[test]
 fn point_arc_distance_matches_sampling() {
-    check_point_arc(N, 0xD157_0003, &point_arc_distance).finish(N);
+    check_point_arc(n_cases(), 0xD157_0003, &point_arc_distance).finish(n_cases());
 }
 
 fn check_arc_segment(n: usize, seed: u64, f: &dyn Fn(&Arc, &Segment) -> f32) -> Report {
@@ -681,7 +675,7 @@ fn check_arc_segment(n: usize, seed: u64, f: &dyn Fn(&Arc, &Segment) -> f32) -> 
 
 #[test]
 fn arc_segment_distance_matches_sampling() {
-    check_arc_segment(N, 0xD157_0004, &arc_segment_distance).finish(N);
+    check_arc_segment(n_cases(), 0xD157_0004, &arc_segment_distance).finish(n_cases());
 }
 
 // --------------------------------------------------------------------------------------------
@@ -704,7 +698,7 @@ fn conflicts_with_circle_matches_sampling() {
         } else {
             "conflicts_with_circle (lines)"
         });
-        for _ in 0..N {
+        for _ in 0..n_cases() {
             let prim = random_primitive(&mut rng, arc);
             let c = Curve::of(&prim);
             let radius = if rng.below(10) == 0 {
@@ -729,7 +723,7 @@ fn conflicts_with_circle_matches_sampling() {
                 || format!("{prim:?} centre {centre:?} radius {radius} clearance {cl}"),
             );
         }
-        rep.finish(N);
+        rep.finish(n_cases());
     }
 }
 
@@ -783,10 +777,10 @@ fn check_polygon(n: usize, seed: u64, arc: bool, f: &PolygonCheck) -> Report {
 #[test]
 fn conflicts_with_polygon_matches_sampling() {
     for (arc, seed) in [(false, 0xD157_0007u64), (true, 0xD157_0008)] {
-        check_polygon(N, seed, arc, &|p, poly, cl| {
+        check_polygon(n_cases(), seed, arc, &|p, poly, cl| {
             conflicts_with_polygon(p, poly, cl)
         })
-        .finish(N);
+        .finish(n_cases());
     }
 }
 
@@ -795,7 +789,7 @@ fn point_in_polygon_matches_exact_winding() {
     let mut rng = Rng(0xD157_0009);
     let mut rep = Report::new("point_in_polygon (exact winding number)");
     let mut inside = 0;
-    for _ in 0..N {
+    for _ in 0..n_cases() {
         let q = base_point(&mut rng, 800.0);
         let size = rng.log_range(0.5, 300.0);
         let poly = polygon_near(&mut rng, q, size);
@@ -836,7 +830,7 @@ fn point_in_polygon_matches_exact_winding() {
         }
     }
     println!("  ({inside} decisive points inside)");
-    rep.finish(N);
+    rep.finish(n_cases());
 }
 
 // --------------------------------------------------------------------------------------------
@@ -1011,7 +1005,8 @@ fn exact_touching_configurations() {
 fn rounded_tangencies() {
     let mut rng = Rng(0xD157_000A);
     let mut rep = Report::new("tangencies in general position");
-    for i in 0..20_000 {
+    let n = cases(2_000, 20_000);
+    for i in 0..n {
         let a = random_arc(&mut rng);
         let c = Curve::of(&Primitive::Arc(a));
         let (centre, r, a0, sweep) = match c {
@@ -1069,7 +1064,7 @@ fn rounded_tangencies() {
             rep.fail("missed conflict", format!("clearance {cl}: {}", what()));
         }
     }
-    rep.finish(20_000);
+    rep.finish(n);
 }
 
 // --------------------------------------------------------------------------------------------
@@ -1142,7 +1137,7 @@ fn touching_segments_on_the_grid() {
     let mut rng = Rng(0xD157_000B);
     let mut rep = Report::new("segments_intersect, exact touching on the grid");
     let mut meets = 0;
-    for i in 0..50_000 {
+    for i in 0..cases(5_000, 50_000) {
         // A grid step g ≥ 2⁻¹¹: every multiple of it below 2²⁴·g ≥ 8192 m is an f32.
         let g = 2f64.powi(-11 + rng.below(12) as i32);
         let on_grid = |x: f64| (x / g).round() * g;
@@ -1205,5 +1200,5 @@ fn touching_segments_on_the_grid() {
         }
     }
     println!("  ({meets} of them meet)");
-    rep.finish(40_000);
+    rep.finish(cases(4_000, 40_000));
 }

@@ -1,33 +1,10 @@
-//! Shared fixtures for the host tests: seeded random numbers and small roadmap networks built
-//! with the ground tool's real builder.
-#![allow(dead_code)]
+//! Small synthetic roadmap worlds: a square area with random rectangles and circles, built
+//! with the ground tool's real roadmap builder and encoded.
 
+use crate::Rng;
 use skyroute::network::write::{encode, NetworkSpec, ObstacleSpec};
 use skyroute::{Pose, Vec2};
 use skyroute_prep::roadmap::{build_roadmap, CollisionCheck, RoadmapInput, RoadmapParams};
-
-/// splitmix64: small, seeded, good enough for test cases.
-pub struct Rng(pub u64);
-
-impl Rng {
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-    pub fn below(&mut self, n: u64) -> u64 {
-        self.next_u64() % n.max(1)
-    }
-}
 
 /// An axis-aligned rectangle as a polygon.
 pub fn rect(x0: f32, y0: f32, x1: f32, y1: f32) -> Vec<Vec2> {
@@ -53,10 +30,10 @@ pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize
     let mut obstacles = Vec::new();
     for i in 0..n_obstacles {
         let (x, y) = (
-            rng.range(0.1 * size, 0.9 * size),
-            rng.range(0.1 * size, 0.9 * size),
+            rng.range_f32(0.1 * size, 0.9 * size),
+            rng.range_f32(0.1 * size, 0.9 * size),
         );
-        let s = rng.range(0.02 * size, 0.06 * size);
+        let s = rng.range_f32(0.02 * size, 0.06 * size);
         if i % 3 == 2 {
             obstacles.push(ObstacleSpec::Circle {
                 centre: Vec2::new(x, y),
@@ -113,7 +90,7 @@ pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize
 /// A random pose in the world, outside every obstacle by `margin`.
 pub fn free_pose(rng: &mut Rng, w: &World, margin: f32) -> Pose {
     loop {
-        let p = Vec2::new(rng.range(0.0, w.size), rng.range(0.0, w.size));
+        let p = Vec2::new(rng.range_f32(0.0, w.size), rng.range_f32(0.0, w.size));
         let clear = w.obstacles.iter().all(|o| match o {
             ObstacleSpec::Polygon(poly) => {
                 !skyroute::geometry::predicates::point_in_polygon(p, poly.as_slice())
@@ -127,7 +104,7 @@ pub fn free_pose(rng: &mut Rng, w: &World, margin: f32) -> Pose {
         if clear {
             return Pose {
                 position: p,
-                heading: rng.range(-std::f32::consts::PI, std::f32::consts::PI),
+                heading: rng.range_f32(-std::f32::consts::PI, std::f32::consts::PI),
             };
         }
     }

@@ -1,0 +1,22 @@
+//! The onboard core (`skyroute`) against independent references: geometry, predicates, grid
+//! traversal, trig, the network loader and the planner. One test binary; the fixtures (RNG,
+//! f64 reference geometry, synthetic worlds, tiers) are in `host_tests` (`host-tests/src`).
+//! Random counts come from `host_tests::cases` (`SKYROUTE_TIER`, see `docs/TESTING.md`).
+
+/// Dubins paths against OMPL's CSV and an f64 brute force.
+mod dubins;
+/// `geometry::grid` traversals against sampled and exact f64 references.
+mod grid_traversal;
+/// Quintic Hermite segments against f64 derivations.
+mod hermite;
+/// The loader: round trips, each damage its own error, random mutations never panic.
+mod network_load;
+/// The planner against Bellman–Ford, an edge scan for pop-ups and the work bound.
+mod planner;
+/// Collision predicates against sampling and exact rational references.
+mod predicates;
+/// Bad input and budgets: over-budget reports, overlapping records, huge pop-ups, non-finite
+/// routes, degenerate capacities and random extreme call sequences never panic.
+mod robustness;
+/// The core's f32 sine and cosine against f64.
+mod trig;

@@ -1,0 +1,36 @@
+//! The three network modes end to end, through the ground tool's library (`skyroute_prep`) and
+//! the core: roadmap build and clearance, missions, the DEM reader, terrain graphs and search,
+//! landmark networks and plans, and the byte-identical images of every scenario. One test
+//! binary; scenario networks are built once per process (`host_tests::scenarios`), and the
+//! tests that build whole Babel networks or full-size networks repeatedly run only in the full
+//! tier (`SKYROUTE_TIER=full`, see `docs/TESTING.md`).
+
+/// The ESRI ASCII reader on the real Jacksboro DEM.
+mod dem;
+/// Landmark networks (Babel): counts, every edge in f64, thread independence.
+mod landmark_build;
+/// Babel's figure 4: greedy and best-guess chains fail, the network succeeds.
+mod landmark_figure4;
+/// Landmark images as bad input, and bad onboard landmark calls.
+mod landmark_load;
+/// Landmark mode end to end: plans in every weather, rosette updates, pop-ups.
+mod landmark_plan;
+/// Missions: inevitable-collision states by name.
+mod mission;
+/// Every scenario's network image against the recorded length and CRC-32.
+mod network_images;
+/// The niendorf-urban network and route keep clearance from every building (from JSON).
+mod niendorf_clearance;
+/// Independent raw-DEM lookups for the terrain tests.
+mod raw_dem;
+/// The roadmap builder on niendorf-urban: threads, parameters, both collision checks.
+mod roadmap_build;
+/// Terrain search corner cases on small synthetic networks: degenerate fillets, zero-length
+/// edges, nodes at the start or goal, work bounds, ignored sections.
+mod terrain_corner_cases;
+/// The terrain visibility graph on Jacksboro against the raw DEM.
+mod terrain_graph;
+/// Terrain mode end to end on Jacksboro against the raw DEM.
+mod terrain_plan;
+/// The terrain search against an exhaustive walk enumeration.
+mod terrain_search;
