@@ -2,7 +2,7 @@
 """Independent reference lengths of Dubins shortest paths, computed by OMPL.
 
 Writes a CSV with the columns x0,y0,h0,x1,y1,h1,r,ompl_length (metres, radians counter-clockwise
-from east; OMPL's yaw uses the same convention) that `host-tests/tests/dubins.rs` compares with
+from east; OMPL's yaw uses the same convention) that `host-tests/tests/core/dubins.rs` compares with
 `skyroute::DubinsPath::shortest`.
 
 Every input is rounded to f32 *before* OMPL sees it, so the Rust test (which works in f32)

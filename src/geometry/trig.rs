@@ -5,7 +5,7 @@
 //! three-part constant and the minimax polynomials of Cephes' `sinf`/`cosf` (S. L. Moshier),
 //! all in `f32`: a few dozen instructions. For |x| ≤ 8192 (Cephes' domain) the products k·C1 and
 //! k·C2 of the reduction are exact (C1 and C2 have few significant bits, k < 2¹³), and the result is within
-//! 1.5·10⁻⁷ of the true value (9.2·10⁻⁸ measured against `f64` in `host-tests/tests/trig.rs`); larger
+//! 1.5·10⁻⁷ of the true value (9.2·10⁻⁸ measured against `f64` in `host-tests/tests/core/trig.rs`); larger
 //! arguments, which the planner never produces, fall back to `libm`.
 
 /// π/2 split as C1 + C2 + C3, C1 and C2 with trailing zero bits (Cephes DP1..DP3 ×2).
