@@ -11,6 +11,8 @@ mod grid_traversal;
 mod hermite;
 /// The loader: round trips, each damage its own error, random mutations never panic.
 mod network_load;
+/// The loader's obstacle checks: each bad obstacle record refused with its own error.
+mod obstacle_validation;
 /// The planner against Bellman–Ford, an edge scan for pop-ups and the work bound.
 mod planner;
 /// Collision predicates against sampling and exact rational references.
