@@ -17,6 +17,8 @@ mod obstacle_validation;
 mod offset_tables;
 /// The planner against Bellman–Ford, an edge scan for pop-ups and the work bound.
 mod planner;
+/// The pop-up grid search: neighbouring cells within the clearance, an f64 brute force.
+mod popup_grid_search;
 /// Collision predicates against sampling and exact rational references.
 mod predicates;
 /// Bad input and budgets: over-budget reports, overlapping records, huge pop-ups, non-finite
