@@ -19,6 +19,8 @@ mod offset_tables;
 mod planner;
 /// The pop-up grid search: neighbouring cells within the clearance, an f64 brute force.
 mod popup_grid_search;
+/// Pop-up shapes: the radius limit, simple polygons of any vertex count.
+mod popup_validation;
 /// Collision predicates against sampling and exact rational references.
 mod predicates;
 /// Bad input and budgets: over-budget reports, overlapping records, huge pop-ups, non-finite
