@@ -28,3 +28,5 @@ mod predicates;
 mod robustness;
 /// The core's f32 sine and cosine against f64.
 mod trig;
+/// Counted work never below independently recomputed lower bounds.
+mod work_lower_bounds;
