@@ -2,6 +2,8 @@
 //!
 //! * [`rng`]: the one seeded random-number generator (SplitMix64) with the f64 and f32 helpers
 //!   the tests use;
+//! * [`damage`]: valid network images damaged on purpose (checksum re-fixed, offset-table
+//!   rules broken one at a time);
 //! * [`reference`]: the one independent f64 reference geometry (point–segment and
 //!   point–polygon distances, even–odd containment, segment crossings, quintic Hermite
 //!   evaluation) that routes and networks are checked against — written here from the
@@ -14,6 +16,7 @@
 //!
 //! See `docs/TESTING.md`.
 
+pub mod damage;
 pub mod reference;
 pub mod rng;
 pub mod scenarios;

@@ -11,8 +11,16 @@ mod grid_traversal;
 mod hermite;
 /// The loader: round trips, each damage its own error, random mutations never panic.
 mod network_load;
+/// The loader's obstacle checks: each bad obstacle record refused with its own error.
+mod obstacle_validation;
+/// The loader's offset-table checks: first 0, never decreasing, last the total.
+mod offset_tables;
 /// The planner against Bellman–Ford, an edge scan for pop-ups and the work bound.
 mod planner;
+/// The pop-up grid search: neighbouring cells within the clearance, an f64 brute force.
+mod popup_grid_search;
+/// Pop-up shapes: the radius limit, simple polygons of any vertex count.
+mod popup_validation;
 /// Collision predicates against sampling and exact rational references.
 mod predicates;
 /// Bad input and budgets: over-budget reports, overlapping records, huge pop-ups, non-finite
@@ -20,3 +28,5 @@ mod predicates;
 mod robustness;
 /// The core's f32 sine and cosine against f64.
 mod trig;
+/// Counted work never below independently recomputed lower bounds.
+mod work_lower_bounds;

@@ -4,9 +4,10 @@
 //! (unknown weather or landmark, NaN or out-of-range qualities, a full override table) are
 //! refused with an error and change nothing.
 
+use host_tests::damage::{check_offset_rules_refused, OffsetTable};
 use host_tests::{cases, scenarios, Rng};
 use skyroute::network::format::{Header, ProvenanceRecord};
-use skyroute::network::image_checksum;
+use skyroute::network::{image_checksum, Section};
 use skyroute::planner::{Goal, PlanError, Popup, Query, Search};
 use skyroute::{LoadError, Network, Planner, Vec2};
 
@@ -185,6 +186,32 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
         }
     }
     Ok(())
+}
+
+/// The chain offsets (edge `e` owns elements `offsets[e] .. offsets[e + 1]`) must start at 0,
+/// never decrease and end at the element count: each rule broken on its own is refused as
+/// `BadOffsets` at the offending index (the same damages as the edge and cell offsets get in
+/// `core::offset_tables`).
+#[test]
+fn chain_offsets_must_start_at_zero_never_decrease_and_end_at_the_element_count() {
+    let good = network();
+    let net = Network::from_bytes(&good).expect("the undamaged image loads");
+    let l = *net.landmark().unwrap();
+    let rosettes = landmark_record_at(&good) + 52 + 12 * l.landmark_count as usize;
+    let table = OffsetTable {
+        section: Section::ChainOffsets,
+        at: rosettes + 4 * (l.landmark_count * l.weather_count * l.directions) as usize,
+        count: net.edge_count(),
+        total: l.element_count,
+    };
+    for e in 0..net.edge_count() {
+        assert_eq!(
+            table.offset(&good, e),
+            net.chain_elements(e).start,
+            "the table is where we think"
+        );
+    }
+    check_offset_rules_refused(&good, &table);
 }
 
 #[test]
