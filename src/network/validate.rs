@@ -168,7 +168,7 @@ impl<'a> Network<'a> {
                 OBSTACLE_CIRCLE => o.circle[2] > 0.0,
                 _ => false,
             };
-            if !ok || o.bbox[0] > o.bbox[2] || o.bbox[1] > o.bbox[3] {
+            if !ok || o.bbox[0] > o.bbox[2] || o.bbox[1] > o.bbox[3] || !self.box_encloses(&o) {
                 return Err(LoadError::BadObstacle { obstacle: i });
             }
         }
@@ -180,6 +180,28 @@ impl<'a> Network<'a> {
             });
         }
         Ok(())
+    }
+
+    /// Whether obstacle `o`'s stored box encloses its geometry: every point of a polygon, the
+    /// whole disc of a circle (`centre ± radius` in f32, as the writer computes it). The
+    /// planner skips an obstacle whose box a primitive's misses, so a box too small would hide
+    /// part of the obstacle. A polygon's point range is checked before this is called.
+    fn box_encloses(&self, o: &ObstacleRecord) -> bool {
+        let inside =
+            |x: f32, y: f32| o.bbox[0] <= x && x <= o.bbox[2] && o.bbox[1] <= y && y <= o.bbox[3];
+        match o.kind {
+            OBSTACLE_POLYGON => {
+                (o.first_point..o.first_point.saturating_add(o.point_count)).all(|k| {
+                    self.record::<PointRecord>(self.layout.points, PointRecord::SIZE, k as usize)
+                        .is_some_and(|p| inside(p.x, p.y))
+                })
+            }
+            OBSTACLE_CIRCLE => {
+                let [x, y, r] = o.circle;
+                inside(x - r, y - r) && inside(x + r, y + r)
+            }
+            _ => false,
+        }
     }
 
     pub(super) fn validate_grid(&self) -> Result<(), LoadError> {

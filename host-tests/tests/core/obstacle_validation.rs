@@ -160,11 +160,53 @@ fn unordered_bounding_boxes_are_refused() {
             );
         }
     }
-    // A box of zero width is ordered (min == max) and loads.
+}
+
+/// The planner skips an obstacle whose box a primitive's box misses, so a stored box that does
+/// not enclose its polygon or disc would hide part of the obstacle: refused, on every side, by
+/// as little as a float step (a zero-width box included); the box the writer computed loads.
+#[test]
+fn bounding_boxes_that_do_not_enclose_their_obstacle_are_refused() {
+    let im = image();
+    for obstacle in [0usize, 1, 2] {
+        for side in 0..4usize {
+            let at = im.field(obstacle, BBOX + 4 * side);
+            let v = im.get_f32(at);
+            // Min sides move up, max sides down: the box shrinks by one float step.
+            let shrunk = if side < 2 {
+                f32::from_bits(if v >= 0.0 {
+                    v.to_bits() + 1
+                } else {
+                    v.to_bits() - 1
+                })
+            } else {
+                f32::from_bits(if v > 0.0 {
+                    v.to_bits() - 1
+                } else {
+                    v.to_bits() + 1
+                })
+            };
+            let e = im.load_damaged(|b| im.put_f32(b, at, shrunk)).unwrap_err();
+            assert_eq!(
+                e,
+                LoadError::BadObstacle {
+                    obstacle: obstacle as u32
+                },
+                "obstacle {obstacle} side {side}"
+            );
+        }
+    }
+    // A zero-width box (min == max: ordered, but no disc fits in it).
     let lo = im.field(2, BBOX);
     let hi = im.field(2, BBOX + 8);
-    im.load_damaged(|b| im.put_f32(b, hi, im.get_f32(lo)))
-        .expect("min == max is ordered");
+    let e = im
+        .load_damaged(|b| im.put_f32(b, hi, im.get_f32(lo)))
+        .unwrap_err();
+    assert_eq!(e, LoadError::BadObstacle { obstacle: 2 });
+    // Grown boxes are conservative and load.
+    let at = im.field(2, BBOX + 8);
+    im.load_damaged(|b| im.put_f32(b, at, im.get_f32(at) + 1.0))
+        .expect("a larger box encloses the disc");
 }
 
 #[test]
@@ -237,12 +279,16 @@ fn polygon_point_ranges_not_back_to_back_are_refused() {
             index: im.point_count - 1
         }
     );
-    // Both polygons gone (relabelled circles with a valid radius and box): 8 points unused.
+    // Both polygons gone (relabelled circles of 1 m at their boxes' centres, so the boxes
+    // enclose them): 8 points unused.
     let e = im
         .load_damaged(|b| {
             for o in [0, 1] {
                 b[im.field(o, KIND)] = 1;
-                im.put_f32(b, im.field(o, CIRCLE + 8), 10.0);
+                let corner = |k: usize| im.get_f32(im.field(o, BBOX + 4 * k));
+                im.put_f32(b, im.field(o, CIRCLE), 0.5 * (corner(0) + corner(2)));
+                im.put_f32(b, im.field(o, CIRCLE + 4), 0.5 * (corner(1) + corner(3)));
+                im.put_f32(b, im.field(o, CIRCLE + 8), 1.0);
             }
         })
         .unwrap_err();
