@@ -20,7 +20,8 @@ const EXIT_CODES: &str = "Exit codes:
   0  success
   1  bad input: the message names the file, and for scenarios the feature and the field
      (a corrupt network, a scenario that does not match its network, an endpoint or pop-up
-     off the network's map, a start inside a no-fly zone, an output path naming an input)
+     off the network's map, a start inside a no-fly zone, an output path naming an input,
+     a build parameter beyond its limits: see `skyroute build --help`)
   2  usage: an unknown option or a malformed value (clap's message)
   3  no route exists: the message names the leg and why (for a landmark scenario, the proof
      when the scenario's numbers alone rule every route out)
@@ -28,16 +29,16 @@ Outputs are written to a temporary file and renamed, so a failure leaves no part
 
 /// The builder's limits, for `build --help` and the README.
 const BUILD_LIMITS: &str =
-    "Limits (checked before anything large is allocated; exit code 1 names the file
-and the field, or the option):
-  the scenario's positions span at most 1000 km a side in its local frame;
-  roadmap: sample spacing at least 1 m, and at most 1 048 576 sample candidates
-    (2 x area / spacing^2);
+    "Limits (each checked before the allocation it bounds; exit code 1, and the
+message names the file and the field, or the option):
+  roadmap: the scenario's positions span at most 1000 km a side in its local frame;
+    sample spacing at least 1 m; at most 1 048 576 sample candidates (2 x area / spacing^2)
+  landmark: the landmarks, start and goal span at most 1000 km a side
   the grid index has at most 4 194 304 cells (its cell: --grid-cell, by default twice
-    the turn radius for roadmaps, 4000 m for terrain, 2000 m for landmarks);
-  the network has at least one vertex.
-Every option's value must be a finite number; lengths positive (--node-spacing and
---node-margin may be 0).";
+    the turn radius for roadmaps, 4000 m for terrain, 2000 m for landmarks)
+  the network has at least one vertex
+Option values must be finite numbers, lengths positive (--node-spacing and --node-margin
+may be 0); a malformed value is a usage error, exit code 2.";
 
 /// Scenarios in, preprocessed networks out.
 #[derive(Parser)]

@@ -211,6 +211,36 @@ fn a_network_without_vertices_is_refused() {
 }
 
 #[test]
+fn build_help_states_the_limits() {
+    let o = skyroute(&["build", "--help"]);
+    let help = common::stdout(&o);
+    let spaced = |n: u64| {
+        let d = n.to_string();
+        let mut out = String::new();
+        for (i, c) in d.chars().enumerate() {
+            if i > 0 && (d.len() - i).is_multiple_of(3) {
+                out.push(' ');
+            }
+            out.push(c);
+        }
+        out
+    };
+    let area_km = format!(
+        "{} km",
+        skyroute_prep::build_limits::MAX_AREA_SIDE_M / 1000.0
+    );
+    let spacing = format!("{} m", skyroute_prep::roadmap::MIN_SAMPLE_SPACING_M);
+    for part in [
+        spaced(MAX_GRID_CELLS),
+        spaced(skyroute_prep::roadmap::MAX_SAMPLE_CANDIDATES as u64),
+        area_km,
+        spacing,
+    ] {
+        assert!(help.contains(&part), "build --help lacks {part:?}:\n{help}");
+    }
+}
+
+#[test]
 fn the_writer_refuses_an_oversized_grid_index() {
     let pose = |x: f32| Pose {
         position: Vec2::new(x, 0.0),
