@@ -209,7 +209,11 @@ impl core::fmt::Display for WriteError {
                 f.write_str(" x ")?;
                 write_number(f, *ny)?;
                 f.write_str(" cells of ")?;
-                write_number(f, *cell as f64)?;
+                if (1e-3..1e9).contains(cell) {
+                    write!(f, "{cell}")?; // as given, without the digits of its f64 widening
+                } else {
+                    write_number(f, *cell as f64)?;
+                }
                 write!(
                     f,
                     " m exceeds the limit of {MAX_GRID_CELLS} cells (a larger grid cell makes \
