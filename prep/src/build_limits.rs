@@ -5,6 +5,7 @@
 
 use crate::local::local;
 use crate::roadmap::{candidate_count, MAX_SAMPLE_CANDIDATES, MIN_SAMPLE_SPACING_M};
+use crate::roadmap::{neighbour_pairs, MAX_NEIGHBOUR_PAIRS};
 use crate::scenario::Scenario;
 use skyroute::geometry::points_bounding_box;
 use skyroute::network::write::{encode, grid_cells, NetworkSpec, WriteError};
@@ -89,7 +90,8 @@ pub fn check_area(file: &str, lo: Vec2, hi: Vec2) -> Result<(), LimitError> {
 
 /// Roadmap mode: the sample spacing `spacing_m` (from `field`) is at least
 /// [`MIN_SAMPLE_SPACING_M`] and gives at most [`MAX_SAMPLE_CANDIDATES`] candidates over
-/// `[lo, hi]`; the neighbour radius is a finite `f32`.
+/// `[lo, hi]`; the neighbour radius is a finite `f32`; together they give at most
+/// [`MAX_NEIGHBOUR_PAIRS`] neighbour pairs (estimated by [`neighbour_pairs`]).
 pub fn check_sampling(
     file: &str,
     lo: Vec2,
@@ -130,6 +132,19 @@ pub fn check_sampling(
             format!(
                 "{} m: expected a positive finite number of metres",
                 number(radius_m)
+            ),
+        ));
+    }
+    let pairs = neighbour_pairs(lo, hi, spacing_m as f32, radius_m as f32);
+    if pairs.is_nan() || pairs > MAX_NEIGHBOUR_PAIRS {
+        return Err(invalid(
+            file,
+            &format!("{spacing_field} and {radius_field}"),
+            format!(
+                "a spacing of {} m and a neighbour radius of {} m give about {pairs:.3e} \
+                 neighbour pairs to examine, more than the limit of {MAX_NEIGHBOUR_PAIRS:.0}",
+                number(spacing_m),
+                number(radius_m),
             ),
         ));
     }

@@ -32,7 +32,9 @@ const BUILD_LIMITS: &str =
     "Limits (each checked before the allocation it bounds; exit code 1, and the
 message names the file and the field, or the option):
   roadmap: the scenario's positions span at most 1000 km a side in its local frame;
-    sample spacing at least 1 m; at most 1 048 576 sample candidates (2 x area / spacing^2)
+    sample spacing at least 1 m; at most 1 048 576 sample candidates (2 x area / spacing^2);
+    at most 33 554 432 neighbour pairs, estimated as (candidates / 2)^2 x
+    min(1, pi x neighbour radius^2 / area)
   landmark: the landmarks, start and goal span at most 1000 km a side
   the grid index has at most 4 194 304 cells (its cell: --grid-cell, by default twice
     the turn radius for roadmaps, 4000 m for terrain, 2000 m for landmarks)

@@ -249,7 +249,7 @@ fn cells(lo: Vec2, hi: Vec2, cell: f32) -> impl Iterator<Item = (i32, i32)> {
 const MAX_SAMPLE_BUCKETS: f32 = 1_048_576.0;
 
 /// The most Hammersley candidates a roadmap is built from (the scenarios in `scenarios/` use
-/// at most about 5 400): more is refused before anything is allocated.
+/// at most about 5 600): more is refused before anything is allocated.
 pub const MAX_SAMPLE_CANDIDATES: f64 = 1_048_576.0;
 
 /// The smallest sample spacing a roadmap is built with, metres.
@@ -263,6 +263,26 @@ pub fn candidate_count(lo: Vec2, hi: Vec2, spacing_m: f32) -> f64 {
     // Twice as many candidates as a square lattice of the spacing would hold; the spacing
     // filter then thins them to a Poisson-disc-like set.
     2.0 * w * h / (spacing * spacing)
+}
+
+/// The most neighbour pairs a roadmap may examine, as [`neighbour_pairs`] estimates them
+/// (each examined pair may become an edge of about 32 bytes; the scenarios in `scenarios/`
+/// estimate at most about 130 000, niendorf-urban).
+pub const MAX_NEIGHBOUR_PAIRS: f64 = 33_554_432.0;
+
+/// An estimate of the neighbour pairs [`build_roadmap`] examines: half the candidates as
+/// samples, each with the samples within `radius_m` at their mean density over the box
+/// `[lo, hi]` (all of them when the disc is larger than the box).
+pub fn neighbour_pairs(lo: Vec2, hi: Vec2, spacing_m: f32, radius_m: f32) -> f64 {
+    let samples = candidate_count(lo, hi, spacing_m) / 2.0;
+    let area = (hi.x - lo.x) as f64 * (hi.y - lo.y) as f64;
+    let disc = std::f64::consts::PI * radius_m as f64 * radius_m as f64;
+    let share = if area > 0.0 {
+        (disc / area).min(1.0)
+    } else {
+        1.0
+    };
+    samples * samples * share
 }
 
 /// Buckets of sample indices on a square grid, for neighbour queries.

@@ -136,6 +136,32 @@ fn a_spacing_that_would_need_terabytes_is_refused() {
         1,
         &["--sample-spacing", "1048576"],
     );
+    // And the neighbour pairs: 4 m ran out of memory (1.4 GB after 60 s, still growing).
+    refused(
+        &niendorf(),
+        &["--sample-spacing", "4"],
+        1,
+        &[
+            "--sample-spacing and planner.neighbour_radius_m",
+            "33554432",
+        ],
+    );
+    // A radius beyond the area connects every pair, which are few with a 200 m spacing: built.
+    let dir = TempDir::new("wide-radius");
+    let out = dir.file("wide.bin");
+    common::ok(
+        skyroute(&[
+            "build",
+            &niendorf(),
+            "-o",
+            &out,
+            "--neighbour-radius",
+            "100000",
+            "--sample-spacing",
+            "200",
+        ]),
+        "build with a 100 km neighbour radius",
+    );
 }
 
 #[test]
@@ -233,6 +259,7 @@ fn build_help_states_the_limits() {
     for part in [
         spaced(MAX_GRID_CELLS),
         spaced(skyroute_prep::roadmap::MAX_SAMPLE_CANDIDATES as u64),
+        spaced(skyroute_prep::roadmap::MAX_NEIGHBOUR_PAIRS as u64),
         area_km,
         spacing,
     ] {
