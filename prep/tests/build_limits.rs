@@ -30,8 +30,8 @@ fn move_endpoint(s: &mut Value, kind: &str, lon: f64, lat: f64) {
     }
 }
 
-/// Builds with `args` after `build SCENARIO -o OUT`; expects exit `exit` within a few seconds,
-/// a one-line message containing every one of `parts`, and no output.
+/// Builds with `args` after `build SCENARIO -o OUT`; expects exit `exit` within 5 seconds, a
+/// message containing every one of `parts`, and no output.
 fn refused(scenario: &str, args: &[&str], exit: i32, parts: &[&str]) -> String {
     let dir = TempDir::new(&format!(
         "limits-{}",
@@ -55,8 +55,9 @@ fn refused(scenario: &str, args: &[&str], exit: i32, parts: &[&str]) -> String {
 
 #[test]
 fn a_crawling_vehicle_is_refused_for_its_grid_index() {
-    // 1 mm/s: a turn radius of 0.1 µm made the default grid cell 0.2 µm, and the writer
-    // panicked with an index out of bounds after 18 s and 3 GB.
+    // 1 mm/s: a turn radius of 0.1 µm made the default grid cell 0.2 µm, and the writer's
+    // unchecked grid product wrapped: an index out of bounds after 18 s and 3 GB in a release
+    // build, a multiplication overflow in a test build.
     let dir = TempDir::new("slow-vehicle");
     let s = niendorf_with(&dir, "slow.geojson", |s| {
         s["vehicle"]["v_nominal_mps"] = 1e-3.into();
@@ -74,7 +75,7 @@ fn a_crawling_vehicle_is_refused_for_its_grid_index() {
 
 #[test]
 fn a_tiny_grid_cell_is_refused_by_option() {
-    // Both aborted on a 67 GB allocation.
+    // Both aborted on allocations of tens of gigabytes (67 to 83 GB).
     refused(
         &niendorf(),
         &["--grid-cell", "0.001"],
@@ -167,7 +168,8 @@ fn a_spacing_that_would_need_terabytes_is_refused() {
 #[test]
 fn an_area_beyond_the_limit_is_refused() {
     let dir = TempDir::new("area");
-    // A goal 60° of latitude south of the start: terabyte allocations.
+    // A goal 60° of latitude south of the start: terabyte allocations (under a 4 GB limit it
+    // ran out of memory after minutes).
     let far = niendorf_with(&dir, "far.geojson", |s| {
         move_endpoint(s, "goal", 11.648, -11.91)
     });
@@ -177,7 +179,7 @@ fn an_area_beyond_the_limit_is_refused() {
         1,
         &["far.geojson", "geometry.coordinates", "1000 km"],
     );
-    // From pole to pole: "capacity overflow".
+    // From pole to pole: "capacity overflow" (an allocation failure under a 4 GB limit).
     let poles = niendorf_with(&dir, "poles.geojson", |s| {
         move_endpoint(s, "start", 0.0, -90.0);
         move_endpoint(s, "goal", 0.0, 90.0);
