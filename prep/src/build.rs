@@ -1,13 +1,14 @@
 //! From a scenario to a network image: project to the local frame, build the mode's network,
 //! encode it.
 
+use crate::build_limits::{check_area, check_grid, check_sampling, encode_checked, landmark_box};
 use crate::frame::LocalFrame;
 use crate::landmark::{build_landmark_network, LandmarkNetwork};
 use crate::roadmap::{build_roadmap, CollisionCheck, Roadmap, RoadmapInput, RoadmapParams};
 use crate::scenario::{Mode, Scenario};
 use crate::terrain::{build_terrain_graph, TerrainGraph, TerrainParams};
 use skyroute::network::format::ProvenanceRecord;
-use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec};
+use skyroute::network::write::{EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec};
 use skyroute::network::write::{LandmarkSiteSpec, LandmarkSpec};
 use skyroute::Pose;
 use std::fmt;
@@ -53,8 +54,6 @@ pub enum BuildError {
     Missing(String, &'static str),
     /// The scenario's mode is not built yet.
     UnsupportedMode(String, Mode),
-    /// The encoder refused the network.
-    Encode(String, skyroute::network::write::WriteError),
     /// The DEM could not be read.
     Dem(crate::dem::DemError),
     /// The terrain graph could not be built: (scenario file, why).
@@ -66,6 +65,15 @@ pub enum BuildError {
     /// Terrain mode: the scenario has a no-fly zone or threat, which terrain networks cannot
     /// hold: (scenario file, the feature's label).
     ZoneInTerrain(String, String),
+    /// Out of the builder's limits ([`crate::build_limits`]), no vertices, or refused by the
+    /// writer.
+    Limit(crate::build_limits::LimitError),
+}
+
+impl From<crate::build_limits::LimitError> for BuildError {
+    fn from(e: crate::build_limits::LimitError) -> Self {
+        BuildError::Limit(e)
+    }
 }
 
 impl fmt::Display for BuildError {
@@ -78,7 +86,6 @@ impl fmt::Display for BuildError {
                 f,
                 "{file}: planner.mode: {mode:?} networks are not built yet"
             ),
-            BuildError::Encode(file, e) => write!(f, "{file}: {e}"),
             BuildError::Dem(e) => write!(f, "{e}"),
             BuildError::Terrain(file, e) => write!(f, "{file}: terrain: {e}"),
             BuildError::Landmark(e) => write!(f, "{e}"),
@@ -89,6 +96,7 @@ impl fmt::Display for BuildError {
                  network that left it out would fly through it; remove it from the scenario or \
                  give it as a `popup` feature"
             ),
+            BuildError::Limit(e) => write!(f, "{e}"),
         }
     }
 }
@@ -143,16 +151,24 @@ fn build_roadmap_network(
         v.ok_or_else(|| BuildError::Missing(file.clone(), field))
     };
     let turn_radius = s.vehicle.turn_radius_m() as f32;
+    let spacing = match options.sample_spacing_m {
+        Some(v) => (v as f64, "--sample-spacing"),
+        None => (
+            need(p.sample_spacing_m, "planner.sample_spacing_m")?,
+            "planner.sample_spacing_m",
+        ),
+    };
+    let radius = match options.neighbour_radius_m {
+        Some(v) => (v as f64, "--neighbour-radius"),
+        None => (
+            need(p.neighbour_radius_m, "planner.neighbour_radius_m")?,
+            "planner.neighbour_radius_m",
+        ),
+    };
     let params = RoadmapParams {
         turn_radius_m: turn_radius,
-        sample_spacing_m: options.sample_spacing_m.map_or_else(
-            || need(p.sample_spacing_m, "planner.sample_spacing_m").map(|v| v as f32),
-            Ok,
-        )?,
-        neighbour_radius_m: options.neighbour_radius_m.map_or_else(
-            || need(p.neighbour_radius_m, "planner.neighbour_radius_m").map(|v| v as f32),
-            Ok,
-        )?,
+        sample_spacing_m: spacing.0 as f32,
+        neighbour_radius_m: radius.0 as f32,
         k_nearest_fallback: p.k_nearest_fallback.unwrap_or(8) as usize,
         allow_ccc: p.allow_ccc.unwrap_or(true),
         clearance_m: p.clearance_m.unwrap_or(0.0) as f32,
@@ -170,6 +186,23 @@ fn build_roadmap_network(
     let (lo, hi) = skyroute::geometry::points_bounding_box(
         s.positions().map(|(lon, lat)| local(&frame, lon, lat)),
     );
+    check_area(&file, lo, hi)?;
+    check_sampling(&file, lo, hi, spacing, radius)?;
+    let grid_cell = options.grid_cell_m.unwrap_or(2.0 * turn_radius);
+    let grid_field = if options.grid_cell_m.is_some() {
+        "--grid-cell"
+    } else {
+        "vehicle.v_nominal_mps and vehicle.a_lat_max_mps2 (the default grid cell is twice the \
+         turn radius v_nominal_mps² / a_lat_max_mps2)"
+    };
+    // The vertices lie in [lo, hi]: the writer's grid has at most these cells.
+    check_grid(
+        &file,
+        grid_field,
+        grid_cell,
+        (lo, hi),
+        4.0 * turn_radius + grid_cell,
+    )?;
     let input = RoadmapInput {
         area_min: lo,
         area_max: hi,
@@ -186,12 +219,13 @@ fn build_roadmap_network(
         vertices: roadmap.vertices.clone(),
         edges: roadmap.edges.clone(),
         obstacles: obstacles.clone(),
-        grid_cell_m: options.grid_cell_m.unwrap_or(2.0 * turn_radius),
+        grid_cell_m: grid_cell,
         landmark: None,
         terrain: None,
         provenance,
     };
-    let bytes = encode(&spec).map_err(|e| BuildError::Encode(file, e))?;
+    let why = "every sample lies within planner.clearance_m of a no-fly zone or threat";
+    let bytes = encode_checked(&spec, &file, grid_field, why)?;
     Ok(Built {
         bytes,
         frame,
@@ -274,7 +308,14 @@ fn build_terrain(
         }),
         provenance,
     };
-    let bytes = encode(&spec).map_err(|e| BuildError::Encode(file, e))?;
+    let grid_field = if options.grid_cell_m.is_some() {
+        "--grid-cell"
+    } else {
+        "terrain.dem (its extent, in the default grid cell of 4000 m)"
+    };
+    let why = "no corner of terrain blocked at terrain.altitude_m or an --altitude-levels level \
+               gives a node";
+    let bytes = encode_checked(&spec, &file, grid_field, why)?;
     Ok(Built {
         bytes,
         frame,
@@ -296,12 +337,24 @@ fn build_landmark(
     provenance: Vec<ProvenanceRecord>,
 ) -> Result<Built, BuildError> {
     let file = s.path.display().to_string();
+    let cell = options.grid_cell_m.unwrap_or(2000.0);
+    let grid_field = if options.grid_cell_m.is_some() {
+        "--grid-cell"
+    } else {
+        "geometry.coordinates (their extent, in the default grid cell of 2000 m)"
+    };
+    let (lo, hi) = landmark_box(s);
+    check_area(&file, lo, hi)?;
+    // The grid covers about the landmarks and endpoints grown by a cell, and more: refused
+    // here before the build, what fits is checked exactly by the writer.
+    check_grid(&file, grid_field, cell, (lo, hi), cell)?;
     let net = build_landmark_network(s, progress).map_err(BuildError::Landmark)?;
     let frame = net.frame.unwrap_or_else(|| s.local_frame());
-    let mut spec = landmark_spec(&net, options.grid_cell_m.unwrap_or(2000.0), &frame)
+    let mut spec = landmark_spec(&net, cell, &frame)
         .map_err(|field| BuildError::Missing(file.clone(), field))?;
     spec.provenance = provenance;
-    let bytes = encode(&spec).map_err(|e| BuildError::Encode(file, e))?;
+    let why = "the scenario has no landmarks, start or goal";
+    let bytes = encode_checked(&spec, &file, grid_field, why)?;
     Ok(Built {
         bytes,
         frame,

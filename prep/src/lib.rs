@@ -1,6 +1,7 @@
 //! skyroute's ground tool: reads mission scenarios, builds preprocessed networks for the onboard
 //! core, and lets a person see and check them.
 pub mod build;
+pub mod build_limits;
 pub mod dem;
 pub mod export;
 pub mod frame;

@@ -20,11 +20,27 @@ const EXIT_CODES: &str = "Exit codes:
   0  success
   1  bad input: the message names the file, and for scenarios the feature and the field
      (a corrupt network, a scenario that does not match its network, an endpoint or pop-up
-     off the network's map, a start inside a no-fly zone, an output path naming an input)
+     off the network's map, a start inside a no-fly zone, an output path naming an input,
+     a build parameter beyond its limits: see `skyroute build --help`)
   2  usage: an unknown option or a malformed value (clap's message)
   3  no route exists: the message names the leg and why (for a landmark scenario, the proof
      when the scenario's numbers alone rule every route out)
 Outputs are written to a temporary file and renamed, so a failure leaves no partial file.";
+
+/// The builder's limits, for `build --help` and the README.
+const BUILD_LIMITS: &str =
+    "Limits (each checked before the allocation it bounds; exit code 1, and the
+message names the file and the field, or the option):
+  roadmap: the scenario's positions span at most 1000 km a side in its local frame;
+    sample spacing at least 1 m; at most 1 048 576 sample candidates (2 x area / spacing^2);
+    at most 33 554 432 neighbour pairs, estimated as (candidates / 2)^2 x
+    min(1, pi x neighbour radius^2 / area)
+  landmark: the landmarks, start and goal span at most 1000 km a side
+  the grid index has at most 4 194 304 cells (its cell: --grid-cell, by default twice
+    the turn radius for roadmaps, 4000 m for terrain, 2000 m for landmarks)
+  the network has at least one vertex
+Option values must be finite numbers, lengths positive (--node-spacing and --node-margin
+may be 0); a malformed value is a usage error, exit code 2.";
 
 /// Scenarios in, preprocessed networks out.
 #[derive(Parser)]
@@ -43,37 +59,40 @@ enum Command {
         output: PathBuf,
     },
     /// Build a scenario's network and write it as a network image.
+    #[command(after_help = BUILD_LIMITS)]
     Build {
         /// The scenario (GeoJSON).
         scenario: PathBuf,
         /// Where to write the network.
         #[arg(short, long)]
         output: PathBuf,
-        /// Override planner.sample_spacing_m.
-        #[arg(long)]
+        /// Override planner.sample_spacing_m (at least 1 m).
+        #[arg(long, value_parser = parse_radius, allow_hyphen_values = true)]
         sample_spacing: Option<f32>,
         /// Override planner.neighbour_radius_m.
-        #[arg(long)]
+        #[arg(long, value_parser = parse_radius, allow_hyphen_values = true)]
         neighbour_radius: Option<f32>,
         /// Check edges with the paper's discretisation (planner.arc_step_m) instead of exactly.
         #[arg(long)]
         discretised: bool,
-        /// Side of a grid-index cell, metres (default: twice the turn radius; terrain 4000).
-        #[arg(long)]
+        /// Side of a grid-index cell, metres (default: twice the turn radius; terrain 4000;
+        /// landmark 2000).
+        #[arg(long, value_parser = parse_radius, allow_hyphen_values = true)]
         grid_cell: Option<f32>,
         /// Terrain mode: drop nodes closer than this to a kept one, metres (default 0).
-        #[arg(long)]
+        #[arg(long, value_parser = parse_non_negative, allow_hyphen_values = true)]
         node_spacing: Option<f64>,
         /// Terrain mode: the longest edge tried, metres (default 10000).
-        #[arg(long)]
+        #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
         max_edge: Option<f64>,
         /// Terrain mode: extra offset of a node from its corner beyond the widening, metres
         /// (default 1; more leaves room for turn arcs).
-        #[arg(long)]
+        #[arg(long, value_parser = parse_non_negative, allow_hyphen_values = true)]
         node_margin: Option<f64>,
         /// Terrain mode: further flight altitudes to place nodes for, so the aircraft can change
-        /// altitude in flight (comma-separated metres, e.g. 650,700,850).
-        #[arg(long, value_delimiter = ',')]
+        /// altitude in flight (comma-separated metres, e.g. 650,700,850; finite, and below sea
+        /// level allowed as for terrain.altitude_m).
+        #[arg(long, value_delimiter = ',', value_parser = parse_finite, allow_hyphen_values = true)]
         altitude_levels: Vec<f64>,
         /// Replace a self-intersecting no-fly polygon by its convex hull (which forbids all it
         /// did, and possibly more) instead of refusing the scenario; a warning names it.
@@ -186,6 +205,27 @@ fn parse_radius(s: &str) -> Result<f32, String> {
     match s.trim().parse::<f32>() {
         Ok(r) if r.is_finite() && r > 0.0 => Ok(r),
         _ => Err(format!("expected a positive number of metres, got {s:?}")),
+    }
+}
+
+fn parse_positive(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err(format!("expected a positive number of metres, got {s:?}")),
+    }
+}
+
+fn parse_non_negative(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        _ => Err(format!("expected a number of metres, 0 or more, got {s:?}")),
+    }
+}
+
+fn parse_finite(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(format!("expected a finite number of metres, got {s:?}")),
     }
 }
 

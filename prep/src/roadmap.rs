@@ -137,7 +137,14 @@ struct ObstacleIndex<'a> {
     cell: f32,
     /// Obstacle indices by bucket `(column, row)`.
     buckets: std::collections::HashMap<(i32, i32), Vec<u32>>,
+    /// Obstacles whose box spans more than [`MAX_OBSTACLE_BUCKETS`] buckets: returned by every
+    /// query (then tested against the query box) instead of being bucketed.
+    large: Vec<u32>,
 }
+
+/// The most buckets one obstacle is entered in; a larger one goes to `ObstacleIndex::large`,
+/// so that a no-fly zone or threat of hundreds of kilometres cannot fill the memory.
+const MAX_OBSTACLE_BUCKETS: f32 = 65_536.0;
 
 /// Side of an obstacle bucket, metres: a few turn radii, the size of a typical query box.
 const OBSTACLE_CELL_M: f32 = 100.0;
@@ -153,7 +160,14 @@ impl<'a> ObstacleIndex<'a> {
             .collect::<Vec<_>>();
         let cell = OBSTACLE_CELL_M;
         let mut buckets: std::collections::HashMap<(i32, i32), Vec<u32>> = Default::default();
+        let mut large = Vec::new();
         for (i, (_, lo, hi)) in items.iter().enumerate() {
+            let span = ((hi.x - lo.x) / cell + 2.0) * ((hi.y - lo.y) / cell + 2.0);
+            // A NaN span counts as large too.
+            if span.is_nan() || span > MAX_OBSTACLE_BUCKETS {
+                large.push(i as u32);
+                continue;
+            }
             for key in cells(*lo, *hi, cell) {
                 buckets.entry(key).or_default().push(i as u32);
             }
@@ -162,6 +176,7 @@ impl<'a> ObstacleIndex<'a> {
             items,
             cell,
             buckets,
+            large,
         }
     }
 
@@ -176,6 +191,7 @@ impl<'a> ObstacleIndex<'a> {
             cells(qlo, qhi, self.cell)
                 .filter_map(|k| self.buckets.get(&k))
                 .flatten()
+                .chain(&self.large)
                 .copied()
                 .collect()
         } else {
@@ -229,6 +245,46 @@ fn cells(lo: Vec2, hi: Vec2, cell: f32) -> impl Iterator<Item = (i32, i32)> {
     (y0..=y1).flat_map(move |y| (x0..=x1).map(move |x| (x, y)))
 }
 
+/// About the most buckets a [`SampleGrid`] has.
+const MAX_SAMPLE_BUCKETS: f32 = 1_048_576.0;
+
+/// The most Hammersley candidates a roadmap is built from (the scenarios in `scenarios/` use
+/// at most about 5 600): more is refused before anything is allocated.
+pub const MAX_SAMPLE_CANDIDATES: f64 = 1_048_576.0;
+
+/// The smallest sample spacing a roadmap is built with, metres.
+pub const MIN_SAMPLE_SPACING_M: f64 = 1.0;
+
+/// How many Hammersley candidates [`build_roadmap`] generates over the box `[lo, hi]` with
+/// spacing `spacing_m`, before rounding up (NaN or infinite for a degenerate input).
+pub fn candidate_count(lo: Vec2, hi: Vec2, spacing_m: f32) -> f64 {
+    let (w, h) = ((hi.x - lo.x) as f64, (hi.y - lo.y) as f64);
+    let spacing = spacing_m as f64;
+    // Twice as many candidates as a square lattice of the spacing would hold; the spacing
+    // filter then thins them to a Poisson-disc-like set.
+    2.0 * w * h / (spacing * spacing)
+}
+
+/// The most neighbour pairs a roadmap may examine, as [`neighbour_pairs`] estimates them
+/// (each examined pair may become an edge of about 32 bytes; the scenarios in `scenarios/`
+/// estimate at most about 130 000, niendorf-urban).
+pub const MAX_NEIGHBOUR_PAIRS: f64 = 33_554_432.0;
+
+/// An estimate of the neighbour pairs [`build_roadmap`] examines: half the candidates as
+/// samples, each with the samples within `radius_m` at their mean density over the box
+/// `[lo, hi]` (all of them when the disc is larger than the box).
+pub fn neighbour_pairs(lo: Vec2, hi: Vec2, spacing_m: f32, radius_m: f32) -> f64 {
+    let samples = candidate_count(lo, hi, spacing_m) / 2.0;
+    let area = (hi.x - lo.x) as f64 * (hi.y - lo.y) as f64;
+    let disc = std::f64::consts::PI * radius_m as f64 * radius_m as f64;
+    let share = if area > 0.0 {
+        (disc / area).min(1.0)
+    } else {
+        1.0
+    };
+    samples * samples * share
+}
+
 /// Buckets of sample indices on a square grid, for neighbour queries.
 struct SampleGrid {
     origin: Vec2,
@@ -240,6 +296,10 @@ struct SampleGrid {
 
 impl SampleGrid {
     fn new(points: &[Vec2], lo: Vec2, hi: Vec2, cell: f32) -> Self {
+        // A cell wider than asked keeps every query a superset (radius ≤ cell) and the results
+        // the same (they are filtered by distance); it bounds the buckets to about
+        // MAX_SAMPLE_BUCKETS plus a row and a column.
+        let cell = cell.max(((hi.x - lo.x) * (hi.y - lo.y) / MAX_SAMPLE_BUCKETS).sqrt());
         let nx = (((hi.x - lo.x) / cell).ceil() as usize).max(1);
         let ny = (((hi.y - lo.y) / cell).ceil() as usize).max(1);
         let mut g = Self {
@@ -281,10 +341,8 @@ pub fn build_roadmap(
     let obstacles = ObstacleIndex::new(&input.obstacles);
     let (lo, hi) = (input.area_min, input.area_max);
     let (w, h) = ((hi.x - lo.x) as f64, (hi.y - lo.y) as f64);
-    let spacing = params.sample_spacing_m as f64;
-    // Twice as many candidates as a square lattice of the spacing would hold; the spacing
-    // filter then thins them to a Poisson-disc-like set.
-    let candidates = ((2.0 * w * h / (spacing * spacing)).ceil() as u64).max(1);
+    // The caller has checked it against MAX_SAMPLE_CANDIDATES (`crate::build`).
+    let candidates = (candidate_count(lo, hi, params.sample_spacing_m).ceil() as u64).max(1);
     let mut state = params.seed;
     let shift = [
         splitmix(&mut state),

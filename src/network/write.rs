@@ -164,6 +164,32 @@ pub enum WriteError {
     /// Landmark mode: the tables do not match the vertices and edges, or a piece cannot be
     /// built.
     BadLandmark(&'static str),
+    /// The grid index's cell side is not a positive finite number of metres.
+    BadGridCell(f32),
+    /// The grid index would have more than [`MAX_GRID_CELLS`] cells: (cell side, columns,
+    /// rows), the counts as computed (possibly beyond any integer type).
+    GridTooLarge(f32, f64, f64),
+}
+
+/// The most cells the writer gives a grid index (4 Mi: 16 MiB of offsets in the image). A grid
+/// of more cells is refused with [`WriteError::GridTooLarge`] before anything is allocated.
+pub const MAX_GRID_CELLS: u64 = 1 << 22;
+
+/// The columns and rows of a grid index of side `cell` over a box of `width` × `height`
+/// metres, as [`encode`] computes them (f32, rounded up, at least 1), or why it is refused.
+pub fn grid_cells(cell: f32, width: f32, height: f32) -> Result<(u32, u32), WriteError> {
+    if !(cell.is_finite() && cell > 0.0) {
+        return Err(WriteError::BadGridCell(cell));
+    }
+    let (nx, ny) = (
+        (width / cell).ceil().max(1.0),
+        (height / cell).ceil().max(1.0),
+    );
+    // NaN fails the comparison and is refused too.
+    if !(nx as f64 * ny as f64 <= MAX_GRID_CELLS as f64) {
+        return Err(WriteError::GridTooLarge(cell, nx as f64, ny as f64));
+    }
+    Ok((nx as u32, ny as u32))
 }
 
 impl core::fmt::Display for WriteError {
@@ -174,11 +200,40 @@ impl core::fmt::Display for WriteError {
             WriteError::Invalid(e) => write!(f, "the network does not validate: {e}"),
             WriteError::BadTerrain(what) => write!(f, "terrain network: {what}"),
             WriteError::BadLandmark(what) => write!(f, "landmark network: {what}"),
+            WriteError::BadGridCell(cell) => {
+                write!(f, "grid cell {cell} m is not a positive finite size")
+            }
+            WriteError::GridTooLarge(cell, nx, ny) => {
+                f.write_str("a grid index of ")?;
+                write_number(f, *nx)?;
+                f.write_str(" x ")?;
+                write_number(f, *ny)?;
+                f.write_str(" cells of ")?;
+                if (1e-3..1e9).contains(cell) {
+                    write!(f, "{cell}")?; // as given, without the digits of its f64 widening
+                } else {
+                    write_number(f, *cell as f64)?;
+                }
+                write!(
+                    f,
+                    " m exceeds the limit of {MAX_GRID_CELLS} cells (a larger grid cell makes \
+                     fewer)"
+                )
+            }
         }
     }
 }
 
 impl std::error::Error for WriteError {}
+
+/// `x` in scientific notation when very small or very large, else as it is.
+fn write_number(f: &mut core::fmt::Formatter<'_>, x: f64) -> core::fmt::Result {
+    if x != 0.0 && !(1e-3..1e9).contains(&x.abs()) {
+        write!(f, "{x:.4e}")
+    } else {
+        write!(f, "{x}")
+    }
+}
 
 fn count(n: usize, what: &'static str) -> Result<u32, WriteError> {
     u32::try_from(n).map_err(|_| WriteError::TooLarge(what))
@@ -562,9 +617,9 @@ impl GridIndex {
             }
         }
         let origin = Vec2::new(lo.x - reach, lo.y - reach);
-        let nx = (((hi.x - lo.x + 2.0 * reach) / cell).ceil() as u32).max(1);
-        let ny = (((hi.y - lo.y + 2.0 * reach) / cell).ceil() as u32).max(1);
-        let mut cells: Vec<Vec<u32>> = vec![Vec::new(); (nx * ny) as usize];
+        let (nx, ny) = grid_cells(cell, hi.x - lo.x + 2.0 * reach, hi.y - lo.y + 2.0 * reach)?;
+        // At most MAX_GRID_CELLS: the product fits.
+        let mut cells: Vec<Vec<u32>> = vec![Vec::new(); nx as usize * ny as usize];
         let margin = 1e-3 * cell + 0.01;
         let cx = |v: f32| (((v - origin.x) / cell).floor().max(0.0) as u32).min(nx - 1);
         let cy = |v: f32| (((v - origin.y) / cell).floor().max(0.0) as u32).min(ny - 1);
