@@ -2,9 +2,11 @@
 //! core, and lets a person see and check them.
 pub mod build;
 pub mod build_limits;
+pub mod capacity;
 pub mod dem;
 pub mod export;
 pub mod frame;
+pub mod info;
 pub mod landmark;
 pub mod landmark_mission;
 pub mod landmark_reach;

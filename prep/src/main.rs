@@ -137,6 +137,13 @@ enum Command {
         #[arg(short, long)]
         output: PathBuf,
     },
+    /// Describe a network image: mode, counts and bytes, what it records of its scenario, the
+    /// planner capacities (`V`, `E`) and RAM it needs onboard, and the worst-case work of a
+    /// query and of a pop-up.
+    Info {
+        /// The network image.
+        network: PathBuf,
+    },
     /// Write a network image as JSON (vertices, edges with their lines and arcs, obstacles) in
     /// its local frame, for other tools.
     Export {
@@ -647,6 +654,12 @@ fn run(cli: Cli) -> CliResult {
             output: &output,
         }),
         Command::Demo { output } => demo_command(&output),
+        Command::Info { network } => {
+            let bytes =
+                std::fs::read(&network).map_err(|e| format!("{}: {e}", network.display()))?;
+            print!("{}", skyroute_prep::info::describe(&network, &bytes)?);
+            Ok(())
+        }
         Command::Export {
             network,
             output,

@@ -25,6 +25,20 @@ fn build_plan_export_render_end_to_end() {
         skyroute(&["plan", &net, "--scenario", &scenario, "-o", &route]),
         "plan",
     );
+    let o = ok(skyroute(&["info", &net]), "info");
+    for part in [
+        "roadmap network, format v3",
+        "1445 vertices, 18342 edges, 60 obstacles",
+        "V >= 1445 (search states), E >= 18342",
+        "provenance: 63 digests",
+        "worst-case work: a query",
+    ] {
+        assert!(
+            stdout(&o).contains(part),
+            "info lacks {part:?}: {}",
+            stdout(&o)
+        );
+    }
     let o = ok(skyroute(&["export", &net, "-o", &json]), "export");
     assert!(stdout(&o).contains("exported"), "{}", stdout(&o));
 
@@ -130,6 +144,7 @@ fn help_works_on_every_command() {
         &["plan", "--help"],
         &["export", "--help"],
         &["render", "--help"],
+        &["info", "--help"],
         &["help", "render"],
     ] {
         let o = ok(skyroute(args), &args.join(" "));

@@ -357,21 +357,14 @@ fn config_for(network: &Network<'_>) -> PlannerConfig {
     }
 }
 
-/// The firmware planner's size for capacities known only at run time, from the sizes of a few
-/// instances (they grow linearly in `V` and `E`). Exact up to alignment padding.
+/// The firmware planner's size for its capacities ([`skyroute_prep::capacity::planner_bytes`]).
 fn planner_bytes(v: usize, e: usize) -> usize {
-    use std::mem::size_of;
-    const K: usize = 1024;
-    let base = size_of::<Planner<'_, 0, 0, P_CAP, R_CAP>>();
-    let per_vertex = size_of::<Planner<'_, K, 0, P_CAP, R_CAP>>() - base;
-    let per_edge = size_of::<Planner<'_, 0, K, P_CAP, R_CAP>>() - base;
-    base + (per_vertex * v).div_ceil(K) + (per_edge * e).div_ceil(K)
+    skyroute_prep::capacity::planner_bytes::<P_CAP, R_CAP>(v, e)
 }
 
-/// `n` rounded up a little: +1/16, to a multiple of `step`.
+/// `n` with the firmware's headroom ([`skyroute_prep::capacity::with_headroom`]).
 fn capacity(n: u32, step: usize) -> usize {
-    let n = n as usize;
-    (n + n / 16 + 1).div_ceil(step) * step
+    skyroute_prep::capacity::with_headroom(n as usize, step)
 }
 
 /// An `f32` literal that reads back as exactly the same value.

@@ -1,0 +1,120 @@
+//! `skyroute info`: what a network image holds and what it needs onboard — its mode, counts and
+//! bytes, the provenance it records, the planner capacities and RAM, the worst-case work of a
+//! query and of a pop-up.
+
+use crate::capacity::{needs, planner_bytes, with_headroom, FIRMWARE_POPUPS, FIRMWARE_ROUTE};
+use crate::mission::HostPlanner;
+use skyroute::network::format::FORMAT_VERSION;
+use skyroute::network::Mode;
+use skyroute::{Network, Planner};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The report of `skyroute info` for the image `bytes` read from `path`. Errors name the file.
+pub fn describe(path: &Path, bytes: &[u8]) -> Result<String, String> {
+    let net = Network::from_bytes(bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    let h = *net.header();
+    let mut out = String::new();
+    let w = &mut out;
+    let _ = writeln!(
+        w,
+        "{}: {} network, format v{FORMAT_VERSION}, {} bytes",
+        path.display(),
+        net.mode().name(),
+        bytes.len()
+    );
+    let _ = writeln!(
+        w,
+        "  {} vertices, {} edges, {} obstacles ({} polygon points)",
+        h.vertex_count, h.edge_count, h.obstacle_count, h.obstacle_point_count
+    );
+    let (lo, hi) = net.extent();
+    let _ = writeln!(
+        w,
+        "  frame origin {:.6}°N {:.6}°E; extent {:.1} x {:.1} km; turn radius {} m, clearance {} m",
+        h.origin_lat_deg,
+        h.origin_lon_deg,
+        (hi.x - lo.x) / 1000.0,
+        (hi.y - lo.y) / 1000.0,
+        h.turn_radius_m,
+        h.clearance_m
+    );
+    let _ = writeln!(
+        w,
+        "  pop-up grid index: {} x {} cells of {} m, {} entries (at most {} in a cell)",
+        h.grid_nx,
+        h.grid_ny,
+        h.grid_cell_m,
+        h.grid_entry_count,
+        net.max_cell_entries()
+    );
+    mode_section(w, &net);
+    let _ = writeln!(
+        w,
+        "  provenance: {} digests of what it was built from (checked by `skyroute plan`)",
+        h.provenance_count
+    );
+    onboard(w, bytes, &net);
+    Ok(out)
+}
+
+/// The mode's own section.
+fn mode_section(w: &mut String, net: &Network) {
+    match net.mode() {
+        Mode::Roadmap | Mode::Unknown(_) => {}
+        Mode::Terrain => {
+            if let (Some(t), Some(g)) = (net.terrain(), net.terrain_grid()) {
+                let _ = writeln!(
+                    w,
+                    "  terrain: elevation grid {} x {} cells of {:.1} m; built for altitude {} m, \
+                     safety height {} m; band half-width {} m",
+                    g.cols, g.rows, g.cell, t.altitude_m, t.safety_height_m, t.widen_m
+                );
+            }
+        }
+        Mode::Landmark => {
+            if let Some(l) = net.landmark() {
+                let _ = writeln!(
+                    w,
+                    "  landmarks: {} x {} overflight directions, {} weather{}, {} line elements \
+                     (at most {} Hermite pieces an edge), nominal speed {} m/s",
+                    l.landmark_count,
+                    l.directions,
+                    l.weather_count,
+                    if l.weather_count == 1 { "" } else { "s" },
+                    l.element_count,
+                    net.max_chain_pieces(),
+                    l.v_nominal
+                );
+            }
+        }
+    }
+}
+
+/// The capacities and RAM a planner needs, and the worst-case work of its operations.
+fn onboard(w: &mut String, bytes: &[u8], net: &Network) {
+    const P: usize = FIRMWARE_POPUPS;
+    const R: usize = FIRMWARE_ROUTE;
+    let n = needs(net);
+    let (v, e) = (with_headroom(n.states, 64), with_headroom(n.edges, 256));
+    let _ = writeln!(
+        w,
+        "  onboard: Planner<V, E, P, R> needs V >= {} (search states), E >= {}; with P = {P} \
+         pop-ups and R = {R} route primitives it takes about {} bytes of RAM (the firmware \
+         example's headroom, V = {v}, E = {e}: {} bytes; sizes as laid out on this host, a \
+         32-bit target's a little less); the image stays in flash",
+        n.states,
+        n.edges,
+        planner_bytes::<P, R>(n.states, n.edges),
+        planner_bytes::<P, R>(v, e)
+    );
+    let mut p: Box<HostPlanner> = Box::new(Planner::new());
+    if p.load(bytes).is_ok() {
+        let _ = writeln!(
+            w,
+            "  worst-case work: a query {}, adding a pop-up {} (counted units, docs/BENCHMARKS.md)",
+            p.worst_case_work(),
+            p.worst_case_popup_work()
+        );
+    }
+}
