@@ -115,9 +115,13 @@ install_missing() {
             rustup component add "$c"
         fi
     done
-    if ! command -v qemu-system-arm >/dev/null; then
+    # Debian packages: QEMU for the firmware, GDAL's ogrinfo for the GeoJSON route check.
+    local packages=()
+    command -v qemu-system-arm >/dev/null || packages+=(qemu-system-arm)
+    command -v ogrinfo >/dev/null || packages+=(gdal-bin)
+    if [[ ${#packages[@]} -gt 0 ]]; then
         as_root apt-get update
-        as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y qemu-system-arm
+        as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y "${packages[@]}"
     fi
     if ! command -v defmt-print >/dev/null; then
         cargo install defmt-print --locked
@@ -131,6 +135,7 @@ install_missing() {
     echo "rustc: $(rustc --version)"
     echo "qemu:  ${qemu_version%%$'\n'*}"
     echo "defmt-print: $(defmt-print --version)"
+    echo "gdal:  $(ogrinfo --version)"
 }
 
 fmt_check() {

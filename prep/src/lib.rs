@@ -17,6 +17,7 @@ pub mod plan_checks;
 pub mod provenance;
 pub mod render;
 pub mod roadmap;
+pub mod route_geojson;
 pub mod route_json;
 pub mod scenario;
 pub mod terrain;

@@ -10,6 +10,7 @@ use skyroute_prep::mission::{plan_mission_with, LocalPopup, MissionOptions};
 use skyroute_prep::output::{refuse_overwriting_inputs, write_atomically};
 use skyroute_prep::plan_checks::{check_query, gather_popups, PopupInput, PopupSource};
 use skyroute_prep::provenance::check_binding;
+use skyroute_prep::route_geojson::{route_geojson, RouteFormat};
 use skyroute_prep::scenario;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -133,7 +134,8 @@ enum Command {
         /// `build --hull-repair`).
         #[arg(long)]
         hull_repair: bool,
-        /// Where to write the route (JSON).
+        /// Where to write the route: `.json` the detailed route file (local frame, every
+        /// primitive), `.geojson` RFC 7946 GeoJSON (lon/lat, a feature per leg and pop-up).
         #[arg(short, long)]
         output: PathBuf,
     },
@@ -395,6 +397,7 @@ fn popups_json(
 fn plan_command(req: &PlanRequest) -> CliResult {
     let t0 = Instant::now();
     refuse_overwriting_inputs(req.output, &[req.network, req.scenario])?;
+    let format = RouteFormat::of(req.output)?;
     let bytes =
         std::fs::read(req.network).map_err(|e| format!("{}: {e}", req.network.display()))?;
     let net = skyroute::Network::from_bytes(&bytes)
@@ -435,7 +438,14 @@ fn plan_command(req: &PlanRequest) -> CliResult {
     };
     json["popups"] = popups_json(&popups, &frame);
     json["scenario_popups_applied"] = serde_json::json!(req.scenario_popups);
-    write_atomically(req.output, serde_json::to_string_pretty(&json)?.as_bytes())?;
+    if let Some(t) = net.terrain() {
+        json["altitude_m"] = serde_json::json!(t.altitude_m);
+    }
+    let text = match format {
+        RouteFormat::Detailed => serde_json::to_string_pretty(&json)?,
+        RouteFormat::GeoJson => serde_json::to_string(&route_geojson(&json)?)?,
+    };
+    write_atomically(req.output, text.as_bytes())?;
     Ok(())
 }
 
