@@ -14,6 +14,7 @@ pub mod local;
 pub mod mission;
 pub mod output;
 pub mod plan_checks;
+pub mod plan_cli;
 pub mod provenance;
 pub mod render;
 pub mod roadmap;

@@ -178,16 +178,20 @@ fn truncated_network_gives_one_line_naming_the_file() {
     ok(skyroute(&["build", &scenario, "-o", &net]), "build");
     let bytes = std::fs::read(&net).unwrap();
     std::fs::write(&cut, &bytes[..bytes.len() / 3]).unwrap();
-    let out = dir.file("x.out");
-    for args in [
-        vec!["export", &cut, "-o", &out],
-        vec!["render", &cut, "-o", &out],
-        vec!["plan", &cut, "--scenario", &scenario, "-o", &out],
+    // (`plan` picks its format by the extension: a route file ends in .json.)
+    let (out, route) = (dir.file("x.out"), dir.file("x.json"));
+    for (args, written) in [
+        (vec!["export", &cut, "-o", &out], &out),
+        (vec!["render", &cut, "-o", &out], &out),
+        (
+            vec!["plan", &cut, "--scenario", &scenario, "-o", &route],
+            &route,
+        ),
     ] {
         let line = one_line_error(&skyroute(&args));
         assert!(line.contains(&cut), "{args:?}: {line}");
         assert!(line.contains("truncated"), "{args:?}: {line}");
-        assert!(!Path::new(&out).exists(), "{args:?} wrote {out}");
+        assert!(!Path::new(written).exists(), "{args:?} wrote {written}");
     }
     // Not a network at all, and a missing file.
     std::fs::write(&cut, b"hello").unwrap();

@@ -1,0 +1,244 @@
+//! `skyroute plan`: check the scenario against the network (`crate::provenance`,
+//! `crate::plan_checks`), apply the pop-ups, plan with the onboard core (missions, or the
+//! landmark route), and write the route file in the format its extension names.
+
+use crate::landmark_mission::{landmark_route_json, plan_landmark, LandmarkPlanError};
+use crate::landmark_reach::no_route_proof;
+use crate::local::local;
+use crate::mission::{plan_mission_with, LocalPopup, MissionOptions};
+use crate::output::{refuse_overwriting_inputs, write_atomically};
+use crate::plan_checks::{check_query, gather_popups, PopupInput, PopupSource};
+use crate::provenance::check_binding;
+use crate::route_geojson::{route_geojson, RouteFormat};
+use crate::scenario;
+use std::path::Path;
+use std::time::Instant;
+
+/// What a command returns: any error, reported by `main` (exit 1, or 3 for [`NoRoute`]).
+pub type CliResult = Result<(), Box<dyn std::error::Error>>;
+
+/// A planning failure in which no route exists (exit code 3), as opposed to bad input.
+#[derive(Debug)]
+pub struct NoRoute(pub String);
+
+impl std::fmt::Display for NoRoute {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for NoRoute {}
+
+/// What `skyroute plan` was asked.
+pub struct PlanRequest<'a> {
+    pub network: &'a Path,
+    pub scenario: &'a Path,
+    pub popups: &'a [(f64, f64, f64)],
+    pub scenario_popups: bool,
+    pub connect_radius_m: Option<f32>,
+    pub weather: Option<&'a str>,
+    pub hull_repair: bool,
+    pub output: &'a Path,
+}
+
+/// The route file's record of the pop-ups a plan applied.
+fn popups_json(popups: &[PopupInput], frame: &crate::frame::LocalFrame) -> serde_json::Value {
+    popups
+        .iter()
+        .map(|p| {
+            let c = local(frame, p.lon, p.lat);
+            serde_json::json!({
+                "name": p.name,
+                "source": match p.source {
+                    PopupSource::Scenario => "scenario",
+                    PopupSource::CommandLine => "--popup",
+                },
+                "lon": p.lon,
+                "lat": p.lat,
+                "radius_m": p.radius_m,
+                "probability": p.probability,
+                "centre": [c.x, c.y],
+            })
+        })
+        .collect()
+}
+
+/// `skyroute plan`.
+pub fn plan_command(req: &PlanRequest) -> CliResult {
+    let t0 = Instant::now();
+    refuse_overwriting_inputs(req.output, &[req.network, req.scenario])?;
+    let format = RouteFormat::of(req.output)?;
+    let bytes =
+        std::fs::read(req.network).map_err(|e| format!("{}: {e}", req.network.display()))?;
+    let net = skyroute::Network::from_bytes(&bytes)
+        .map_err(|e| format!("{}: {e}", req.network.display()))?;
+    if let (Some(w), None) = (req.weather, net.landmark()) {
+        return Err(format!(
+            "--weather {w}: {} is not a landmark network, so it has no weather",
+            req.network.display()
+        )
+        .into());
+    }
+    let s = load_scenario(req.scenario, req.hull_repair)?;
+    let on = || format!("{} on {}", req.scenario.display(), req.network.display());
+    check_binding(&s, &net).map_err(|e| format!("{}: {e}", on()))?;
+    let frame = crate::export::network_frame(&net);
+    let popups = gather_popups(&s, req.popups, req.scenario_popups);
+    check_query(&s, &net, &frame, &popups).map_err(|e| format!("{}: {e}", on()))?;
+    for p in &popups {
+        println!(
+            "  {} (lon {}, lat {}, radius {} m{}) applied",
+            p.name,
+            p.lon,
+            p.lat,
+            p.radius_m,
+            p.probability
+                .map_or(String::new(), |q| format!(", appears with p = {q}"))
+        );
+    }
+    let local_popups: Vec<LocalPopup> = popups.iter().map(|p| p.local(&frame)).collect();
+    // `check_binding` has established that the scenario's mode is the network's.
+    let mut json = match s.planner.mode {
+        scenario::Mode::Landmark => {
+            plan_landmark_route(req, &s, &bytes, &frame, &local_popups, t0)?
+        }
+        scenario::Mode::Roadmap | scenario::Mode::Terrain => {
+            plan_mission_route(req, &s, &bytes, &frame, &local_popups, t0)?
+        }
+    };
+    json["popups"] = popups_json(&popups, &frame);
+    json["scenario_popups_applied"] = serde_json::json!(req.scenario_popups);
+    if let Some(t) = net.terrain() {
+        json["altitude_m"] = serde_json::json!(t.altitude_m);
+    }
+    let text = match format {
+        RouteFormat::Detailed => serde_json::to_string_pretty(&json)?,
+        RouteFormat::GeoJson => serde_json::to_string(&route_geojson(&json)?)?,
+    };
+    write_atomically(req.output, text.as_bytes())?;
+    Ok(())
+}
+
+/// `skyroute plan` on a landmark network: the route file's JSON.
+fn plan_landmark_route(
+    req: &PlanRequest,
+    s: &scenario::Scenario,
+    bytes: &[u8],
+    frame: &crate::frame::LocalFrame,
+    popups: &[LocalPopup],
+    t0: Instant,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    let on = format!("{} on {}", req.scenario.display(), req.network.display());
+    let r = match plan_landmark(bytes, s, req.weather, popups) {
+        Ok(r) => r,
+        Err(LandmarkPlanError::Plan(e)) => {
+            let w = req
+                .weather
+                .and_then(|name| s.weather.iter().position(|x| x == name))
+                .unwrap_or(0);
+            let why = match no_route_proof(s, w, frame) {
+                Some(proof) => format!("no route can exist: {proof}"),
+                None => format!(
+                    "straight legs within range could connect the start to the goal, but no \
+                     flyable chain of the network does ({e})"
+                ),
+            };
+            let weather = s.weather.get(w).map_or("?", String::as_str);
+            return Err(Box::new(NoRoute(format!(
+                "{on}: no navigable route from the start to the goal in weather {weather}: {why}"
+            ))));
+        }
+        Err(e) => return Err(format!("{on}: {e}").into()),
+    };
+    for o in &r.overflights {
+        println!(
+            "  over {} heading {:5.1}°: q {:.2}, range {:.1} km, next leg {:.1} km",
+            o.landmark,
+            o.heading_deg,
+            o.quality,
+            o.range_m / 1000.0,
+            o.leg_m / 1000.0
+        );
+    }
+    println!(
+        "planned {} in weather {}: {:.1} km over {} overflights, {} Hermite pieces, work {} \
+         ({} of {} edges leaving overflights not navigable), {:.3} s -> {}",
+        s.name,
+        r.weather,
+        r.summary.length / 1000.0,
+        r.overflights.len(),
+        r.summary.primitives,
+        r.summary.work.total(),
+        r.pruned.0,
+        r.pruned.1,
+        t0.elapsed().as_secs_f64(),
+        req.output.display()
+    );
+    Ok(landmark_route_json(&r, bytes, frame, &s.name))
+}
+
+/// `skyroute plan` on a roadmap or terrain network: the route file's JSON.
+fn plan_mission_route(
+    req: &PlanRequest,
+    s: &scenario::Scenario,
+    bytes: &[u8],
+    frame: &crate::frame::LocalFrame,
+    popups: &[LocalPopup],
+    t0: Instant,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    let options = MissionOptions {
+        connect_radius_m: req.connect_radius_m,
+    };
+    let m = plan_mission_with(bytes, s, frame, popups, &options).map_err(
+        |e| -> Box<dyn std::error::Error> {
+            let message = format!("{}: {e}", req.scenario.display());
+            if e.is_bad_input() {
+                message.into()
+            } else {
+                Box::new(NoRoute(message))
+            }
+        },
+    )?;
+    for l in &m.legs {
+        println!(
+            "  {} -> {}: {:.1} m ({:.1} m before post-processing), {} network edges, work {}{}",
+            l.from,
+            l.to,
+            l.summary.length,
+            l.planned_length,
+            l.summary.network_edges,
+            l.summary.work.total(),
+            if l.widened {
+                "; connected beyond the network's radius to the nearest vertices"
+            } else {
+                ""
+            }
+        );
+    }
+    println!(
+        "planned {}: {:.1} m over {} legs ({} core queries to choose headings), {:.2} s -> {}",
+        s.name,
+        m.length,
+        m.legs.len(),
+        m.queries,
+        t0.elapsed().as_secs_f64(),
+        req.output.display()
+    );
+    Ok(crate::route_json::mission_json(&m, frame, &s.name))
+}
+
+/// Reads a scenario, repairing self-intersecting no-fly polygons by their hulls when asked (and
+/// saying so).
+pub fn load_scenario(
+    path: &Path,
+    hull_repair: bool,
+) -> Result<scenario::Scenario, Box<dyn std::error::Error>> {
+    let options = scenario::ParseOptions {
+        hull_self_intersecting_no_fly: hull_repair,
+    };
+    let s = scenario::load_with(path, &options)?;
+    for w in &s.warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(s)
+}
