@@ -385,14 +385,13 @@ fn mission_stages(scenario: &Scenario, frame: &LocalFrame) -> Result<Vec<Stage>,
         .goal
         .as_ref()
         .ok_or(MissionError::Missing("goal"))?;
+    // The parser refuses a start without a heading; a scenario built in code may still lack one.
+    let start_heading = start
+        .heading_deg
+        .ok_or(MissionError::Missing("start heading"))?;
     let start_pose = Pose {
         position: local(frame, start.lon, start.lat),
-        heading: local_heading(
-            frame,
-            start.lon,
-            start.lat,
-            start.heading_deg.unwrap_or(0.0),
-        ),
+        heading: local_heading(frame, start.lon, start.lat, start_heading),
     };
     let mut stages = vec![Stage {
         name: start.name.clone(),

@@ -259,3 +259,49 @@ fn self_intersecting_polygon_names_file_feature_and_field() {
     }
     assert!(!Path::new(&svg).exists());
 }
+
+/// The bad inputs of issue 15 through `skyroute build`: each is refused with exit code 1 and one
+/// line naming the file, the feature and the field, before anything is built; a byte-order mark
+/// is accepted.
+#[test]
+fn bad_scenario_inputs_are_refused_by_name() {
+    let dir = TempDir::new("badinput");
+    // Compact, with the keys in order: the start's properties are one known string.
+    let json: Value = serde_json::from_str(&std::fs::read_to_string(niendorf()).unwrap()).unwrap();
+    let text = serde_json::to_string(&json).unwrap();
+    let start = r#""heading_deg":216.5,"kind":"start","name":"P""#;
+    assert_eq!(text.matches(start).count(), 1);
+    let out = dir.file("n.bin");
+    for (name, changed, parts) in [
+        (
+            "no-heading.geojson",
+            text.replace(start, r#""kind":"start","name":"P""#),
+            &["feature ", "(P): properties.heading_deg: missing: the start needs a heading"][..],
+        ),
+        (
+            "misspelt.geojson",
+            text.replace(start, r#""heading":216.5,"kind":"start","name":"P""#),
+            &["(P): properties.heading: unknown key; expected one of kind, name, heading_deg, dist_m"],
+        ),
+        (
+            "twice.geojson",
+            text.replace(start, &format!(r#"{start},"heading_deg":10"#)),
+            &["invalid JSON: duplicate key \"heading_deg\" in features[", "].properties"],
+        ),
+    ] {
+        let path = dir.file(name);
+        std::fs::write(&path, changed).unwrap();
+        let o = skyroute(&["build", &path, "-o", &out]);
+        assert_eq!(common::code(&o), 1);
+        let line = one_line_error(&o);
+        assert!(line.contains(&path), "{line}");
+        for p in parts {
+            assert!(line.contains(p), "{line:?} lacks {p:?}");
+        }
+        assert!(!Path::new(&out).exists());
+    }
+    // A UTF-8 byte-order mark before the same scenario.
+    let bom = dir.file("bom.geojson");
+    std::fs::write(&bom, format!("\u{feff}{text}")).unwrap();
+    ok(skyroute(&["build", &bom, "-o", &out]), "build with a BOM");
+}

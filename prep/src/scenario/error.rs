@@ -21,6 +21,18 @@ impl fmt::Display for FeatureRef {
     }
 }
 
+/// `x` as messages print it: plainly (`29.5`, `-3`), but in exponent form (`1e308`,
+/// `-2.5e-12`) when it is at least 1e9 or below 1e-6 in size, where the plain form would run to
+/// hundreds of digits (`1e308` has 309).
+pub(crate) fn compact(x: f64) -> String {
+    let a = x.abs();
+    if a.is_finite() && a != 0.0 && !(1e-6..1e9).contains(&a) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
 /// What is wrong.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ErrorKind {
@@ -66,6 +78,8 @@ pub enum ErrorKind {
     UnknownMode(String),
     /// A member of `vehicle`, `planner` or `terrain` that the format does not define.
     UnknownMember,
+    /// A key of a feature's `properties` that its kind does not define; the keys it does.
+    UnknownKey(&'static [&'static str]),
     /// The geometry's type does not suit the feature's kind.
     WrongGeometry {
         /// The type required.
@@ -145,7 +159,11 @@ impl fmt::Display for ErrorKind {
             }
             ErrorKind::NotFinite(t) => write!(f, "{t} is not a finite number"),
             ErrorKind::OutOfRange { value, expected } => {
-                write!(f, "{value} is out of range: expected {expected}")
+                write!(
+                    f,
+                    "{} is out of range: expected {expected}",
+                    compact(*value)
+                )
             }
             ErrorKind::BadValue { value, expected } => {
                 write!(f, "{value:?} is not allowed: expected {expected}")
@@ -160,6 +178,9 @@ impl fmt::Display for ErrorKind {
                 "unknown planner mode {m:?}: expected one of roadmap, landmark, terrain"
             ),
             ErrorKind::UnknownMember => write!(f, "unknown member (misspelt?)"),
+            ErrorKind::UnknownKey(known) => {
+                write!(f, "unknown key; expected one of {}", known.join(", "))
+            }
             ErrorKind::WrongGeometry { expected, found } => {
                 write!(f, "expected a {expected} geometry, found {found}")
             }
@@ -201,7 +222,9 @@ impl fmt::Display for ErrorKind {
                 f,
                 "a rosette has 12 values (headings 0°, 30°, … 330°), found {n}"
             ),
-            ErrorKind::QualityOutOfRange(v) => write!(f, "quality {v} is outside [0, 1]"),
+            ErrorKind::QualityOutOfRange(v) => {
+                write!(f, "quality {} is outside [0, 1]", compact(*v))
+            }
             ErrorKind::MissingWeather(w) => write!(
                 f,
                 "no rosette for weather {w:?}, which the top-level weather lists"

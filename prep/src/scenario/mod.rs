@@ -11,18 +11,22 @@
 //! scenarios/x.geojson: line 7 column 3: invalid JSON: trailing comma
 //! ```
 //!
-//! Checked, beyond presence and type of every member: `kind` and `planner.mode` are known; unknown
-//! members of `vehicle`, `planner` and `terrain` are rejected (a misspelt parameter would
-//! otherwise be silently ignored); numbers are finite (a Python-written `NaN`/`Infinity` or an
+//! Checked, beyond presence and type of every member: no object has a key twice (JSON parsers
+//! differ on which one wins); `kind` and `planner.mode` are known; unknown members of `vehicle`,
+//! `planner` and `terrain`, and `properties` keys that the feature's kind does not define, are
+//! rejected (a misspelt parameter would otherwise be silently ignored); numbers are finite (a Python-written `NaN`/`Infinity` or an
 //! overflowing `1e999` is reported at its field, not as a bare JSON error); positions are
 //! `[lon, lat]` within ±180/±90; no-fly polygons have one closed ring with at least 3 distinct
 //! points and no self-intersection (every pair of edges checked with exact orientation
 //! predicates, touching counts); the vehicle's limits are consistent; landmark rosettes have 12
 //! values in [0, 1] for exactly the listed weathers; at most one start and one goal; and no
 //! start, goal or waypoint lies in (or on the edge of) a no-fly polygon, tested in lon/lat
-//! with an exact point-in-polygon test. Start and goal may be absent: the caller decides.
+//! with an exact point-in-polygon test. Start and goal may be absent: the caller decides; a start
+//! that is present has a `heading_deg` in every mode (no mode can take a free start heading).
 //!
-//! Members that the format does not define are ignored at the top level and in `properties`.
+//! Members that the format does not define are ignored at the top level (GeoJSON allows foreign
+//! members there) and in a feature outside `properties`. A UTF-8 byte-order mark at the start
+//! of the text is skipped.
 
 mod error;
 mod features;
@@ -76,6 +80,9 @@ pub fn parse_with(
     path: &Path,
     options: &ParseOptions,
 ) -> Result<Scenario, ScenarioError> {
+    // A UTF-8 byte-order mark (which some Windows editors write) is not JSON, and serde_json
+    // would report it as "expected value" at line 1 column 1: one at the very start is skipped.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let root = parse_json(text, path)?;
     Parser {
         file: path,
@@ -87,3 +94,5 @@ pub fn parse_with(
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_inputs;

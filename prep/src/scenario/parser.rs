@@ -49,6 +49,21 @@ struct Seen {
     placed: Vec<Placed>,
 }
 
+/// The `properties` keys that features of `kind` define (`scenarios/README.md`), in the order
+/// messages list them; `None` for an unknown kind. Any other key is refused (a misspelt
+/// `heading` or `heigth` would otherwise be ignored).
+fn property_keys(kind: &str) -> Option<&'static [&'static str]> {
+    Some(match kind {
+        "no_fly" => &["kind", "name"],
+        "landmark" => &["kind", "name", "d_max_m", "quality"],
+        "start" => &["kind", "name", "heading_deg", "dist_m"],
+        "goal" | "waypoint" => &["kind", "name", "heading_deg"],
+        "threat" => &["kind", "name", "radius_m"],
+        "popup" => &["kind", "name", "radius_m", "probability"],
+        _ => return None,
+    })
+}
+
 impl Parser<'_> {
     pub(super) fn err(&self, at: &At, field: impl Into<String>, kind: ErrorKind) -> ScenarioError {
         ScenarioError::new(self.file, at.feature.clone(), field, kind)
@@ -337,6 +352,11 @@ impl Parser<'_> {
         }
         let kind_v = self.req(&at, props, "kind", "properties.kind")?;
         let kind = self.string(&at, kind_v, "properties.kind")?;
+        let known = property_keys(kind)
+            .ok_or_else(|| self.err(&at, "properties.kind", ErrorKind::UnknownKind(kind.into())))?;
+        if let Some(k) = props.keys().find(|k| !known.contains(&k.as_str())) {
+            return Err(self.err(&at, format!("properties.{k}"), ErrorKind::UnknownKey(known)));
+        }
         let geometry = self.req(&at, f, "geometry", "geometry")?;
         let geometry = self.object(&at, geometry, "geometry")?;
         match kind {
@@ -360,6 +380,16 @@ impl Parser<'_> {
             }
             "start" | "goal" | "waypoint" => {
                 let e = self.endpoint(&at, props, geometry, name)?;
+                // No mode takes a free start heading: the core plans from one start pose, and a
+                // landmark network's start vertex has one heading. So a start without one is
+                // refused here rather than flown in some default direction.
+                if kind == "start" && e.heading_deg.is_none() {
+                    return Err(self.err(
+                        &at,
+                        "properties.heading_deg",
+                        ErrorKind::Invalid("missing: the start needs a heading".into()),
+                    ));
+                }
                 self.place_endpoint(s, seen, &at, me, kind, e)?;
             }
             "threat" => {

@@ -1,6 +1,6 @@
 //! The top-level members: `vehicle`, `planner`, `weather`, `terrain`.
 
-use super::error::ErrorKind;
+use super::error::{compact, ErrorKind};
 use super::json::describe;
 use super::parser::{Parser, R, TOP};
 use super::types::*;
@@ -52,7 +52,7 @@ impl Parser<'_> {
                 "vehicle.v_min_mps",
                 format!(
                     "{} is not positive: a fixed-wing aircraft cannot hover",
-                    veh.v_min_mps
+                    compact(veh.v_min_mps)
                 ),
             );
         }
@@ -61,7 +61,8 @@ impl Parser<'_> {
                 "vehicle.v_min_mps",
                 format!(
                     "{} exceeds v_nominal_mps {} (need v_min ≤ v_nominal ≤ v_max)",
-                    veh.v_min_mps, veh.v_nominal_mps
+                    compact(veh.v_min_mps),
+                    compact(veh.v_nominal_mps)
                 ),
             );
         }
@@ -70,7 +71,8 @@ impl Parser<'_> {
                 "vehicle.v_max_mps",
                 format!(
                     "{} is below v_nominal_mps {} (need v_min ≤ v_nominal ≤ v_max)",
-                    veh.v_max_mps, veh.v_nominal_mps
+                    compact(veh.v_max_mps),
+                    compact(veh.v_nominal_mps)
                 ),
             );
         }
@@ -79,7 +81,7 @@ impl Parser<'_> {
                 "vehicle.a_lat_max_mps2",
                 format!(
                     "{} is not positive: the aircraft could not turn",
-                    veh.a_lat_max_mps2
+                    compact(veh.a_lat_max_mps2)
                 ),
             );
         }
@@ -88,7 +90,7 @@ impl Parser<'_> {
                 "vehicle.a_long_min_mps2",
                 format!(
                     "{} is positive: the deceleration limit must be ≤ 0",
-                    veh.a_long_min_mps2
+                    compact(veh.a_long_min_mps2)
                 ),
             );
         }
@@ -97,14 +99,14 @@ impl Parser<'_> {
                 "vehicle.a_long_max_mps2",
                 format!(
                     "{} is negative: the acceleration limit must be ≥ 0",
-                    veh.a_long_max_mps2
+                    compact(veh.a_long_max_mps2)
                 ),
             );
         }
         if veh.wingspan_m <= 0.0 {
             return bad(
                 "vehicle.wingspan_m",
-                format!("{} is not positive", veh.wingspan_m),
+                format!("{} is not positive", compact(veh.wingspan_m)),
             );
         }
         Ok(veh)

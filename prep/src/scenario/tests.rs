@@ -619,7 +619,7 @@ fn endpoint_inside_no_fly() {
         &doc(&format!("{ZONE}, {}, {g}", start())),
         &["feature 2 (Q)", "goal lies inside no-fly feature 0 (Z1)"],
     );
-    let p = point("start", "P", 11.02, 48.09, "");
+    let p = point("start", "P", 11.02, 48.09, r#", "heading_deg": 0"#);
     fails(
         &doc(&format!("{ZONE}, {p}")),
         &["feature 1 (P)", "start lies inside no-fly feature 0 (Z1)"],
@@ -631,7 +631,7 @@ fn endpoint_inside_no_fly() {
 
 #[test]
 fn duplicate_start() {
-    let p2 = point("start", "P2", 10.1, 48.0, "");
+    let p2 = point("start", "P2", 10.1, 48.0, r#", "heading_deg": 0"#);
     fails(
         &doc(&format!("{}, {p2}", start())),
         &[

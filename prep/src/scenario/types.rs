@@ -188,9 +188,10 @@ pub struct Endpoint {
     pub lon: f64,
     /// Latitude, degrees.
     pub lat: f64,
-    /// Compass heading (degrees clockwise from true north, finite), `None`: any heading.
+    /// Compass heading (degrees clockwise from true north, finite), `None`: any heading (a
+    /// parsed start always has one).
     pub heading_deg: Option<f64>,
-    /// Landmark mode: the largest distance to the first landmark, m (> 0).
+    /// The start only (landmark mode): the largest distance to the first landmark, m (> 0).
     pub dist_m: Option<f64>,
 }
 
