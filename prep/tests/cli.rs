@@ -260,7 +260,7 @@ fn self_intersecting_polygon_names_file_feature_and_field() {
     assert!(!Path::new(&svg).exists());
 }
 
-/// The bad inputs of issue 15 through `skyroute build`: each is refused with exit code 1 and one
+/// Bad scenario inputs through `skyroute build`: each is refused with exit code 1 and one
 /// line naming the file, the feature and the field, before anything is built; a byte-order mark
 /// is accepted.
 #[test]

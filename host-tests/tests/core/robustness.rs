@@ -4,9 +4,8 @@
 //! returns a non-finite route, capacities of 0 and 1 never panic, and random sequences of calls
 //! with extreme values never panic and keep their work within the budget.
 //!
-//! Most of these are regression tests for defects a review of the core found (each failed
-//! before its fix: the `DEFECT n` comments describe the defect as it was); the others are edge
-//! cases not covered elsewhere (marked `EDGE CASE`).
+//! Each test pins a behaviour the core must keep (the `DEFECT n` comments name the failure it
+//! rules out); the others are edge cases not covered elsewhere (marked `EDGE CASE`).
 
 use host_tests::{cases, Rng};
 

@@ -28,7 +28,7 @@
 //! rosette's value at that heading, linearly interpolated around the 12 given headings when
 //! `directions` is not 12.
 //!
-//! **The ellipse.** The issue asks for line elements "inside the ellipse whose foci are the two
+//! **The ellipse.** Babel's method asks for line elements "inside the ellipse whose foci are the two
 //! landmarks and whose major axis is that distance". With the major axis equal to the *focal*
 //! distance `D` the ellipse degenerates to the segment `AB`, which leaves no room to fly around
 //! an obstacle or to turn, so "that distance" is read as Babel's *travel* distance: the set of

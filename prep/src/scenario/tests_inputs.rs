@@ -1,4 +1,4 @@
-//! Unit tests of the parser against bad inputs found by trying them (issue "Proof, not hope"):
+//! Unit tests of the parser against bad inputs:
 //! a start without a heading, unknown property keys, duplicate keys, a byte-order mark, huge
 //! numbers in messages, non-finite vehicle and planner numbers.
 

@@ -1,4 +1,4 @@
-//! Terrain mode (Medeiros & da Silva, issue 5): the DEM's blocked cells as a metric occupancy grid
+//! Terrain mode (Medeiros & da Silva): the DEM's blocked cells as a metric occupancy grid
 //! in the scenario's local frame, and a visibility graph around them.
 //!
 //! An aircraft flying at altitude `a_n` that must keep the safety height `a_s` above the ground
