@@ -11,7 +11,7 @@
 //! frame origin with scale 1, `prep/src/frame.rs`).
 
 use crate::frame::LocalFrame;
-use crate::render::{parse_route, Route};
+use crate::render::{route_from_json, Route};
 use serde_json::{json, Value};
 use skyroute::geometry::compass_deg_from_heading;
 use skyroute::{Primitive, Turn};
@@ -122,7 +122,7 @@ fn popup_feature(frame: &LocalFrame, p: &crate::render::PopupMark) -> Value {
 /// The RFC 7946 FeatureCollection of a detailed route file's JSON (what `skyroute plan` writes
 /// to a `.json` output). `Err` says what the route JSON lacks.
 pub fn route_geojson(route_json: &Value) -> Result<Value, String> {
-    let route: Route = parse_route(&route_json.to_string())?;
+    let route: Route = route_from_json(route_json)?;
     let (lat0, lon0) = route.origin_deg;
     let frame = LocalFrame::new(lat0, lon0);
     let altitude = route_json.get("altitude_m").and_then(Value::as_f64);

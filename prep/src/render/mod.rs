@@ -26,7 +26,7 @@ mod tests;
 
 pub use picture::{scenario_marks, EndpointMark, Picture, PopupMark, Route, RouteLeg};
 pub use png::svg_to_png;
-pub use route_file::{parse_route, primitive_from_json, read_route};
+pub use route_file::{parse_route, primitive_from_json, read_route, route_from_json};
 pub use svg::render_svg;
 
 use crate::export::{network_frame, read_network};

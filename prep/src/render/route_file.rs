@@ -48,6 +48,11 @@ pub fn primitive_from_json(v: &Value) -> Result<Primitive, String> {
 /// A route from the JSON text of a route file.
 pub fn parse_route(text: &str) -> Result<Route, String> {
     let v: Value = serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
+    route_from_json(&v)
+}
+
+/// A route from the parsed JSON of a route file.
+pub fn route_from_json(v: &Value) -> Result<Route, String> {
     let frame = v.get("frame").ok_or("frame: missing")?;
     let origin_deg = (
         num(frame, "origin_lat_deg").map_err(|e| format!("frame.{e}"))?,
