@@ -1,22 +1,17 @@
 //! The loader: a valid image round-trips; each kind of damage gets its own `LoadError`; random
 //! mutations never panic the loader or a planner using what it accepted.
 
+use host_tests::damage::fix_crc;
 use host_tests::world::world;
 use host_tests::{cases, Rng};
 use skyroute::network::format::{
     EdgeRecord, Header, ProvenanceRecord, U32Record, VertexRecord, FORMAT_VERSION,
 };
-use skyroute::network::{image_checksum, LoadError, Section};
+use skyroute::network::{LoadError, Section};
 use skyroute::planner::{Goal, Popup, Query, Search};
 use skyroute::{Network, Planner, Vec2};
 
 type TestPlanner<'n> = Planner<'n, 2048, 65536, 4, 512>;
-
-/// Rewrites the header's CRC so that a deliberate body change reaches the field checks.
-fn fix_crc(bytes: &mut [u8]) {
-    let crc = image_checksum(bytes);
-    bytes[Header::CHECKED_SIZE..Header::SIZE].copy_from_slice(&crc.to_le_bytes());
-}
 
 fn vertices_at(_bytes: &[u8]) -> usize {
     Header::SIZE

@@ -4,10 +4,10 @@
 //! (unknown weather or landmark, NaN or out-of-range qualities, a full override table) are
 //! refused with an error and change nothing.
 
-use host_tests::damage::{check_offset_rules_refused, OffsetTable};
+use host_tests::damage::{check_offset_rules_refused, fix_crc, OffsetTable};
 use host_tests::{cases, scenarios, Rng};
 use skyroute::network::format::{Header, ProvenanceRecord};
-use skyroute::network::{image_checksum, Section};
+use skyroute::network::Section;
 use skyroute::planner::{Goal, PlanError, Popup, Query, Search};
 use skyroute::{LoadError, Network, Planner, Vec2};
 
@@ -17,11 +17,6 @@ type Lp<'n> = Planner<'n, 256, 4096, 4, 256>;
 /// and shared by the tests here and in `landmark_plan` and `network_images`).
 fn network() -> Vec<u8> {
     scenarios::built("babel-I-bridged").bytes.clone()
-}
-
-fn fix_crc(bytes: &mut [u8]) {
-    let crc = image_checksum(bytes);
-    bytes[Header::CHECKED_SIZE..Header::SIZE].copy_from_slice(&crc.to_le_bytes());
 }
 
 /// Where the landmark record starts: found by its leading counts and nominal speed (10
