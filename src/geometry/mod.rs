@@ -9,6 +9,7 @@ pub mod grid;
 pub mod hermite;
 pub mod predicates;
 pub mod trig;
+pub mod voronoi;
 
 pub use dubins::{DubinsPath, DubinsWord, WordSet};
 
