@@ -28,5 +28,8 @@ mod predicates;
 mod robustness;
 /// The core's f32 sine and cosine against f64.
 mod trig;
+/// The Voronoi diagram of threat sites against an exact brute force, SciPy's CSV and closed
+/// forms for degenerate inputs; its work bound and the clipped graph's shape.
+mod voronoi;
 /// Counted work never below independently recomputed lower bounds.
 mod work_lower_bounds;

@@ -304,7 +304,7 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
         // 3 = (a, c, ∞), each across the edge of triangle 0 it names and beside the two
         // other ghosts.
         let tris = [[a, b, c], [b, a, GHOST], [c, b, GHOST], [a, c, GHOST]];
-        let nbs = [[2, 3, 1], [2, 3, 0], [1, 3, 0], [2, 1, 0]];
+        let nbs = [[2, 3, 1], [3, 2, 0], [1, 3, 0], [2, 1, 0]];
         for (t, (v, n)) in tris.iter().zip(nbs.iter()).enumerate() {
             if let (Some(tv), Some(tn)) = (self.tri.get_mut(t), self.nb.get_mut(t)) {
                 *tv = *v;
