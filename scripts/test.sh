@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The project's whole check, as CI runs it (.ci/run): installs what is missing, then
-#   format → structure check → clippy (host, thumbv7em, thumbv7em+defmt) → core docs → OMPL reference → tests →
+#   format → structure check → clippy (host, thumbv7em, thumbv7em+defmt) → core docs → OMPL and SciPy references → tests →
 #   firmware fixture → firmware build → firmware clippy → firmware under QEMU → sizes, for the
 #   roadmap (niendorf-urban, binary `roadmap`), again for terrain (medeiros-jacksboro, binary
 #   `terrain`) and for landmarks (babel-II-N, binary `landmark`: plan, lose a landmark in
@@ -130,6 +130,10 @@ install_missing() {
     if ! python3 -c 'import ompl, numpy' 2>/dev/null; then
         python3 -m pip install ompl numpy
     fi
+    # The Voronoi cross-check needs SciPy.
+    if ! python3 -c 'import scipy' 2>/dev/null; then
+        python3 -m pip install scipy
+    fi
     local qemu_version
     qemu_version=$(qemu-system-arm --version)
     echo "rustc: $(rustc --version)"
@@ -145,6 +149,10 @@ fmt_check() {
 
 ompl_reference() {
     python3 scripts/ompl_dubins_reference.py
+}
+
+scipy_voronoi_reference() {
+    python3 scripts/voronoi_reference.py
 }
 
 # Builds the niendorf-urban network with the ground tool and writes the firmware's fixture
@@ -255,6 +263,7 @@ step "clippy (skyroute, thumbv7em-none-eabihf, defmt)" \
 step "core docs (cargo doc, warnings denied)" \
     env RUSTDOCFLAGS="-D warnings" cargo doc -p skyroute --no-deps
 step "OMPL Dubins reference" ompl_reference
+step "SciPy Voronoi reference" scipy_voronoi_reference
 step "cargo test --workspace (full tier)" env SKYROUTE_TIER=full cargo test --workspace
 step "firmware fixture" fixture
 step "firmware build (release, bin roadmap)" firmware_build roadmap

@@ -67,27 +67,25 @@ pub struct Delaunay<const N: usize, const T: usize> {
 }
 
 /// The documented worst case of [`Delaunay::work`] after `n` calls of [`Delaunay::insert`]
-/// (successful or not) since [`Delaunay::clear`]: `18n² + 3n + 8`.
+/// (successful or not) since [`Delaunay::clear`]: `21n² + 10n + 8` (saturating).
 ///
-/// Argument (counted units: a duplicate comparison, a lexicographic comparison, a triangle
-/// visit, a predicate evaluation; see the counting in the source). With `m` sites already
-/// present:
-/// * duplicate scan: `m`;
-/// * while all sites are collinear: one orientation test and at most `m` comparisons;
-/// * a triangulated insertion with `s` sites present has `2s − 2` triangles: the scan visits
-///   each (1) and evaluates at most 2 predicates for it (3 per triangle); the cavity of `k ≤
-///   2s − 2` triangles has its `3k` edges examined and its `k + 2` boundary edges each checked
-///   with one orientation and one map look-up, then each of the `k + 2` new triangles is
-///   linked (2 visits): at most `3(2s−2) + 3(2s−2) + 2(2s) + 2(2s) = 20s − 12 ≤ 20s`;
-/// * the one transition from collinear to triangulated (at most once per [`Delaunay::clear`],
-///   with `m` collinear sites): one orientation, 4 new triangles, and re-insertion of the
-///   `m − 2` inner sites with `s = 3 .. m` sites present: at most `5 + Σ_{s=3}^{m} 20s ≤
-///   10m² + 10m + 5`.
+/// Counted units: a duplicate comparison, a lexicographic comparison, a triangle visit, a
+/// predicate evaluation. A call with `m` sites already present costs:
+/// * the duplicate scan: at most `m`;
+/// * while all sites are collinear: one orientation and at most `m` comparisons;
+/// * a triangulated insertion with `s` sites present (`2s − 2` triangles): the scan visits
+///   every triangle and evaluates at most 2 predicates for it, `3(2s − 2)`; the `3k` edges of
+///   the `k ≤ 2s − 2` cavity triangles are examined, `3(2s − 2)`; each of the `k + 2 ≤ 2s`
+///   boundary edges costs one orientation and one cycle check, and each new triangle two
+///   linking visits, `4·2s`: in all at most `20s − 12`, so a call costs at most `21m`;
+/// * the transition from collinear to triangulated (once: the triangulation never returns to
+///   collinear before [`Delaunay::clear`]) with `m` collinear sites: one orientation, the
+///   first 4 triangles (5), and the re-insertion of the `m − 2` inner sites with
+///   `s = 3 .. m` sites present: `Σ (20s − 12) ≤ 10m² + 10m`.
 ///
-/// Each call costs at most `m + 20m ≤ 21m` besides the transition, `m ≤ j` for the `j`-th call
-/// (`j = 0 .. n−1`): `Σ 21j ≤ 10.5 n(n − 1)`; with the transition (`m ≤ n − 1`) the total is
-/// at most `10.5n² + 10n² + 10n + 5 ≤ 21n² + 10n + 5`. The constant returned is that bound
-/// rounded up: `21n² + 10n + 8` (saturating).
+/// The `j`-th call (`j = 0 .. n − 1`, `m ≤ j`) costs at most `21j + 1` besides the transition,
+/// `Σ ≤ 10.5n² + n`; the transition adds at most `10n² + 10n + 6` (`m < n`). The total is below
+/// `21n² + 10n + 8`. A refused call costs no more than an accepted one.
 pub fn delaunay_work_bound(n: u64) -> u64 {
     n.saturating_mul(n)
         .saturating_mul(21)

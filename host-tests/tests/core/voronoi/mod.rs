@@ -16,12 +16,15 @@
 use std::collections::{BTreeSet, VecDeque};
 
 use skyroute::geometry::voronoi::{
-    delaunay_work_bound, graph_edge_bound, graph_vertex_bound, Bounds, Delaunay, GraphEdge,
-    VoronoiError, VoronoiGraph, NO_SITE,
+    delaunay_work_bound, graph_edge_bound, graph_vertex_bound, Bounds, Delaunay, VoronoiError,
+    VoronoiGraph, NO_SITE,
 };
 use skyroute::Vec2;
 
 use host_tests::{cases, Rng};
+
+/// Degenerate inputs against closed forms; garbage never panics.
+mod degenerate;
 
 const N: usize = 64;
 type Dt = Delaunay<N, { 2 * N }>;
@@ -195,7 +198,8 @@ fn brute_force_vertices(s: &[(i64, i64)]) -> Vec<(f64, f64)> {
                     continue;
                 }
                 let r = centre_rational(a, b, c);
-                let same = |q: &(i128, i128, i128)| q.0 * r.2 == r.0 * q.2 && q.1 * r.2 == r.1 * q.2;
+                let same =
+                    |q: &(i128, i128, i128)| q.0 * r.2 == r.0 * q.2 && q.1 * r.2 == r.1 * q.2;
                 if !found.iter().any(same) {
                     found.push(r);
                 }
@@ -207,6 +211,9 @@ fn brute_force_vertices(s: &[(i64, i64)]) -> Vec<(f64, f64)> {
         .map(|&(nx, ny, d)| (nx as f64 / d as f64 / 16.0, ny as f64 / d as f64 / 16.0))
         .collect()
 }
+
+/// A point in metres, f64.
+type P = (f64, f64);
 
 fn close(a: (f64, f64), b: (f64, f64), tol: f64) -> bool {
     (a.0 - b.0).hypot(a.1 - b.1) <= tol
@@ -248,13 +255,19 @@ fn check_graph(dt: &Dt, g: &Graph, b: &Bounds, ctx: &str) {
     let (vs, es) = (g.vertices(), g.edges());
     assert!(vs.len() <= graph_vertex_bound(dt.site_count()), "{ctx}");
     assert!(es.len() <= graph_edge_bound(dt.site_count()), "{ctx}");
-    let distinct: BTreeSet<(u32, u32)> = vs.iter().map(|v| (v.x.to_bits(), v.y.to_bits())).collect();
+    let distinct: BTreeSet<(u32, u32)> =
+        vs.iter().map(|v| (v.x.to_bits(), v.y.to_bits())).collect();
     assert_eq!(distinct.len(), vs.len(), "repeated vertex ({ctx})");
     for v in vs {
         let inside = v.x >= b.min.x && v.x <= b.max.x && v.y >= b.min.y && v.y <= b.max.y;
         assert!(inside, "vertex {v:?} outside the box ({ctx})");
     }
-    for corner in [b.min, b.max, Vec2::new(b.min.x, b.max.y), Vec2::new(b.max.x, b.min.y)] {
+    for corner in [
+        b.min,
+        b.max,
+        Vec2::new(b.min.x, b.max.y),
+        Vec2::new(b.max.x, b.min.y),
+    ] {
         assert!(vs.contains(&corner), "corner {corner:?} missing ({ctx})");
     }
     let mut adj = vec![Vec::new(); vs.len()];
@@ -264,7 +277,10 @@ fn check_graph(dt: &Dt, g: &Graph, b: &Bounds, ctx: &str) {
         assert_ne!(e.a, e.b, "zero-length edge ({ctx})");
         adj[e.a as usize].push(e.b as usize);
         adj[e.b as usize].push(e.a as usize);
-        let mid = ((a.x as f64 + c.x as f64) / 2.0, (a.y as f64 + c.y as f64) / 2.0);
+        let mid = (
+            (a.x as f64 + c.x as f64) / 2.0,
+            (a.y as f64 + c.y as f64) / 2.0,
+        );
         if e.border {
             let same_side = (a.x == c.x && (a.x == b.min.x || a.x == b.max.x))
                 || (a.y == c.y && (a.y == b.min.y || a.y == b.max.y));
@@ -280,7 +296,10 @@ fn check_graph(dt: &Dt, g: &Graph, b: &Bounds, ctx: &str) {
         }
     }
     let perimeter = 2.0 * ((b.max.x - b.min.x) as f64 + (b.max.y - b.min.y) as f64);
-    assert!((border_len - perimeter).abs() < 1e-3, "border {border_len} vs {perimeter} ({ctx})");
+    assert!(
+        (border_len - perimeter).abs() < 1e-3,
+        "border {border_len} vs {perimeter} ({ctx})"
+    );
     let mut seen = vec![false; vs.len()];
     let mut queue = VecDeque::from([0usize]);
     seen[0] = true;
@@ -304,10 +323,16 @@ fn check_nearest(dt: &Dt, p: (f64, f64), sites: &[u16], tol: f64, ctx: &str) {
     let own: Vec<f64> = sites.iter().map(|&i| d(site_f64(dt, i))).collect();
     let near = own.iter().cloned().fold(f64::INFINITY, f64::min);
     let far = own.iter().cloned().fold(0.0, f64::max);
-    assert!(far - near <= tol, "{p:?}: sites {sites:?} at {own:?} ({ctx})");
+    assert!(
+        far - near <= tol,
+        "{p:?}: sites {sites:?} at {own:?} ({ctx})"
+    );
     for i in 0..dt.site_count() {
         let di = d(site_f64(dt, i as u16));
-        assert!(di >= far - tol, "{p:?}: site {i} at {di} nearer than {sites:?} at {far} ({ctx})");
+        assert!(
+            di >= far - tol,
+            "{p:?}: site {i} at {di} nearer than {sites:?} at {far} ({ctx})"
+        );
     }
 }
 
@@ -334,10 +359,160 @@ fn vertices_and_edges_match_brute_force() {
         // Every reference vertex well inside the box is a graph vertex.
         for &v in &reference {
             if v.0.abs() < 1999.0 && v.1.abs() < 1999.0 {
-                let hit = g.vertices().iter().any(|w| close(v, (w.x as f64, w.y as f64), vertex_tol(v)));
+                let hit = g
+                    .vertices()
+                    .iter()
+                    .any(|w| close(v, (w.x as f64, w.y as f64), vertex_tol(v)));
                 assert!(hit, "vertex {v:?} missing from the graph ({ctx})");
             }
         }
-        assert!(dt.work() <= delaunay_work_bound(pts.len() as u64), "work ({ctx})");
+        assert!(
+            dt.work() <= delaunay_work_bound(pts.len() as u64),
+            "work ({ctx})"
+        );
+    }
+}
+
+// --------------------------------------------------------------------------------------------
+// 2. SciPy.
+
+fn scipy_csv_path() -> std::path::PathBuf {
+    match std::env::var_os("SKYROUTE_SCIPY_VORONOI_CSV") {
+        Some(p) => p.into(),
+        None => std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../target/reference/scipy_voronoi.csv"),
+    }
+}
+
+/// Our Voronoi vertices against SciPy's, as sets within `1e-4 m + 1e-6·|v|` each way: our f32
+/// rounding is `6·10⁻⁸|v|`; Qhull computes in double and merges nearly-cocircular facets, which
+/// may leave several copies of one vertex a few ulps apart (hence sets, not counts).
+#[test]
+fn vertices_match_scipy() {
+    let path = scipy_csv_path();
+    // The fast tier may run without the CSV (it says so); the full tier needs it.
+    if !path.exists() && !host_tests::full_tier() {
+        host_tests::tier::skipped(
+            "voronoi::vertices_match_scipy",
+            &format!(
+                "no SciPy reference at {}; generate it with `python3 scripts/voronoi_reference.py`",
+                path.display()
+            ),
+        );
+        return;
+    }
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| {
+        panic!(
+            "cannot read the SciPy reference {} ({e}). Generate it first with \
+             `python3 scripts/voronoi_reference.py` (needs the PyPI packages `scipy` and \
+             `numpy`), or point SKYROUTE_SCIPY_VORONOI_CSV at an existing file.",
+            path.display()
+        )
+    });
+    let mut lines = text.lines();
+    assert_eq!(lines.next().map(str::trim), Some("set,kind,x,y"));
+    // set → (sites, vertices)
+    let mut sets: Vec<(Vec<P>, Vec<P>)> = Vec::new();
+    for line in lines.filter(|l| !l.trim().is_empty()) {
+        let f: Vec<&str> = line.trim().split(',').collect();
+        assert_eq!(f.len(), 4, "bad row {line:?}");
+        let set: usize = f[0].parse().expect("set index");
+        let p = (f[2].parse().expect("x"), f[3].parse().expect("y"));
+        if sets.len() <= set {
+            sets.resize(set + 1, Default::default());
+        }
+        match f[1] {
+            "site" => sets[set].0.push(p),
+            "vertex" => sets[set].1.push(p),
+            k => panic!("unknown kind {k:?}"),
+        }
+    }
+    assert!(sets.len() >= 100, "too few site sets in {}", path.display());
+    let mut dt = Box::new(Dt::new());
+    let mut compared = 0;
+    for (i, (sites, theirs)) in sets.iter().enumerate() {
+        dt.clear();
+        for &(x, y) in sites {
+            dt.insert(Vec2::new(x as f32, y as f32))
+                .expect("distinct grid sites");
+            let back = dt.site(dt.site_count() as u32 - 1).expect("the site");
+            assert_eq!(
+                (back.x as f64, back.y as f64),
+                (x, y),
+                "set {i}: grid site moved"
+            );
+        }
+        let ours = ours_vertices(&dt);
+        let ctx = format!("set {i}: {} sites", sites.len());
+        assert_covered(&ours, theirs, "ours in SciPy's", &ctx);
+        assert_covered(theirs, &ours, "SciPy's in ours", &ctx);
+        compared += ours.len();
+    }
+    eprintln!(
+        "{} site sets, {compared} vertices agree with SciPy",
+        sets.len()
+    );
+}
+
+// --------------------------------------------------------------------------------------------
+// 4. Work.
+
+/// Inserts `pts` (grid units) in order and checks the counted work against the bound after
+/// every insertion.
+fn check_work(pts: &[(i64, i64)], what: &str) {
+    let mut dt: Box<Delaunay<512, 1024>> = Box::new(Delaunay::new());
+    for (i, &(x, y)) in pts.iter().enumerate() {
+        dt.insert(Vec2::new(m(x), m(y)))
+            .unwrap_or_else(|e| panic!("{what}: site {i}: {e}"));
+        let bound = delaunay_work_bound(i as u64 + 1);
+        assert!(
+            dt.work() <= bound,
+            "{what}: work {} > bound {bound} after {} sites",
+            dt.work(),
+            i + 1
+        );
+    }
+    eprintln!(
+        "{what}: {} sites, work {} of bound {}",
+        pts.len(),
+        dt.work(),
+        delaunay_work_bound(pts.len() as u64)
+    );
+}
+
+#[test]
+fn work_within_bound_on_random_and_adversarial_orders() {
+    let mut rng = Rng(0x5EED_0004);
+    let n = cases(200, 500) as i64;
+    // Sorted along a parabola: every new site is on the hull and sees many triangles.
+    check_work(
+        &(0..n).map(|i| (i * 16, i * i)).collect::<Vec<_>>(),
+        "parabola",
+    );
+    // Around a circle in angular order (rounded to the grid).
+    let circle: Vec<(i64, i64)> = (0..n)
+        .map(|i| {
+            let a = i as f64 / n as f64 * std::f64::consts::TAU;
+            (
+                (a.cos() * 160000.0).round() as i64,
+                (a.sin() * 160000.0).round() as i64,
+            )
+        })
+        .collect();
+    check_work(&circle, "circle");
+    // All but one on a line, then one off it: the largest re-insertion.
+    let mut line: Vec<(i64, i64)> = (0..n - 1).map(|i| (i * 7, -i * 3)).collect();
+    line.push((5, 1000));
+    check_work(&line, "line then one off it");
+    // A lattice in row order (many cocircular quadruples) and random sites.
+    let k = (n as f64).sqrt() as i64;
+    check_work(
+        &(0..k * k)
+            .map(|i| (i % k * 16, i / k * 16))
+            .collect::<Vec<_>>(),
+        "lattice",
+    );
+    for _ in 0..cases(5, 20) {
+        check_work(&uniform(&mut rng, n as usize, 16000), "random");
     }
 }
