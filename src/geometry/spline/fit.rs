@@ -35,6 +35,9 @@ pub const BISECT_STEPS: u32 = 20;
 /// candidate) and two two-corner searches (two per candidate), each at most
 /// `SCAN_STEPS + BISECT_STEPS` candidates.
 pub const SEARCH_EVALS: u64 = 5 * (SCAN_STEPS as u64 + BISECT_STEPS as u64);
+/// Most rounds of alternating lead-out and lead-in searches when no waypoint lies between
+/// them ([`fit`]'s `lead_in_and_out`).
+pub const LEAD_ROUNDS: u64 = 4;
 /// Waypoints closer than this to the previous kept vertex are skipped (a zero-length segment
 /// has no direction), relative to the coordinates' magnitude (plus 1 mm).
 const DUPLICATE_REL: f32 = 1e-6;
@@ -147,17 +150,19 @@ pub struct FitSummary {
 }
 
 /// The most corner evaluations [`fit`] does for `waypoints` waypoints (`n`):
-/// `(3n + 6)·SEARCH_EVALS + 5n + 12`. At most `2n + 3` lead-in searches (the first, one after
+/// `(3n + 6 + 2·LEAD_ROUNDS)·SEARCH_EVALS + 5n + 12 + 4·LEAD_ROUNDS`. At most `2n + 3` lead-in searches (the first, one after
 /// each waypoint the lead-in cannot reach, one after each waypoint popped) and `n + 2`
-/// lead-out searches (one per popped waypoint, plus the last); `2n + 1` checks in the sweep
+/// lead-out searches (one per popped waypoint, plus the last); when no waypoint is left
+/// between lead-in and lead-out, at most `LEAD_ROUNDS` rounds of two searches and a check of
+/// at most 4 corners; `2n + 1` checks in the sweep
 /// (each pushes or pops a waypoint), `n + 1` at the goal and 2 per corner of the final list
 /// (at most `n + 4` corners) when checking and writing it. `clear` is called at most
 /// `2(n + 4) + 1` times.
 pub fn fit_work_bound(waypoints: usize) -> u64 {
     let n = waypoints as u64;
-    (3 * n + 6)
+    (3 * n + 6 + 2 * LEAD_ROUNDS)
         .saturating_mul(SEARCH_EVALS)
-        .saturating_add(5 * n + 12)
+        .saturating_add(5 * n + 12 + 4 * LEAD_ROUNDS)
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -190,14 +195,17 @@ impl<T: CornerBound> Ctx<'_, T> {
         let theta = libm::atan2f(libm::fabsf(u1.cross(u2)), u1.dot(u2));
         let share = |v: Node| if v.tag.is_corner() { 0.5 } else { 1.0 };
         let (a1, a2) = (d1.norm() * share(prev), d2.norm() * share(next));
-        let legs = choose_legs(self.table, theta, a1, a2, self.kappa)?;
-        // Lengthen short legs by a common factor (a scaled piece has a lower curvature).
-        let min_leg = MIN_LEG_REL * magnitude(c.p);
-        let f = (min_leg / legs.s1.min(legs.s2)).max(1.0);
-        let legs = Legs {
-            s1: legs.s1 * f,
-            s2: legs.s2 * f,
-        };
+        let mag = magnitude(c.p);
+        let legs = floor_legs(choose_legs(self.table, theta, a1, a2, self.kappa)?, mag);
+        // The stored control points are rounded to f32 (each coordinate by at most ε·mag), which
+        // turns each leg's direction by up to √2·ε·mag/s: the legs are chosen again for the
+        // turn angle plus both legs' rounding, so the flown piece's angle is within the one
+        // tabulated (this matters for small turns, whose legs are short).
+        let delta = 3.0 * f32::EPSILON * mag / legs.s1.min(legs.s2);
+        let legs = floor_legs(
+            choose_legs(self.table, theta + delta, a1, a2, self.kappa)?,
+            mag,
+        );
         (legs.s1 <= a1 && legs.s2 <= a2).then_some(Corner { u1, u2, legs })
     }
 
@@ -206,6 +214,16 @@ impl<T: CornerBound> Ctx<'_, T> {
         chain
             .windows(3)
             .all(|w| matches!(w, [a, b, c] if self.eval(*a, *b, *c).is_some()))
+    }
+}
+
+/// `legs` lengthened by a common factor (a scaled piece has a lower curvature) so that the
+/// shorter is at least `MIN_LEG_REL·mag`.
+fn floor_legs(legs: Legs, mag: f32) -> Legs {
+    let f = (MIN_LEG_REL * mag / legs.s1.min(legs.s2)).max(1.0);
+    Legs {
+        s1: legs.s1 * f,
+        s2: legs.s2 * f,
     }
 }
 
@@ -430,6 +448,47 @@ fn settle<T: CornerBound, const R: usize>(
     Ok(false)
 }
 
+/// Lead-in and lead-out with no waypoint between them: the lead-out is searched against the
+/// start (as if it were a corner), the lead-in against the lead-out, then the lead-out against
+/// the last lead-in corner and so on, at most [`LEAD_ROUNDS`] rounds, until the whole chain is
+/// feasible.
+fn lead_in_and_out<T: CornerBound, const R: usize>(
+    ctx: &mut Ctx<'_, T>,
+    path: &mut HVec<Node, R>,
+    start: Node,
+    g: Node,
+    hg: Vec2,
+    h0: Vec2,
+) -> Result<(), FitError> {
+    let mut target = Node {
+        p: start.p,
+        tag: Vertex::LeadIn(0),
+    };
+    for _ in 0..LEAD_ROUNDS {
+        let lo = lead(ctx, g, -hg, target, true).ok_or(FitError::LeadOutInfeasible)?;
+        let first = *lo.nodes().first().ok_or(FitError::LeadOutInfeasible)?;
+        let li = lead(ctx, start, h0, first, false).ok_or(FitError::LeadInInfeasible)?;
+        let mut chain = [start; 6];
+        let mut n = 1;
+        for (slot, &v) in chain
+            .iter_mut()
+            .skip(1)
+            .zip(li.nodes().iter().chain(lo.nodes()).chain([&g]))
+        {
+            *slot = v;
+            n += 1;
+        }
+        if ctx.chain_ok(chain.get(..n).unwrap_or(&[])) {
+            for &v in chain.get(1..n).unwrap_or(&[]) {
+                push(path, v)?;
+            }
+            return Ok(());
+        }
+        target = *li.nodes().last().ok_or(FitError::LeadInInfeasible)?;
+    }
+    Err(FitError::LeadOutInfeasible)
+}
+
 /// Appends the lead-out corners and the goal (goal heading `hg`, unit direction of flight).
 fn finish_with_heading<T: CornerBound, const R: usize>(
     ctx: &mut Ctx<'_, T>,
@@ -442,21 +501,7 @@ fn finish_with_heading<T: CornerBound, const R: usize>(
     while let Some(&top) = path.last() {
         match top.tag {
             Vertex::LeadIn(_) => pop_lead_in(path),
-            Vertex::Start => {
-                // No waypoint left: the lead-out is searched against the start as if it were
-                // a corner, then the lead-in against the lead-out; the final check decides.
-                let pseudo = Node {
-                    p: top.p,
-                    tag: Vertex::LeadIn(0),
-                };
-                let lo = lead(ctx, g, -hg, pseudo, true).ok_or(FitError::LeadOutInfeasible)?;
-                let first = *lo.nodes().first().ok_or(FitError::LeadOutInfeasible)?;
-                let li = lead(ctx, top, h0, first, false).ok_or(FitError::LeadInInfeasible)?;
-                for &n in li.nodes().iter().chain(lo.nodes()) {
-                    push(path, n)?;
-                }
-                return push(path, g);
-            }
+            Vertex::Start => return lead_in_and_out(ctx, path, top, g, hg, h0),
             Vertex::Waypoint(_) => {
                 let prev = path.len().checked_sub(2).and_then(|i| path.get(i).copied());
                 let found = lead(ctx, g, -hg, top, true);

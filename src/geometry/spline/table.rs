@@ -14,14 +14,15 @@
 //! ## Between grid angles
 //! For `θ ≤ θ' ≤ π`, `cos θ ≥ cos θ'` and `w ≥ 0` give `D(t; θ) ≥ D(t; θ')` at every `t`, hence
 //! `κ(t; θ)·s1 ≤ κ(t; θ')·s1 · sin θ / sin θ'` and, taking maxima, `c(θ) ≤ c(θ')·sin θ / sin θ'`.
-//! In a cell `[θ_i, θ_{i+1}]` that ends at or below 90° the factor is at most 1 (sine increases),
-//! so `c(θ) ≤ c(θ_{i+1})` and `c` is non-decreasing there; in a cell that starts at or above 90°
-//! the factor is at most `sin θ_i / sin θ_{i+1}` (sine decreases). The grid step divides 90°, so
-//! no cell straddles it. [`corner_bound`] returns
-//! `max(node_i, node_{i+1}·max(1, sin θ_i / sin θ_{i+1}))`, which is never below `c(θ)` in the
-//! cell (the node values carry the margin [`TABLE_MARGIN`], which also covers the f32 rounding
-//! of this product). The host test `spline.rs` also finds `c` non-decreasing in `θ` above 90°
-//! on a fine grid; the bound does not rely on it.
+//! In a cell `[θ_i, θ_{i+1}]` [`corner_bound`] returns `node_{i+1}·sin θ / sin θ_{i+1}`, which
+//! is never below `c(θ)` (the node values carry the margin [`TABLE_MARGIN`], which also covers
+//! the f32 rounding of this product) and never above the maximum of the cell's nodes times
+//! `max(1, sin θ_i / sin θ_{i+1})`: where the cell ends at or below 90° the factor
+//! `sin θ / sin θ_{i+1}` is at most 1 (so `c` is non-decreasing there), where it starts at or
+//! above 90° it is at most `sin θ_i / sin θ_{i+1}` (the grid step divides 90°, so no cell
+//! straddles it). It is exact at the nodes and tight for small angles, where `c` is nearly
+//! proportional to `sin θ`. The host test `spline.rs` also finds `c` non-decreasing in `θ`
+//! above 90° on a fine grid; the bound does not rely on it.
 //!
 //! Leg ratios are used only at the grid's ratios: the fit sets `s2 = table_ratio(j)·s1`
 //! exactly, so no interpolation in `ρ` is needed (`c` is not monotone in `ρ`: it grows like
@@ -46,8 +47,9 @@ pub const RATIO_ONE: usize = 4;
 pub const TABLE_LEN: usize = TABLE_ANGLES * TABLE_RATIOS;
 /// Relative margin the builder adds to each sampled maximum (1 %): it covers the sampling
 /// error of the builder (below 10⁻⁹ relative, see [`build_corner_table`]), the f32 rounding of
-/// the stored values and of the lookup, and the f32 rounding of the fitted control points
-/// (below 10⁻⁴ relative for legs longer than 10⁻³ of the coordinates' magnitude).
+/// the stored values and of the lookup, the f32 rounding of the fitted legs' lengths (the fit
+/// covers the rounding of their directions by a larger turn angle) and a line of at most 10⁻⁴
+/// of its segment absorbed into a leg.
 pub const TABLE_MARGIN: f64 = 0.01;
 
 /// Read access to a corner table, wherever its values live (a static array, the network
@@ -100,16 +102,10 @@ pub fn corner_bound(table: &impl CornerBound, theta: f32, ratio: usize) -> Optio
     }
     // The cell [θ_i, θ_{i+1}] holding θ; θ = TABLE_MAX_ANGLE falls in the last cell.
     let i = ((theta / TABLE_ANGLE_STEP) as usize).min(TABLE_ANGLES - 2);
-    let lo = table.node(i, ratio)?;
     let hi = table.node(i + 1, ratio)?;
-    let (a0, a1) = (table_angle(i)?, table_angle(i + 1)?);
-    // c(θ) ≤ c(θ_{i+1})·sin θ / sin θ_{i+1} ≤ c(θ_{i+1})·max(1, sin θ_i / sin θ_{i+1}).
-    let k = if a0 + 1e-6 >= core::f32::consts::FRAC_PI_2 {
-        (trig::sin_cos(a0).0 / trig::sin_cos(a1).0).max(1.0)
-    } else {
-        1.0
-    };
-    let v = lo.max(hi * k);
+    let a1 = table_angle(i + 1)?;
+    // c(θ) ≤ c(θ_{i+1})·sin θ / sin θ_{i+1} for θ ≤ θ_{i+1} (module documentation).
+    let v = hi * (trig::sin_cos(theta).0 / trig::sin_cos(a1).0);
     (v.is_finite() && v >= 0.0).then_some(v)
 }
 
