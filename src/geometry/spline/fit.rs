@@ -9,7 +9,9 @@
 //! and on whether they are corners, so a corner below the top never needs re-checking unless
 //! the top is popped. Each waypoint is pushed and popped at most once. The lead-in corners are
 //! searched for against the vertex after them; when that vertex is popped they are searched
-//! again. The lead-out corners are searched for against the last kept vertex.
+//! again. The lead-out corners are searched for against the last kept vertex; when no
+//! waypoint is left, lead-out and lead-in are searched for against each other in turn (at
+//! most [`LEAD_ROUNDS`] rounds) until the whole chain is feasible.
 //!
 //! The list is then checked once more corner by corner (the same computation, so the same
 //! answer), every segment that is not a segment of the coarse polyline is offered to `clear`,
@@ -691,7 +693,7 @@ fn check_input(input: &FitInput, table: &impl CornerBound) -> Result<(), FitErro
 /// `out` (cleared first). `clear(points)` is asked about each segment that is not on the coarse
 /// polyline (2 points) and each corner piece's hull triangle `A, P, B` (3 points), and must say
 /// whether it is clear of hard zones. The vertex list uses a stack buffer of `R` vertices
-/// (16 bytes each). On any error `out` is unchanged. Never panics.
+/// (16 bytes each on a 32-bit target). On any error `out` is unchanged. Never panics.
 pub fn fit<const R: usize>(
     input: &FitInput,
     table: &impl CornerBound,
