@@ -20,7 +20,7 @@
 //! McLain tabulate over `(σ̂ = σ/L, â = a/L, r̂ = 1/(κ_max·L))`; here `r̂` is a pure scale (it
 //! only multiplies the legs), so the table needs the shape alone: the turn angle and the leg
 //! ratio. The table (549 `f32`, 2196 bytes) is built offline in f64
-//! ([`table::build_corner_table`], host only) and read onboard through [`CornerBound`], so its
+//! (`table::build_corner_table`, host only) and read onboard through [`CornerBound`], so its
 //! values can live in the network image.
 //!
 //! ## Choosing the legs, and the fallback

@@ -46,7 +46,7 @@ pub const RATIO_ONE: usize = 4;
 /// Number of values in a table: `TABLE_ANGLES × TABLE_RATIOS` (549 `f32`, 2196 bytes).
 pub const TABLE_LEN: usize = TABLE_ANGLES * TABLE_RATIOS;
 /// Relative margin the builder adds to each sampled maximum (1 %): it covers the sampling
-/// error of the builder (below 10⁻⁹ relative, see [`build_corner_table`]), the f32 rounding of
+/// error of the builder (below 10⁻⁹ relative, see `build_corner_table`), the f32 rounding of
 /// the stored values and of the lookup, the f32 rounding of the fitted legs' lengths (the fit
 /// covers the rounding of their directions by a larger turn angle) and a line of at most 10⁻⁴
 /// of its segment absorbed into a leg.
@@ -79,7 +79,7 @@ pub fn table_ratio(j: usize) -> Option<f32> {
 }
 
 /// Whether every node is finite and non-negative and the zero-angle row is 0 (a straight
-/// piece has no curvature): what [`super::fit`] requires of a table before using it.
+/// piece has no curvature): what [`fit`](fn@super::fit) requires of a table before using it.
 pub fn table_is_valid(table: &impl CornerBound) -> bool {
     for i in 0..TABLE_ANGLES {
         for j in 0..TABLE_RATIOS {
