@@ -1,5 +1,5 @@
 //! Planar geometry in the network's local frame: vectors, poses, line segments, circular arcs,
-//! Dubins paths and the exact collision predicates.
+//! Dubins paths, curvature-bounded cubic spline smoothing and the exact collision predicates.
 //!
 //! Everything here is `f32` and uses `libm` for transcendental functions, so it builds for a
 //! Cortex-M4F without `std`.
@@ -8,6 +8,7 @@ mod dubins;
 pub mod grid;
 pub mod hermite;
 pub mod predicates;
+pub mod spline;
 pub mod trig;
 pub mod voronoi;
 

@@ -26,6 +26,8 @@ mod predicates;
 /// Bad input and budgets: over-budget reports, overlapping records, huge pop-ups, non-finite
 /// routes, degenerate capacities and random extreme call sequences never panic.
 mod robustness;
+/// Cubic spline smoothing: the corner table and the fit against dense f64 sampling.
+mod spline;
 /// The core's f32 sine and cosine against f64.
 mod trig;
 /// The Voronoi diagram of threat sites against an exact brute force, SciPy's CSV and closed
