@@ -34,6 +34,12 @@ pub enum Section {
     ChainOffsets,
     /// Landmark mode: the chains' line elements.
     ChainElements,
+    /// Voronoi mode: the Voronoi record.
+    Voronoi,
+    /// Voronoi mode: the threat sites.
+    Threats,
+    /// Voronoi mode: the spline corner table.
+    CornerTable,
 }
 
 /// A scalar header parameter, named in [`LoadError::InvalidParameter`].
@@ -63,6 +69,12 @@ pub enum Parameter {
     /// ([`FlyLimits::is_valid`](crate::geometry::hermite::FlyLimits::is_valid)) and a finite,
     /// non-negative start range.
     Landmark,
+    /// Voronoi mode: the Voronoi record's numbers must be valid: a weight in [0, 1], a finite
+    /// positive curvature limit, a finite box of positive size, the corner table's dimensions
+    /// those of this build, every table value finite and non-negative (0 for a straight
+    /// corner) and none below the curvature of its piece at the piece's midpoint, and no
+    /// static circles (a threat is a site, not a disc).
+    Voronoi,
 }
 
 /// Why [`Network::from_bytes`](super::Network::from_bytes) rejected an image. Every variant
@@ -219,6 +231,40 @@ pub enum LoadError {
         needed: usize,
         /// The capacity `V`.
         capacity: usize,
+    },
+    /// Voronoi mode: a threat site is not finite, lies outside the network's box, or has a
+    /// radius that is not finite and positive.
+    BadThreat {
+        /// Threat index.
+        threat: u32,
+    },
+    /// Voronoi mode: more threat sites than the planner holds
+    /// ([`MAX_THREATS`](crate::planner::MAX_THREATS)), or two at the same position (checked by
+    /// [`Planner::load`](crate::planner::Planner::load), which builds their diagram).
+    ThreatSitesRefused {
+        /// Threat sites in the network.
+        threats: u32,
+        /// The first site the onboard diagram refused.
+        refused: u32,
+    },
+    /// Voronoi mode: [`Planner::load`](crate::planner::Planner::load) was given a Voronoi
+    /// network, whose state needs storage from the caller: use
+    /// [`Planner::load_voronoi`](crate::planner::Planner::load_voronoi).
+    NeedsVoronoiStorage,
+    /// [`Planner::load_voronoi`](crate::planner::Planner::load_voronoi) was given a network of
+    /// another mode: use [`Planner::load`](crate::planner::Planner::load).
+    NotVoronoi {
+        /// The network's mode code.
+        mode: u8,
+    },
+    /// Voronoi mode: the Voronoi graph stored in the image is not the one the planner builds
+    /// onboard from the same threat sites (checked by
+    /// [`Planner::load`](crate::planner::Planner::load)).
+    VoronoiMismatch {
+        /// Vertices and edges stored.
+        stored: (u32, u32),
+        /// Vertices and undirected edges built onboard.
+        built: (u32, u32),
     },
     /// Terrain mode: a line edge's band (its cells within the widening) reaches outside the
     /// elevation grid.
@@ -413,6 +459,11 @@ impl fmt::Display for LoadError {
                 "terrain search needs {needed} states (edges + start links), capacity is {capacity}"
             ),
             EdgeOutsideTerrain { .. }
+            | BadThreat { .. }
+            | ThreatSitesRefused { .. }
+            | VoronoiMismatch { .. }
+            | NeedsVoronoiStorage
+            | NotVoronoi { .. }
             | EdgeElevationUnderstated { .. }
             | LandmarkVertexCount { .. }
             | EndpointVertexMismatch { .. }
@@ -429,7 +480,7 @@ impl fmt::Display for LoadError {
 }
 
 impl LoadError {
-    /// The messages of the terrain and landmark sections' errors.
+    /// The messages of the terrain, landmark and Voronoi sections' errors.
     fn fmt_mode_section(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         use LoadError::*;
         match *self {
@@ -488,6 +539,29 @@ impl LoadError {
             EdgeOutsideGrid { edge } => {
                 write!(f, "grid index does not cover the reach of edge {edge}")
             }
+            BadThreat { threat } => write!(
+                f,
+                "threat {threat} is not finite, lies outside the box or has no positive radius"
+            ),
+            ThreatSitesRefused { threats, refused } => write!(
+                f,
+                "the onboard Voronoi diagram refuses threat {refused} of {threats} (too many, \
+                 or at the position of another)"
+            ),
+            NeedsVoronoiStorage => write!(
+                f,
+                "a Voronoi network needs the planner's Voronoi storage (Planner::load_voronoi)"
+            ),
+            NotVoronoi { mode } => write!(
+                f,
+                "the network (mode {mode}) is not a Voronoi network: load it with Planner::load"
+            ),
+            VoronoiMismatch { stored, built } => write!(
+                f,
+                "the stored Voronoi graph ({} vertices, {} edges) is not the one built onboard \
+                 ({} vertices, {} edges)",
+                stored.0, stored.1, built.0, built.1
+            ),
             // The other variants are written by `Display::fmt`, which sends only these here.
             _ => Ok(()),
         }

@@ -25,6 +25,11 @@ pub const MODE_LANDMARK: u8 = 1;
 /// Network mode: a terrain visibility graph of straight edges over an elevation table
 /// (Medeiros & da Silva); the body ends with a [`TerrainRecord`] and the table.
 pub const MODE_TERRAIN: u8 = 2;
+/// Network mode: a Voronoi graph of radar threat sites with exposure cost and curvature-bounded
+/// spline smoothing (Judd & McLain); the body ends with a [`VoronoiRecord`], the threat sites
+/// and the spline corner table. Its vertices and edges are the ground tool's Voronoi graph of
+/// the sites, which the planner rebuilds onboard and checks against them.
+pub const MODE_VORONOI: u8 = 3;
 
 /// Edge geometry code: a straight line from the source's position to the target's
 /// (terrain mode). Its params are `[length, highest elevation code along it, 0]`.
@@ -48,7 +53,7 @@ pub struct Header {
     /// [`FORMAT_VERSION`].
     #[serde(with = "postcard::fixint::le")]
     pub version: u16,
-    /// Network mode ([`MODE_ROADMAP`], [`MODE_LANDMARK`] or [`MODE_TERRAIN`]).
+    /// Network mode ([`MODE_ROADMAP`], [`MODE_LANDMARK`], [`MODE_TERRAIN`] or [`MODE_VORONOI`]).
     pub mode: u8,
     /// Reserved, zero.
     pub flags: u8,
@@ -295,6 +300,51 @@ impl LandmarkRecord {
     pub const ABSENT: u32 = u32::MAX;
 }
 
+/// Voronoi mode: what the network was built for. Follows the common sections; then come
+/// `threat_count` [`ThreatSiteRecord`]s and the corner table (`table_angles · table_ratios`
+/// [`F32Record`]s, angle-major).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct VoronoiRecord {
+    /// Number of threat sites.
+    #[serde(with = "postcard::fixint::le")]
+    pub threat_count: u32,
+    /// The weight k of length against exposure in an edge's cost k·L + (1 − k)·exposure, in
+    /// [0, 1].
+    pub threat_weight: f32,
+    /// The largest curvature the smoothed route may have, 1/m.
+    pub kappa_max: f32,
+    /// The mission box the diagram is clipped to: west, south, east, north, metres.
+    pub bounds: [f32; 4],
+    /// Turn angles in the corner table (`skyroute::geometry::spline::TABLE_ANGLES`).
+    #[serde(with = "postcard::fixint::le")]
+    pub table_angles: u32,
+    /// Leg ratios in the corner table (`skyroute::geometry::spline::TABLE_RATIOS`).
+    #[serde(with = "postcard::fixint::le")]
+    pub table_ratios: u32,
+}
+
+impl VoronoiRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 36;
+}
+
+/// Voronoi mode: a radar threat site.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ThreatSiteRecord {
+    /// East, metres.
+    pub x: f32,
+    /// North, metres.
+    pub y: f32,
+    /// The reference distance of its exposure, metres: flying at this distance from the site
+    /// costs as much exposure per metre as length.
+    pub radius: f32,
+}
+
+impl ThreatSiteRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 12;
+}
+
 /// Landmark mode: a landmark.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LandmarkSiteRecord {
@@ -431,6 +481,24 @@ mod tests {
             element_count: u32::MAX,
         };
         assert_eq!(postcard::to_stdvec(&l).unwrap().len(), LandmarkRecord::SIZE);
+        let vr = VoronoiRecord {
+            threat_count: u32::MAX,
+            threat_weight: 0.5,
+            kappa_max: 0.01,
+            bounds: [0.0; 4],
+            table_angles: 1,
+            table_ratios: 1,
+        };
+        assert_eq!(postcard::to_stdvec(&vr).unwrap().len(), VoronoiRecord::SIZE);
+        let ts = ThreatSiteRecord {
+            x: 1.0,
+            y: 2.0,
+            radius: 3.0,
+        };
+        assert_eq!(
+            postcard::to_stdvec(&ts).unwrap().len(),
+            ThreatSiteRecord::SIZE
+        );
         let site = LandmarkSiteRecord {
             x: 1.0,
             y: 2.0,

@@ -15,6 +15,7 @@ mod mode;
 mod roadmap;
 mod terrain;
 mod validate;
+mod voronoi;
 #[cfg(feature = "std")]
 pub mod write;
 
@@ -22,6 +23,7 @@ pub use crc::{crc32, crc32_parts};
 pub use error::{LoadError, Parameter, Section};
 pub use mode::Mode;
 use mode::ModeSection;
+pub use voronoi::CornerTable;
 
 use crate::geometry::predicates::PolygonView;
 use crate::geometry::{DubinsPath, DubinsWord, Pose, Vec2};
@@ -59,6 +61,11 @@ struct Layout {
     rosettes: usize,
     chain_offsets: usize,
     elements: usize,
+    /// Voronoi mode: the [`VoronoiRecord`], the threat sites and the corner table (0
+    /// otherwise).
+    voronoi: usize,
+    threats: usize,
+    corner_table: usize,
     /// The provenance records that close the body.
     provenance: usize,
     end: usize,
@@ -90,6 +97,9 @@ impl Layout {
             rosettes: 0,
             chain_offsets: 0,
             elements: 0,
+            voronoi: 0,
+            threats: 0,
+            corner_table: 0,
             provenance: 0,
             end: at,
         })
@@ -226,6 +236,9 @@ impl<'a> Network<'a> {
                 rosettes: 0,
                 chain_offsets: 0,
                 elements: 0,
+                voronoi: 0,
+                threats: 0,
+                corner_table: 0,
                 provenance: 0,
                 end: 0,
             },
@@ -287,6 +300,7 @@ impl<'a> Network<'a> {
             Mode::Roadmap => (ModeSection::Roadmap, layout),
             Mode::Terrain => terrain::read_section(bytes, layout)?,
             Mode::Landmark => landmark::read_section(bytes, layout, header.edge_count)?,
+            Mode::Voronoi => voronoi::read_section(bytes, layout)?,
             Mode::Unknown(mode) => return Err(LoadError::UnknownMode { mode }),
         };
         let layout = layout
@@ -327,7 +341,7 @@ impl<'a> Network<'a> {
         net.validate_vertices()?;
         // The mode's own tables come before the edges that index them.
         net.section = match section {
-            ModeSection::Roadmap | ModeSection::Terrain(_) => section,
+            ModeSection::Roadmap | ModeSection::Terrain(_) | ModeSection::Voronoi(_) => section,
             ModeSection::Landmark { record, .. } => ModeSection::Landmark {
                 record,
                 max_chain_pieces: net.validate_landmark_tables(&record)?,
@@ -522,7 +536,7 @@ impl<'a> Network<'a> {
         let mut start = self.vertex(e.source)?;
         match self.section {
             ModeSection::Roadmap | ModeSection::Landmark { .. } => {}
-            ModeSection::Terrain(_) => {
+            ModeSection::Terrain(_) | ModeSection::Voronoi(_) => {
                 // Terrain vertices have no heading: a line leaves towards its target.
                 let d = self.vertex(e.target)?.position - start.position;
                 start.heading = libm::atan2f(d.y, d.x);

@@ -4,7 +4,10 @@
 //! Every operation that differs between modes matches on [`Mode`] (or on the loaded section)
 //! exactly once; `docs/ADDING_A_MODE.md` lists those places.
 
-use super::format::{LandmarkRecord, TerrainRecord, MODE_LANDMARK, MODE_ROADMAP, MODE_TERRAIN};
+use super::format::{
+    LandmarkRecord, TerrainRecord, VoronoiRecord, MODE_LANDMARK, MODE_ROADMAP, MODE_TERRAIN,
+    MODE_VORONOI,
+};
 use super::LoadError;
 
 /// The kind of network: the header's `mode` byte as a type. A code this build does not know
@@ -19,6 +22,9 @@ pub enum Mode {
     /// A terrain visibility graph over an elevation table (Medeiros & da Silva):
     /// [`MODE_TERRAIN`].
     Terrain,
+    /// A Voronoi graph of radar threats with exposure cost and spline smoothing (Judd &
+    /// McLain): [`MODE_VORONOI`].
+    Voronoi,
     /// A mode code this build does not know.
     Unknown(u8),
 }
@@ -29,6 +35,7 @@ impl From<u8> for Mode {
             MODE_ROADMAP => Mode::Roadmap,
             MODE_LANDMARK => Mode::Landmark,
             MODE_TERRAIN => Mode::Terrain,
+            MODE_VORONOI => Mode::Voronoi,
             other => Mode::Unknown(other),
         }
     }
@@ -41,17 +48,19 @@ impl Mode {
             Mode::Roadmap => MODE_ROADMAP,
             Mode::Landmark => MODE_LANDMARK,
             Mode::Terrain => MODE_TERRAIN,
+            Mode::Voronoi => MODE_VORONOI,
             Mode::Unknown(code) => code,
         }
     }
 
     /// The mode's name as scenarios spell it (`planner.mode`): `roadmap`, `landmark`,
-    /// `terrain`, or `unknown`.
+    /// `terrain`, `voronoi`, or `unknown`.
     pub fn name(self) -> &'static str {
         match self {
             Mode::Roadmap => "roadmap",
             Mode::Landmark => "landmark",
             Mode::Terrain => "terrain",
+            Mode::Voronoi => "voronoi",
             Mode::Unknown(_) => "unknown",
         }
     }
@@ -79,6 +88,8 @@ pub(crate) enum ModeSection {
         /// The most Hermite pieces of any edge.
         max_chain_pieces: u32,
     },
+    /// The Voronoi record (threat sites, weight, curvature limit, box, corner table size).
+    Voronoi(VoronoiRecord),
 }
 
 impl ModeSection {
@@ -88,6 +99,7 @@ impl ModeSection {
             ModeSection::Roadmap => Mode::Roadmap,
             ModeSection::Terrain(_) => Mode::Terrain,
             ModeSection::Landmark { .. } => Mode::Landmark,
+            ModeSection::Voronoi(_) => Mode::Voronoi,
         }
     }
 }

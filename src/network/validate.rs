@@ -35,6 +35,7 @@ impl<'a> Network<'a> {
             ModeSection::Roadmap => Ok(()),
             ModeSection::Terrain(t) => self.validate_terrain_parameters(t),
             ModeSection::Landmark { record, .. } => self.validate_landmark_parameters(record),
+            ModeSection::Voronoi(v) => self.validate_voronoi_parameters(v),
         }
     }
 
@@ -107,7 +108,12 @@ impl<'a> Network<'a> {
                 ModeSection::Landmark { .. } if r.geometry == GEOMETRY_HERMITE_CHAIN => {
                     self.validate_chain_edge(i, &r)?
                 }
-                ModeSection::Terrain(_) | ModeSection::Landmark { .. } => return Err(unknown),
+                ModeSection::Voronoi(v) if r.geometry == GEOMETRY_LINE => {
+                    self.validate_voronoi_edge(i, &r, v)?
+                }
+                ModeSection::Terrain(_)
+                | ModeSection::Landmark { .. }
+                | ModeSection::Voronoi(_) => return Err(unknown),
             }
         }
         Ok(())

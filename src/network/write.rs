@@ -105,6 +105,25 @@ pub struct TerrainSpec {
     pub safety_height_m: f32,
 }
 
+/// Voronoi mode: the threat sites and what the network was built for. The network's vertices
+/// and edges must be the Voronoi graph of the sites clipped to `bounds` (as
+/// `skyroute::geometry::voronoi` builds it, each edge in both directions, every edge an
+/// [`EdgeSpec::line`]), which the planner checks when it loads the network.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VoronoiSpec {
+    /// Threat sites: position and exposure reference distance, metres.
+    pub threats: Vec<(Vec2, f32)>,
+    /// The weight k of length against exposure, in [0, 1].
+    pub threat_weight: f32,
+    /// The curvature limit, 1/m.
+    pub kappa_max: f32,
+    /// The box the diagram is clipped to: `(min, max)`.
+    pub bounds: (Vec2, Vec2),
+    /// The spline corner table, angle-major
+    /// (`skyroute::geometry::spline::TABLE_ANGLES · TABLE_RATIOS` values).
+    pub corner_table: Vec<f32>,
+}
+
 /// A static obstacle to write.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ObstacleSpec {
@@ -143,6 +162,9 @@ pub struct NetworkSpec {
     pub terrain: Option<TerrainSpec>,
     /// Landmark mode: the landmark tables (then every edge must be an [`EdgeSpec::chain`]).
     pub landmark: Option<LandmarkSpec>,
+    /// Voronoi mode: the threat sites and the corner table (then every edge must be an
+    /// [`EdgeSpec::line`]).
+    pub voronoi: Option<VoronoiSpec>,
     /// Digests of what the network was built from, written as they are at the end of the body.
     pub provenance: Vec<ProvenanceRecord>,
 }
@@ -161,6 +183,8 @@ pub enum WriteError {
     Invalid(super::LoadError),
     /// Terrain mode: an edge is not a straight line, or the table does not match its grid.
     BadTerrain(&'static str),
+    /// Voronoi mode: an edge is not a straight line.
+    BadVoronoi(&'static str),
     /// Landmark mode: the tables do not match the vertices and edges, or a piece cannot be
     /// built.
     BadLandmark(&'static str),
@@ -200,6 +224,7 @@ impl core::fmt::Display for WriteError {
             WriteError::Invalid(e) => write!(f, "the network does not validate: {e}"),
             WriteError::BadTerrain(what) => write!(f, "terrain network: {what}"),
             WriteError::BadLandmark(what) => write!(f, "landmark network: {what}"),
+            WriteError::BadVoronoi(what) => write!(f, "Voronoi network: {what}"),
             WriteError::BadGridCell(cell) => {
                 write!(f, "grid cell {cell} m is not a positive finite size")
             }
@@ -259,11 +284,7 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     let mut order: Vec<usize> = (0..spec.edges.len()).collect();
     order.sort_by_key(|&i| spec.edges[i].source);
     let edges: Vec<EdgeSpec> = order.iter().map(|&i| spec.edges[i]).collect();
-    if spec.terrain.is_some() && spec.landmark.is_some() {
-        return Err(WriteError::BadLandmark(
-            "a network is terrain or landmark, not both",
-        ));
-    }
+    let mode = mode_of(spec, &edges)?;
     let chains: Vec<&[LineElement]> = match &spec.landmark {
         Some(l) => {
             check_landmark(spec, l, &edges)?;
@@ -318,6 +339,7 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
                 (GEOMETRY_LINE, [e.lengths[1], code as f32, 0.0])
             }
             None if spec.landmark.is_some() => (GEOMETRY_HERMITE_CHAIN, [e.lengths[0], 0.0, 0.0]),
+            None if spec.voronoi.is_some() => (GEOMETRY_LINE, [e.lengths[1], 0.0, 0.0]),
             None => (e.word.code(), e.lengths),
         };
         push(
@@ -345,6 +367,9 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     if let Some(l) = &spec.landmark {
         write_landmark_section(&mut body, l, &chains)?;
     }
+    if let Some(v) = &spec.voronoi {
+        write_voronoi_section(&mut body, v);
+    }
     for record in &spec.provenance {
         push(&mut body, record);
     }
@@ -352,13 +377,7 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     let header = Header {
         magic: MAGIC,
         version: FORMAT_VERSION,
-        mode: if spec.terrain.is_some() {
-            MODE_TERRAIN
-        } else if spec.landmark.is_some() {
-            MODE_LANDMARK
-        } else {
-            MODE_ROADMAP
-        },
+        mode,
         flags: 0,
         origin_lat_deg: spec.origin_lat_deg,
         origin_lon_deg: spec.origin_lon_deg,
@@ -385,6 +404,23 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     out[Header::CHECKED_SIZE..Header::SIZE].copy_from_slice(&crc.to_le_bytes());
     Network::from_bytes(&out).map_err(WriteError::Invalid)?;
     Ok(out)
+}
+
+/// The mode code of the spec: at most one of the terrain, landmark and Voronoi sections, and a
+/// Voronoi network's edges all straight lines.
+fn mode_of(spec: &NetworkSpec, edges: &[EdgeSpec]) -> Result<u8, WriteError> {
+    let line =
+        |e: &EdgeSpec| e.word == DubinsWord::Lsl && e.lengths[0] == 0.0 && e.lengths[2] == 0.0;
+    match (&spec.terrain, &spec.landmark, &spec.voronoi) {
+        (None, None, None) => Ok(MODE_ROADMAP),
+        (Some(_), None, None) => Ok(MODE_TERRAIN),
+        (None, Some(_), None) => Ok(MODE_LANDMARK),
+        (None, None, Some(_)) if edges.iter().all(line) => Ok(MODE_VORONOI),
+        (None, None, Some(_)) => Err(WriteError::BadVoronoi("an edge is not a straight line")),
+        _ => Err(WriteError::BadLandmark(
+            "a network is of one mode: terrain, landmark or Voronoi",
+        )),
+    }
 }
 
 /// Writes the obstacle records, then their polygons' points; returns the number of points.
@@ -447,6 +483,35 @@ fn write_terrain_section(body: &mut Vec<u8>, t: &TerrainSpec) {
         },
     );
     body.extend_from_slice(&t.codes);
+}
+
+/// Voronoi mode: writes the Voronoi record, the threat sites and the corner table.
+fn write_voronoi_section(body: &mut Vec<u8>, v: &VoronoiSpec) {
+    let table_angles = crate::geometry::spline::TABLE_ANGLES as u32;
+    push(
+        body,
+        &VoronoiRecord {
+            threat_count: v.threats.len() as u32,
+            threat_weight: v.threat_weight,
+            kappa_max: v.kappa_max,
+            bounds: [v.bounds.0.x, v.bounds.0.y, v.bounds.1.x, v.bounds.1.y],
+            table_angles,
+            table_ratios: crate::geometry::spline::TABLE_RATIOS as u32,
+        },
+    );
+    for (p, radius) in &v.threats {
+        push(
+            body,
+            &ThreatSiteRecord {
+                x: p.x,
+                y: p.y,
+                radius: *radius,
+            },
+        );
+    }
+    for c in &v.corner_table {
+        push(body, &F32Record(*c));
+    }
 }
 
 /// Landmark mode: writes the landmark record, the landmarks, the rosettes, the chain offsets
@@ -647,7 +712,7 @@ impl GridIndex {
                 break;
             }
             let mut start = spec.vertices[e.source as usize];
-            if spec.terrain.is_some() {
+            if spec.terrain.is_some() || spec.voronoi.is_some() {
                 let d = spec.vertices[e.target as usize].position - start.position;
                 start.heading = d.y.atan2(d.x);
             }

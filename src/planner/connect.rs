@@ -87,7 +87,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// traversal), so shortcuts and smoothing keep terrain routes clear too.
     pub(super) fn path_is_clear(&self, path: &DubinsPath, meter: &mut Meter) -> bool {
         let over_terrain = match self.state {
-            ModeState::Roadmap | ModeState::Landmark(_) => true,
+            ModeState::Roadmap | ModeState::Landmark(_) | ModeState::Voronoi(_) => true,
             ModeState::Terrain(_) => path
                 .primitives()
                 .into_iter()
@@ -173,7 +173,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 continue;
             };
             if self.path_is_clear(&path, meter) {
-                let _ = self.start_links.push(Link { vertex: v, path });
+                let _ = self.start_links.push(Link {
+                    vertex: v,
+                    path,
+                    cost: path.length(),
+                });
             }
             meter.check()?;
         }
@@ -195,7 +199,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 return Err(PlanError::Internal);
             };
             if let Some(path) = self.best_clear_path_to_goal(&from, goal, meter)? {
-                let _ = self.goal_links.push(Link { vertex: v, path });
+                let _ = self.goal_links.push(Link {
+                    vertex: v,
+                    path,
+                    cost: path.length(),
+                });
             }
         }
         Ok(())

@@ -109,6 +109,13 @@ pub enum PlanError {
     /// Landmark mode: the goal position is not the network's goal (within 1 m), or the network
     /// has no goal.
     GoalNotInNetwork,
+    /// Voronoi mode: the coarse route found cannot be smoothed within the curvature limit
+    /// while staying clear of no-fly zones and pop-ups, at this corner of the coarse route
+    /// (1 the first vertex after the start; 0 the start's lead-in).
+    Smoothing {
+        /// The corner.
+        corner: u32,
+    },
     /// An internal invariant failed (a bug; reported instead of panicking).
     Internal,
 }
@@ -162,6 +169,11 @@ impl fmt::Display for PlanError {
                 "start pose is neither the network's start nor a landmark overflight"
             ),
             GoalNotInNetwork => write!(f, "goal is not the network's goal"),
+            Smoothing { corner } => write!(
+                f,
+                "the route cannot be smoothed within the curvature limit clear of zones at \
+                 corner {corner}"
+            ),
             Internal => write!(f, "internal planner invariant failed"),
         }
     }

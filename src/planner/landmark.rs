@@ -149,7 +149,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     pub fn is_navigable(&self, e: u32) -> bool {
         match &self.state {
             ModeState::Landmark(state) => self.navigable_in(state, e),
-            ModeState::Roadmap | ModeState::Terrain(_) => true,
+            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Voronoi(_) => true,
         }
     }
 

@@ -18,6 +18,8 @@ mod search;
 mod smooth;
 mod state;
 mod terrain;
+mod threats;
+mod voronoi;
 pub mod work;
 
 pub use error::{PlanError, PopupError, QueryField};
@@ -25,9 +27,16 @@ pub use landmark::POPUP_CHORDS_PER_PIECE;
 pub use popup::{Popup, PopupSummary, MAX_POPUP_VERTICES};
 pub use smooth::SmoothSummary;
 pub use state::{ArcCheckStats, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
+pub use voronoi::{
+    segment_exposure, threat_rebuild_work_bound, HalfEdge, SearchGraph, Threat, ThreatError,
+    ThreatOrigin, ThreatSummary, VoronoiStorage, CHORDS_PER_CUBIC, CHORD_TOLERANCE_M,
+    EXPOSURE_POINTS, MAX_ROUTE_PIECES, MAX_THREATS, VORONOI_GRAPH_EDGES, VORONOI_GRAPH_VERTICES,
+    VORONOI_LINKS,
+};
 pub use work::{
     cells_bound, landmark_plan_work_bound, landmark_popup_work_bound, plan_work_bound,
-    popup_work_bound, terrain_plan_work_bound, TerrainBoundInputs, Work, WorkBoundInputs,
+    popup_work_bound, terrain_plan_work_bound, voronoi_plan_work_bound, TerrainBoundInputs,
+    VoronoiBoundInputs, Work, WorkBoundInputs,
 };
 
 use crate::geometry::{DubinsPath, Pose, Primitive, Vec2};
@@ -145,6 +154,9 @@ pub struct RouteSummary {
 struct Link {
     vertex: u32,
     path: DubinsPath,
+    /// What the link costs the search: its length, or in Voronoi mode its length and
+    /// exposure.
+    cost: f32,
 }
 
 /// The planner. See the module documentation for its memory.
@@ -171,7 +183,7 @@ pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: 
     route: Vec<Primitive, R>,
     summary: Option<RouteSummary>,
     /// What only the loaded network's mode keeps (altitude, weather, rosettes, ...).
-    state: ModeState<R>,
+    state: ModeState<'n, R>,
 }
 
 /// `via` values at or above this mark a vertex reached straight from start link `via − FROM_START`.
@@ -229,8 +241,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 ModeState::Terrain(TerrainState::for_network(&network))
             }
             Mode::Landmark => ModeState::Landmark(LandmarkState::new()),
+            // Its state lives in storage the caller provides.
+            Mode::Voronoi => return Err(LoadError::NeedsVoronoiStorage),
             Mode::Unknown(mode) => return Err(LoadError::UnknownMode { mode }),
         };
+        self.install(network, state);
+        Ok(())
+    }
+
+    /// Makes `network` the network with its mode's `state`, clearing pop-ups and the route.
+    fn install(&mut self, network: Network<'n>, state: ModeState<'n, R>) {
         self.network = network;
         self.state = state;
         self.blocked_by = [0; E];
@@ -238,7 +258,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.paths.clear();
         self.route.clear();
         self.summary = None;
-        Ok(())
     }
 
     /// The loaded network.
@@ -277,16 +296,22 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// the weather and rosettes in force ([`Planner::is_navigable`]). O(1).
     #[inline(always)]
     pub fn is_edge_usable(&self, e: u32) -> bool {
-        if !self.is_edge_enabled(e) {
-            return false;
-        }
         match &self.state {
-            ModeState::Roadmap => true,
-            ModeState::Terrain(t) => self
-                .network
-                .edge_highest_code(e)
-                .is_some_and(|c| c < t.blocking),
-            ModeState::Landmark(state) => self.navigable_in(state, e),
+            ModeState::Roadmap => self.is_edge_enabled(e),
+            ModeState::Terrain(t) => {
+                self.is_edge_enabled(e)
+                    && self
+                        .network
+                        .edge_highest_code(e)
+                        .is_some_and(|c| c < t.blocking)
+            }
+            ModeState::Landmark(state) => self.is_edge_enabled(e) && self.navigable_in(state, e),
+            // The search's edges are the onboard graph's half-edges, priced and checked
+            // against zones and pop-ups before each search.
+            ModeState::Voronoi(state) => state
+                .graph()
+                .half_edge(e)
+                .is_some_and(|h| state.graph().is_clear(h.edge as u32)),
         }
     }
 
@@ -332,6 +357,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             ModeState::Landmark(_) => {
                 landmark_plan_work_bound(h.vertex_count as u64, h.edge_count as u64)
             }
+            ModeState::Voronoi(_) => voronoi_plan_work_bound(&self.voronoi_bound_inputs()),
         }
     }
 
@@ -340,7 +366,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let h = self.network.header();
         let cells = h.grid_nx as u64 * h.grid_ny as u64;
         match self.state {
-            ModeState::Roadmap | ModeState::Terrain(_) => {
+            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Voronoi(_) => {
                 popup_work_bound(cells, h.grid_entry_count as u64, MAX_POPUP_VERTICES as u64)
             }
             ModeState::Landmark(_) => landmark_popup_work_bound(

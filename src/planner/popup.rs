@@ -174,7 +174,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     ) -> bool {
         match self.state {
             ModeState::Landmark(_) => self.chain_conflicts(e, popup, clearance, summary),
-            ModeState::Roadmap | ModeState::Terrain(_) => {
+            // Voronoi mode: the stored graph's lines (the search checks its onboard graph's
+            // edges against the pop-ups before each search).
+            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Voronoi(_) => {
                 let Some(path) = self.network.edge_path(e) else {
                     return true;
                 };

@@ -80,6 +80,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             ModeState::Roadmap => self.plan_roadmap(query, &mut meter),
             ModeState::Terrain(_) => self.plan_terrain(query, &mut meter),
             ModeState::Landmark(_) => self.plan_landmark(query, &mut meter),
+            ModeState::Voronoi(_) => self.plan_voronoi(query, &mut meter),
         }
     }
 
@@ -108,27 +109,30 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if self.goal_links.is_empty() && direct.is_none() {
             return Err(PlanError::GoalUnconnected);
         }
+        let direct = direct.map(|p| (p.length(), p));
         let arrival = self.search(query, Ends::Links, direct, meter)?;
         self.write_route(arrival, meter)
     }
 
     /// The one search of every mode: Dijkstra (or A*, over vertices) from the start links (or
     /// a start vertex) over the states of the mode's [`StateSpace`]; returns how the cheapest
-    /// route arrives. Edges are relaxed only when [`Planner::is_edge_usable`]; the expansion of
+    /// route arrives. `direct` is the direct start–goal path, if any, with its cost. Edges are relaxed only when [`Planner::is_edge_usable`]; the expansion of
     /// a state is the space's ([`Planner::expand_vertex`], [`Planner::expand_edge_state`]).
     pub(super) fn search(
         &mut self,
         query: &Query,
         ends: Ends,
-        direct: Option<DubinsPath>,
+        direct: Option<(f32, DubinsPath)>,
         meter: &mut Meter,
     ) -> Result<Arrival, PlanError> {
         let space = match self.state {
-            ModeState::Roadmap | ModeState::Landmark(_) => StateSpace::Vertices,
+            ModeState::Roadmap | ModeState::Landmark(_) | ModeState::Voronoi(_) => {
+                StateSpace::Vertices
+            }
             ModeState::Terrain(_) => StateSpace::EdgeStates,
         };
         let states = match space {
-            StateSpace::Vertices => self.network.vertex_count() as usize,
+            StateSpace::Vertices => self.search_vertex_count() as usize,
             StateSpace::EdgeStates => self.network.edge_count() as usize + self.start_links.len(),
         };
         if states > V {
@@ -136,7 +140,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         self.heap.clear(states);
         meter.work.vertex_scans += states as u64;
-        let mut best = direct.map(|p| (p.length(), Arrival::Direct(p)));
+        let mut best = direct.map(|(cost, p)| (cost, Arrival::Direct(p)));
         match space {
             StateSpace::Vertices => self.seed_vertices(query, ends, meter)?,
             StateSpace::EdgeStates => self.seed_edge_states(meter)?,
@@ -158,6 +162,61 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             meter.check()?;
         }
         best.map(|(_, a)| a).ok_or(PlanError::NoRoute)
+    }
+
+    /// The vertices a search over vertices walks: the network's, or in Voronoi mode the
+    /// onboard graph's (rebuilt when a threat pops up). The five accessors below are the one
+    /// place the vertex search tells the two graphs apart.
+    pub(super) fn search_vertex_count(&self) -> u32 {
+        match &self.state {
+            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Landmark(_) => {
+                self.network.vertex_count()
+            }
+            ModeState::Voronoi(state) => state.graph().vertex_count(),
+        }
+    }
+
+    /// Where search vertex `v` lies.
+    pub(super) fn search_vertex_position(&self, v: u32) -> Option<Vec2> {
+        match &self.state {
+            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Landmark(_) => {
+                self.network.vertex(v).map(|p| p.position)
+            }
+            ModeState::Voronoi(state) => state.graph().vertex(v),
+        }
+    }
+
+    /// The edges (Voronoi mode: half-edges) leaving search vertex `u`.
+    fn search_out_edges(&self, u: u32) -> core::ops::Range<u32> {
+        match &self.state {
+            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Landmark(_) => {
+                self.network.out_edges(u)
+            }
+            ModeState::Voronoi(state) => state.graph().out_edges(u),
+        }
+    }
+
+    /// Edge `e`'s cost and target.
+    fn search_edge_cost_target(&self, e: u32) -> Option<(f32, u32)> {
+        match &self.state {
+            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Landmark(_) => {
+                self.network.edge_cost_target(e)
+            }
+            ModeState::Voronoi(state) => {
+                let h = state.graph().half_edge(e)?;
+                Some((state.graph().edge_cost(h.edge as u32)?, h.target as u32))
+            }
+        }
+    }
+
+    /// Edge `e`'s source.
+    pub(super) fn search_edge_source(&self, e: u32) -> Option<u32> {
+        match &self.state {
+            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Landmark(_) => {
+                self.network.edge_source(e)
+            }
+            ModeState::Voronoi(state) => state.graph().half_edge(e).map(|h| h.source as u32),
+        }
     }
 
     /// The A* heuristic at `p` (0 for Dijkstra).
@@ -194,7 +253,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         };
         for (k, link) in self.start_links.iter().take(links).enumerate() {
             let v = link.vertex as usize;
-            let cost = link.path.length();
+            let cost = link.cost;
             let (Some(d), Some(via)) = (self.dist.get_mut(v), self.via.get_mut(v)) else {
                 return Err(PlanError::Internal);
             };
@@ -202,9 +261,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 *d = cost;
                 *via = FROM_START + k as u32;
                 let h = self
-                    .network
-                    .vertex(link.vertex)
-                    .map_or(0.0, |p| Self::heuristic(query, p.position));
+                    .search_vertex_position(link.vertex)
+                    .map_or(0.0, |p| Self::heuristic(query, p));
                 meter.work.heap_steps += self.heap.push_or_decrease(link.vertex, cost + h) as u64;
             }
         }
@@ -236,18 +294,18 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         for (k, link) in self.goal_links.iter().enumerate() {
             meter.work.relaxations += 1;
             if link.vertex == u {
-                let total = du + link.path.length();
+                let total = du + link.cost;
                 if best.is_none_or(|(b, _)| total < b) {
                     *best = Some((total, Arrival::FromState { state: u, link: k }));
                 }
             }
         }
-        for e in self.network.out_edges(u) {
+        for e in self.search_out_edges(u) {
             meter.work.relaxations += 1;
             if !self.is_edge_usable(e) {
                 continue;
             }
-            let Some((cost, t)) = self.network.edge_cost_target(e) else {
+            let Some((cost, t)) = self.search_edge_cost_target(e) else {
                 return Err(PlanError::Internal);
             };
             let candidate = du + cost;
@@ -261,9 +319,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 *dt = candidate;
                 *via = e;
                 let h = self
-                    .network
-                    .vertex(t)
-                    .map_or(0.0, |p| Self::heuristic(query, p.position));
+                    .search_vertex_position(t)
+                    .map_or(0.0, |p| Self::heuristic(query, p));
                 meter.work.heap_steps += self.heap.push_or_decrease(t, candidate + h) as u64;
             }
         }
@@ -303,7 +360,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         mut visit: impl FnMut(u32) -> Result<(), PlanError>,
     ) -> Result<(u32, Option<usize>), PlanError> {
         let mut start = None;
-        let edges = self.walk_states(to, self.network.vertex_count(), meter, |v| {
+        let edges = self.walk_states(to, self.search_vertex_count(), meter, |v| {
             let via = self
                 .via
                 .get(v as usize)
@@ -315,7 +372,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
             visit(via)?;
             Ok(Some(
-                self.network.edge_source(via).ok_or(PlanError::Internal)?,
+                self.search_edge_source(via).ok_or(PlanError::Internal)?,
             ))
         })?;
         Ok((edges, start))

@@ -93,12 +93,15 @@ impl<const R: usize> LandmarkState<R> {
 // Fixed memory: the planner reserves room for the largest variant once (no allocator to box
 // it), which is still less than keeping every mode's state side by side.
 #[allow(clippy::large_enum_variant)]
-#[derive(Clone, Debug)]
-pub(super) enum ModeState<const R: usize> {
+#[derive(Debug)]
+pub(super) enum ModeState<'n, const R: usize> {
     /// Roadmaps keep nothing of their own (also the state of a planner with no network).
     Roadmap,
     /// Terrain mode.
     Terrain(TerrainState),
     /// Landmark mode.
     Landmark(LandmarkState<R>),
+    /// Voronoi mode: its state, in storage the caller provided to
+    /// [`Planner::load_voronoi`](super::Planner::load_voronoi).
+    Voronoi(&'n mut super::threats::VoronoiStorage),
 }

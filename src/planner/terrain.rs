@@ -231,6 +231,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if self.goal_links.is_empty() && direct.is_none() {
             return Err(PlanError::GoalUnconnected);
         }
+        let direct = direct.map(|p| (p.length(), p));
         let arrival = self.search(query, Ends::Links, direct, meter)?;
         self.write_terrain_route(arrival, meter)
     }
@@ -303,7 +304,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     continue;
                 };
                 if self.terrain_path_is_clear(&path, meter) {
-                    let _ = self.start_links.push(Link { vertex: v, path });
+                    let _ = self.start_links.push(Link {
+                        vertex: v,
+                        path,
+                        cost: path.length(),
+                    });
                 }
                 meter.check()?;
             }
@@ -371,7 +376,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 }
                 meter.work.dubins_solves += 1;
                 if self.terrain_path_is_clear(&path, meter) {
-                    let _ = self.goal_links.push(Link { vertex: v, path });
+                    let _ = self.goal_links.push(Link {
+                        vertex: v,
+                        path,
+                        cost: path.length(),
+                    });
                 }
                 meter.check()?;
             }

@@ -11,6 +11,7 @@
 //! | `heap_steps` | one level of a heap sift (push, decrease-key or pop) |
 //! | `relaxations` | examining one out-edge or one goal link of a popped vertex |
 //! | `cells_visited` | one grid cell visited by a terrain traversal (its elevation code compared) |
+//! | `threat_steps` | Voronoi mode: one exposure term (one threat at one sample point), one exact predicate or triangle visit of the onboard diagram, or one step of the spline fit |
 //!
 //! Pop-ups on a landmark network also count one unit per Hermite piece rebuilt
 //! ([`PopupSummary::pieces_rebuilt`](super::PopupSummary::pieces_rebuilt)): a segment
@@ -38,6 +39,8 @@ pub struct Work {
     pub relaxations: u64,
     /// Terrain cells visited by arc and segment checks.
     pub cells_visited: u64,
+    /// Voronoi mode: exposure terms, diagram predicates and spline-fit steps.
+    pub threat_steps: u64,
 }
 
 impl Work {
@@ -49,6 +52,7 @@ impl Work {
             + self.heap_steps
             + self.relaxations
             + self.cells_visited
+            + self.threat_steps
     }
 }
 
@@ -60,6 +64,7 @@ impl core::ops::AddAssign for Work {
         self.heap_steps += w.heap_steps;
         self.relaxations += w.relaxations;
         self.cells_visited += w.cells_visited;
+        self.threat_steps += w.threat_steps;
     }
 }
 
@@ -206,6 +211,68 @@ pub fn terrain_plan_work_bound(n: &TerrainBoundInputs) -> u64 {
         .saturating_add(connections.saturating_mul(per_connection))
         .saturating_add(search)
         .saturating_add(2 * (s + 1))
+}
+
+/// The counts that bound a Voronoi query's work ([`voronoi_plan_work_bound`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct VoronoiBoundInputs {
+    /// Vertices of the search graph, at most
+    /// [`VORONOI_GRAPH_VERTICES`](super::VORONOI_GRAPH_VERTICES).
+    pub graph_vertices: u64,
+    /// Undirected edges of the search graph.
+    pub graph_edges: u64,
+    /// Threats in force, T.
+    pub threats: u64,
+    /// Static obstacles (no-fly polygons), O.
+    pub obstacles: u64,
+    /// Polygon points over all obstacles.
+    pub obstacle_points: u64,
+    /// Most pop-ups active at once, P.
+    pub popups: u64,
+    /// Most vertices (polygon) a pop-up has.
+    pub popup_vertices: u64,
+    /// Graph vertices tried per endpoint, C.
+    pub candidates: u64,
+    /// The spline fit's bound for a coarse route through every graph vertex
+    /// ([`fit_work_bound`](crate::geometry::spline::fit_work_bound)).
+    pub fit_steps: u64,
+}
+
+/// The most work one Voronoi [`Planner::plan`](super::Planner::plan) can count. With
+/// `c = points + 2·O + P·(p + 1)` the tests of one segment against the zones and pop-ups, and
+/// `x = 3·T` the exposure terms of one segment:
+/// * the start and goal inside a zone or pop-up: 2(O + P);
+/// * pricing: every graph edge, x + c;
+/// * links: 2·|V_g| vertex scans, ≤ 2C candidates and the direct segment, x + c each;
+/// * search: |V_g| heap resets; ≤ |V_g| pops, ≤ 3 + 2|E_g| pushes or decreases, each ≤
+///   L = ⌊log2 |V_g|⌋ + 1 levels; ≤ 2|E_g| + 3|V_g| relaxations (half-edges and goal links);
+/// * walk-back: ≤ |V_g| + 1 vertex scans;
+/// * smoothing: its fit steps, each with at most one clearance query of a triangle
+///   (3c + O + P).
+pub fn voronoi_plan_work_bound(n: &VoronoiBoundInputs) -> u64 {
+    let v = n.graph_vertices;
+    let e = n.graph_edges;
+    let levels = heap_levels(v);
+    let segment = n.obstacle_points + 2 * n.obstacles + n.popups * (n.popup_vertices + 1);
+    let exposure = 3 * n.threats;
+    let per_segment = segment + exposure;
+    let endpoints = 2 * (n.obstacles + n.popups);
+    let pricing = e.saturating_mul(per_segment);
+    let links = (2 * v).saturating_add((2 * n.candidates + 1).saturating_mul(per_segment));
+    let search = v
+        .saturating_add((v + 3 + 2 * e).saturating_mul(levels))
+        .saturating_add(2 * e + 3 * v);
+    let walk = v + 1;
+    let smoothing = n
+        .fit_steps
+        .saturating_mul(1 + 3 * segment + n.obstacles + n.popups);
+    endpoints
+        .saturating_add(pricing)
+        .saturating_add(links)
+        .saturating_add(search)
+        .saturating_add(walk)
+        .saturating_add(smoothing)
 }
 
 /// The most work one landmark [`Planner::plan`](super::Planner::plan) can count on a network
