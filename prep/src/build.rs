@@ -65,6 +65,8 @@ pub enum BuildError {
     /// Terrain mode: the scenario has a no-fly zone or threat, which terrain networks cannot
     /// hold: (scenario file, the feature's label).
     ZoneInTerrain(String, String),
+    /// Voronoi mode: the threats cannot be built into a diagram: (scenario file, why).
+    Voronoi(String, String),
     /// Out of the builder's limits ([`crate::build_limits`]), no vertices, or refused by the
     /// writer.
     Limit(crate::build_limits::LimitError),
@@ -96,6 +98,7 @@ impl fmt::Display for BuildError {
                  network that left it out would fly through it; remove it from the scenario or \
                  give it as a `popup` feature"
             ),
+            BuildError::Voronoi(file, why) => write!(f, "{file}: {why}"),
             BuildError::Limit(e) => write!(f, "{e}"),
         }
     }
@@ -116,6 +119,8 @@ pub struct Built {
     pub terrain: Option<TerrainGraph>,
     /// Landmark mode: the landmark network and its statistics.
     pub landmark: Option<Box<LandmarkNetwork>>,
+    /// Voronoi mode: the threats, the graph and its box.
+    pub voronoi: Option<crate::voronoi::VoronoiNetwork>,
     /// The obstacles in the local frame.
     pub obstacles: Vec<ObstacleSpec>,
 }
@@ -134,6 +139,7 @@ pub fn build(
         Mode::Roadmap => build_roadmap_network(s, options, progress, provenance),
         Mode::Terrain => build_terrain(s, options, provenance),
         Mode::Landmark => build_landmark(s, options, progress, provenance),
+        Mode::Voronoi => build_voronoi(s, options, provenance),
     }
 }
 
@@ -222,6 +228,7 @@ fn build_roadmap_network(
         grid_cell_m: grid_cell,
         landmark: None,
         terrain: None,
+        voronoi: None,
         provenance,
     };
     let why = "every sample lies within planner.clearance_m of a no-fly zone or threat";
@@ -232,6 +239,7 @@ fn build_roadmap_network(
         roadmap: Some(roadmap),
         terrain: None,
         landmark: None,
+        voronoi: None,
         obstacles,
     })
 }
@@ -298,6 +306,7 @@ fn build_terrain(
         obstacles: Vec::new(),
         grid_cell_m: options.grid_cell_m.unwrap_or(4000.0),
         landmark: None,
+        voronoi: None,
         terrain: Some(TerrainSpec {
             grid: graph.grid,
             coding: graph.coding,
@@ -322,7 +331,44 @@ fn build_terrain(
         roadmap: None,
         terrain: Some(graph),
         landmark: None,
+        voronoi: None,
         obstacles: Vec::new(),
+    })
+}
+
+/// Voronoi mode: the Voronoi graph of the scenario's threats over the mission box
+/// ([`crate::voronoi`]), with the no-fly polygons and the spline corner table. Default grid
+/// cell: 2 km.
+fn build_voronoi(
+    s: &Scenario,
+    options: &BuildOptions,
+    provenance: Vec<ProvenanceRecord>,
+) -> Result<Built, BuildError> {
+    let file = s.path.display().to_string();
+    let frame = s.local_frame();
+    let cell = options.grid_cell_m.unwrap_or(2000.0);
+    let grid_field = if options.grid_cell_m.is_some() {
+        "--grid-cell"
+    } else {
+        "geometry.coordinates (their extent, in the default grid cell of 2000 m)"
+    };
+    let bounds =
+        crate::voronoi::mission_box(s.positions().map(|(lon, lat)| local(&frame, lon, lat)));
+    check_area(&file, bounds.min, bounds.max)?;
+    check_grid(&file, grid_field, cell, (bounds.min, bounds.max), cell)?;
+    let (net, mut spec) = crate::voronoi::voronoi_network(s, &frame, cell)
+        .map_err(|why| BuildError::Voronoi(file.clone(), why))?;
+    spec.provenance = provenance;
+    let why = "the Voronoi graph has no vertices";
+    let bytes = encode_checked(&spec, &file, grid_field, why)?;
+    Ok(Built {
+        bytes,
+        frame,
+        roadmap: None,
+        terrain: None,
+        landmark: None,
+        obstacles: spec.obstacles.clone(),
+        voronoi: Some(net),
     })
 }
 
@@ -362,6 +408,7 @@ fn build_landmark(
         terrain: None,
         obstacles: net.obstacles.clone(),
         landmark: Some(Box::new(net)),
+        voronoi: None,
     })
 }
 
@@ -431,6 +478,7 @@ pub fn landmark_spec(
         obstacles: net.obstacles.clone(),
         grid_cell_m,
         terrain: None,
+        voronoi: None,
         landmark: Some(LandmarkSpec {
             directions: d as u32,
             weather_count: net.weather.len() as u32,

@@ -29,6 +29,8 @@ pub fn needs(network: &Network) -> Needs {
     );
     let states = match network.mode() {
         Mode::Terrain => e + MAX_LINKS,
+        // The onboard graph is rebuilt when threats pop up: room for the most it can have.
+        Mode::Voronoi => v.max(skyroute::planner::VORONOI_GRAPH_VERTICES),
         Mode::Roadmap | Mode::Landmark | Mode::Unknown(_) => v,
     };
     Needs { states, edges: e }

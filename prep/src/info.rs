@@ -72,6 +72,23 @@ fn mode_section(w: &mut String, net: &Network) {
                 );
             }
         }
+        Mode::Voronoi => {
+            if let (Some(v), Some(b)) = (net.voronoi(), net.voronoi_bounds()) {
+                let _ = writeln!(
+                    w,
+                    "  voronoi: {} threat sites, weight k = {}, curvature limit {:.5} 1/m (turn \
+                     radius {:.0} m), box {:.0} x {:.0} m, corner table {} x {}",
+                    v.threat_count,
+                    v.threat_weight,
+                    v.kappa_max,
+                    1.0 / v.kappa_max,
+                    b.max.x - b.min.x,
+                    b.max.y - b.min.y,
+                    v.table_angles,
+                    v.table_ratios
+                );
+            }
+        }
         Mode::Landmark => {
             if let Some(l) = net.landmark() {
                 let _ = writeln!(
@@ -108,8 +125,24 @@ fn onboard(w: &mut String, bytes: &[u8], net: &Network) {
         planner_bytes::<P, R>(n.states, n.edges),
         planner_bytes::<P, R>(v, e)
     );
+    let mut storage = Box::new(skyroute::planner::VoronoiStorage::new());
     let mut p: Box<HostPlanner> = Box::new(Planner::new());
-    if p.load(bytes).is_ok() {
+    let loaded = match net.mode() {
+        Mode::Voronoi => {
+            let _ = writeln!(
+                w,
+                "  voronoi storage (Planner::load_voronoi): {} bytes of RAM beside the planner, \
+                 for up to {} threats (graph of at most {} vertices, {} edges)",
+                std::mem::size_of::<skyroute::planner::VoronoiStorage>(),
+                skyroute::planner::MAX_THREATS,
+                skyroute::planner::VORONOI_GRAPH_VERTICES,
+                skyroute::planner::VORONOI_GRAPH_EDGES
+            );
+            p.load_voronoi(bytes, &mut storage).is_ok()
+        }
+        Mode::Roadmap | Mode::Terrain | Mode::Landmark | Mode::Unknown(_) => p.load(bytes).is_ok(),
+    };
+    if loaded {
         let _ = writeln!(
             w,
             "  worst-case work: a query {}, adding a pop-up {} (counted units, docs/BENCHMARKS.md)",

@@ -22,3 +22,5 @@ pub mod route_geojson;
 pub mod route_json;
 pub mod scenario;
 pub mod terrain;
+pub mod voronoi;
+pub mod voronoi_mission;

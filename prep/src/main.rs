@@ -5,6 +5,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use skyroute_prep::build::{build, BuildOptions};
 use skyroute_prep::output::{refuse_overwriting_inputs, write_atomically};
 use skyroute_prep::plan_cli::{load_scenario, plan_command, CliResult, NoRoute, PlanRequest};
+use skyroute_prep::scenario::Mode;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -92,6 +93,11 @@ enum Command {
         /// did, and possibly more) instead of refusing the scenario; a warning names it.
         #[arg(long)]
         hull_repair: bool,
+        /// Build the scenario as this mode instead of its planner.mode (roadmap, landmark,
+        /// terrain, voronoi), e.g. `voronoi` for a scenario with threats; `plan` and `render`
+        /// take the same `--mode` with the network.
+        #[arg(long, value_parser = parse_mode)]
+        mode: Option<Mode>,
     },
     /// Plan start → waypoints in order → goal through a network with the onboard core.
     ///
@@ -131,6 +137,18 @@ enum Command {
         /// primitive), `.geojson` RFC 7946 GeoJSON (lon/lat, a feature per leg and pop-up).
         #[arg(short, long)]
         output: PathBuf,
+        /// Take the scenario as this mode, as the network was built (`build --mode`).
+        #[arg(long, value_parser = parse_mode)]
+        mode: Option<Mode>,
+        /// Voronoi networks: the weight k of length against exposure, in [0, 1] (default: the
+        /// scenario's planner.threat_weight, or 0.5). 1 flies the shortest route, 0 the least
+        /// exposed.
+        #[arg(long, value_parser = parse_weight)]
+        threat_weight: Option<f32>,
+        /// Voronoi networks: a radar that popped up in flight, `LON,LAT,RADIUS_M` (repeatable;
+        /// RADIUS_M is its exposure's reference distance, like a scenario threat's).
+        #[arg(long, value_parser = parse_popup)]
+        threat: Vec<(f64, f64, f64)>,
     },
     /// Describe a network image: mode, counts and bytes, what it records of its scenario, the
     /// planner capacities (`V`, `E`) and RAM it needs onboard, and the worst-case work of a
@@ -185,6 +203,9 @@ enum Command {
         /// and north of its origin (default: everything).
         #[arg(long, value_parser = parse_area)]
         area: Option<(f64, f64, f64, f64)>,
+        /// Take the scenario as this mode, as the network was built (`build --mode`).
+        #[arg(long, value_parser = parse_mode)]
+        mode: Option<Mode>,
     },
 }
 
@@ -200,6 +221,25 @@ fn parse_popup(s: &str) -> Result<(f64, f64, f64), String> {
         _ => Err(format!(
             "expected LON,LAT,RADIUS_M with |lon| <= 180, |lat| <= 90, radius > 0, got {s:?}"
         )),
+    }
+}
+
+fn parse_mode(s: &str) -> Result<Mode, String> {
+    match s.trim() {
+        "roadmap" => Ok(Mode::Roadmap),
+        "landmark" => Ok(Mode::Landmark),
+        "terrain" => Ok(Mode::Terrain),
+        "voronoi" => Ok(Mode::Voronoi),
+        _ => Err(format!(
+            "expected roadmap, landmark, terrain or voronoi, got {s:?}"
+        )),
+    }
+}
+
+fn parse_weight(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(k) if (0.0..=1.0).contains(&k) => Ok(k),
+        _ => Err(format!("expected a weight in [0, 1], got {s:?}")),
     }
 }
 
@@ -252,9 +292,10 @@ fn build_command(
     output: &Path,
     options: &BuildOptions,
     hull_repair: bool,
+    mode: Option<Mode>,
 ) -> CliResult {
     let t0 = Instant::now();
-    let s = load_scenario(path, hull_repair)?;
+    let s = load_scenario(path, hull_repair, mode)?;
     let mut inputs = vec![path];
     inputs.extend(skyroute_prep::provenance::dem_path(&s));
     refuse_overwriting_inputs(output, &inputs)?;
@@ -314,6 +355,23 @@ fn build_command(
         );
         return Ok(());
     }
+    if let Some(v) = &built.voronoi {
+        println!(
+            "built {}: Voronoi graph of {} threats: {} vertices, {} edges (each stored both ways), \
+             box {:.1} x {:.1} km, k = {}, {} bytes, {:.2} s -> {}",
+            path.display(),
+            v.threats.len(),
+            v.vertices.len(),
+            v.edges.len(),
+            (v.bounds.max.x - v.bounds.min.x) / 1000.0,
+            (v.bounds.max.y - v.bounds.min.y) / 1000.0,
+            v.threat_weight,
+            built.bytes.len(),
+            t0.elapsed().as_secs_f64(),
+            output.display()
+        );
+        return Ok(());
+    }
     let Some(r) = &built.roadmap else {
         return Err("the build produced no network".into());
     };
@@ -349,7 +407,13 @@ fn demo_command(dir: &Path) -> CliResult {
         dir.join("route.json"),
         dir.join("niendorf-urban.png"),
     );
-    build_command(&scenario_path, &network, &BuildOptions::default(), false)?;
+    build_command(
+        &scenario_path,
+        &network,
+        &BuildOptions::default(),
+        false,
+        None,
+    )?;
     plan_command(&PlanRequest {
         network: &network,
         scenario: &scenario_path,
@@ -359,9 +423,13 @@ fn demo_command(dir: &Path) -> CliResult {
         weather: None,
         hull_repair: false,
         output: &route,
+        mode: None,
+        threat_weight: None,
+        threats: &[],
     })?;
     let request = skyroute_prep::render::RenderRequest {
         network,
+        mode: None,
         route: Some(route),
         scenario: Some(scenario_path),
         popups: Vec::new(),
@@ -393,6 +461,7 @@ fn run(cli: Cli) -> CliResult {
             node_margin,
             altitude_levels,
             hull_repair,
+            mode,
         } => {
             let options = BuildOptions {
                 sample_spacing_m: sample_spacing,
@@ -404,7 +473,7 @@ fn run(cli: Cli) -> CliResult {
                 node_margin_m: node_margin,
                 extra_altitudes_m: altitude_levels,
             };
-            build_command(&path, &output, &options, hull_repair)
+            build_command(&path, &output, &options, hull_repair, mode)
         }
         Command::Plan {
             network,
@@ -415,6 +484,9 @@ fn run(cli: Cli) -> CliResult {
             weather,
             hull_repair,
             output,
+            mode,
+            threat_weight,
+            threat,
         } => plan_command(&PlanRequest {
             network: &network,
             scenario: &scenario_path,
@@ -424,6 +496,9 @@ fn run(cli: Cli) -> CliResult {
             weather: weather.as_deref(),
             hull_repair,
             output: &output,
+            mode,
+            threat_weight,
+            threats: &threat,
         }),
         Command::Demo { output } => demo_command(&output),
         Command::Info { network } => {
@@ -457,6 +532,7 @@ fn run(cli: Cli) -> CliResult {
             width,
             no_edges,
             area,
+            mode,
         } => {
             let t0 = Instant::now();
             if !(width.is_finite() && (200.0..=20000.0).contains(&width)) {
@@ -464,6 +540,7 @@ fn run(cli: Cli) -> CliResult {
             }
             let request = skyroute_prep::render::RenderRequest {
                 network,
+                mode,
                 route,
                 scenario: scenario_path,
                 popups: popup,

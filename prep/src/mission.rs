@@ -280,7 +280,7 @@ fn planner<'n>(
     // Terrain nodes sit at region corners, often kilometres from a valley's start or goal.
     let config = match p.network().mode() {
         Mode::Terrain => TERRAIN_CONFIG,
-        Mode::Roadmap | Mode::Landmark | Mode::Unknown(_) => PlannerConfig::DEFAULT,
+        Mode::Roadmap | Mode::Landmark | Mode::Voronoi | Mode::Unknown(_) => PlannerConfig::DEFAULT,
     };
     p.set_config(config);
     if let Some(r) = options.connect_radius_m {

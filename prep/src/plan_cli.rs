@@ -39,6 +39,12 @@ pub struct PlanRequest<'a> {
     pub weather: Option<&'a str>,
     pub hull_repair: bool,
     pub output: &'a Path,
+    /// `--mode`: the mode to take the scenario as.
+    pub mode: Option<scenario::Mode>,
+    /// `--threat-weight`: the weight k (Voronoi networks).
+    pub threat_weight: Option<f32>,
+    /// `--threat`: radars that popped up, `(lon, lat, radius_m)` (Voronoi networks).
+    pub threats: &'a [(f64, f64, f64)],
 }
 
 /// The route file's record of the pop-ups a plan applied.
@@ -79,7 +85,17 @@ pub fn plan_command(req: &PlanRequest) -> CliResult {
         )
         .into());
     }
-    let s = load_scenario(req.scenario, req.hull_repair)?;
+    let s = load_scenario(req.scenario, req.hull_repair, req.mode)?;
+    if s.planner.mode != scenario::Mode::Voronoi
+        && (req.threat_weight.is_some() || !req.threats.is_empty())
+    {
+        return Err(format!(
+            "--threat-weight and --threat apply to voronoi networks; {} is a {} network",
+            req.network.display(),
+            net.mode().name()
+        )
+        .into());
+    }
     let on = || format!("{} on {}", req.scenario.display(), req.network.display());
     check_binding(&s, &net).map_err(|e| format!("{}: {e}", on()))?;
     let frame = crate::export::network_frame(&net);
@@ -105,6 +121,7 @@ pub fn plan_command(req: &PlanRequest) -> CliResult {
         scenario::Mode::Roadmap | scenario::Mode::Terrain => {
             plan_mission_route(req, &s, &bytes, &frame, &local_popups, t0)?
         }
+        scenario::Mode::Voronoi => plan_voronoi_route(req, &s, &bytes, &frame, &local_popups, t0)?,
     };
     json["popups"] = popups_json(&popups, &frame);
     json["scenario_popups_applied"] = serde_json::json!(req.scenario_popups);
@@ -227,16 +244,78 @@ fn plan_mission_route(
     Ok(crate::route_json::mission_json(&m, frame, &s.name))
 }
 
+/// `skyroute plan` on a Voronoi network: the route file's JSON.
+fn plan_voronoi_route(
+    req: &PlanRequest,
+    s: &scenario::Scenario,
+    bytes: &[u8],
+    frame: &crate::frame::LocalFrame,
+    popups: &[LocalPopup],
+    t0: Instant,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    use crate::voronoi_mission::{plan_voronoi_mission, voronoi_route_json, LocalThreat};
+    let threats: Vec<LocalThreat> = req
+        .threats
+        .iter()
+        .enumerate()
+        .map(|(i, &(lon, lat, r))| LocalThreat {
+            name: format!("--threat {}", i + 1),
+            position: local(frame, lon, lat),
+            radius: r as f32,
+        })
+        .collect();
+    let m = plan_voronoi_mission(bytes, s, frame, popups, &threats, req.threat_weight).map_err(
+        |e| -> Box<dyn std::error::Error> {
+            let message = format!("{}: {e}", req.scenario.display());
+            if e.is_bad_input() {
+                message.into()
+            } else {
+                Box::new(NoRoute(message))
+            }
+        },
+    )?;
+    for l in &m.legs {
+        println!(
+            "  {} -> {}: {:.1} m, {} graph edges, {} pieces, exposure {:.1} (coarse, three-point \
+             {:.1}), chords within {:.1} m, work {}",
+            l.from,
+            l.to,
+            l.summary.length,
+            l.summary.network_edges,
+            l.pieces.len(),
+            l.flown_exposure,
+            l.coarse_exposure,
+            l.chord_deviation_m,
+            l.summary.work.total()
+        );
+    }
+    let length: f32 = m.legs.iter().map(|l| l.summary.length).sum();
+    let exposure: f64 = m.legs.iter().map(|l| l.flown_exposure).sum();
+    println!(
+        "planned {} with k = {}: {:.1} m, exposure {:.1}, {} threats ({} in flight), {:.2} s -> {}",
+        s.name,
+        m.threat_weight,
+        length,
+        exposure,
+        m.threats.len(),
+        threats.len(),
+        t0.elapsed().as_secs_f64(),
+        req.output.display()
+    );
+    Ok(voronoi_route_json(&m, frame, &s.name))
+}
+
 /// Reads a scenario, repairing self-intersecting no-fly polygons by their hulls when asked (and
-/// saying so).
+/// saying so), and taking it as `mode` instead of its `planner.mode` when given (`--mode`).
 pub fn load_scenario(
     path: &Path,
     hull_repair: bool,
+    mode: Option<scenario::Mode>,
 ) -> Result<scenario::Scenario, Box<dyn std::error::Error>> {
     let options = scenario::ParseOptions {
         hull_self_intersecting_no_fly: hull_repair,
     };
-    let s = scenario::load_with(path, &options)?;
+    let s = scenario::load_in_mode(path, &options, mode)?;
     for w in &s.warnings {
         eprintln!("warning: {w}");
     }

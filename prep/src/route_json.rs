@@ -47,6 +47,8 @@ pub fn work_json(w: &Work) -> Value {
         "collision_tests": w.collision_tests,
         "heap_steps": w.heap_steps,
         "relaxations": w.relaxations,
+        "cells_visited": w.cells_visited,
+        "threat_steps": w.threat_steps,
     })
 }
 

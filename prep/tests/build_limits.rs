@@ -286,6 +286,7 @@ fn the_writer_refuses_an_oversized_grid_index() {
         grid_cell_m: 1e-4,
         terrain: None,
         landmark: None,
+        voronoi: None,
         provenance: Vec::new(),
     };
     match encode(&spec) {

@@ -39,6 +39,8 @@ use std::path::{Path, PathBuf};
 pub struct RenderRequest {
     /// The network image.
     pub network: PathBuf,
+    /// `--mode`: the mode to take the scenario as.
+    pub mode: Option<scenario::Mode>,
     /// A route file from `skyroute plan`.
     pub route: Option<PathBuf>,
     /// A scenario for the start, waypoints, goal and pop-ups.
@@ -82,7 +84,11 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
             .into());
         }
     }
-    let s = req.scenario.as_deref().map(scenario::load).transpose()?;
+    let s = req
+        .scenario
+        .as_deref()
+        .map(|p| scenario::load_in_mode(p, &scenario::ParseOptions::default(), req.mode))
+        .transpose()?;
     if let Some(s) = &s {
         // Drawn over a network it does not match, a scenario's zones would be missing from
         // the picture and from its clearance figures.

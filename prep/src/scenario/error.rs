@@ -175,7 +175,7 @@ impl fmt::Display for ErrorKind {
             ),
             ErrorKind::UnknownMode(m) => write!(
                 f,
-                "unknown planner mode {m:?}: expected one of roadmap, landmark, terrain"
+                "unknown planner mode {m:?}: expected one of roadmap, landmark, terrain, voronoi"
             ),
             ErrorKind::UnknownMember => write!(f, "unknown member (misspelt?)"),
             ErrorKind::UnknownKey(known) => {

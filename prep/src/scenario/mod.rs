@@ -68,6 +68,21 @@ pub fn load_with(path: &Path, options: &ParseOptions) -> Result<Scenario, Scenar
     parse_with(&text, path, options)
 }
 
+/// Reads and checks the scenario at `path`, taken as `mode` instead of its `planner.mode`
+/// when given (the command line's `--mode`: e.g. a roadmap scenario with threats built as a
+/// Voronoi network).
+pub fn load_in_mode(
+    path: &Path,
+    options: &ParseOptions,
+    mode: Option<Mode>,
+) -> Result<Scenario, ScenarioError> {
+    let mut s = load_with(path, options)?;
+    if let Some(m) = mode {
+        s.planner.mode = m;
+    }
+    Ok(s)
+}
+
 /// Checks the scenario text `text`, read from `path` (used in errors and to resolve
 /// `terrain.dem`; not read).
 pub fn parse(text: &str, path: &Path) -> Result<Scenario, ScenarioError> {

@@ -119,6 +119,7 @@ impl Parser<'_> {
             "roadmap" => Mode::Roadmap,
             "landmark" => Mode::Landmark,
             "terrain" => Mode::Terrain,
+            "voronoi" => Mode::Voronoi,
             other => {
                 return Err(self.err(&TOP, "planner.mode", ErrorKind::UnknownMode(other.into())))
             }
@@ -182,7 +183,20 @@ impl Parser<'_> {
             arc_step_m: pos("arc_step_m")?,
             directions: int("directions", 1, u32max)?.map(|n| n as u32),
             line_elements_per_pair: int("line_elements_per_pair", 1, u32max)?.map(|n| n as u32),
-            threat_weight: nonneg("threat_weight")?,
+            threat_weight: match nonneg("threat_weight")? {
+                Some(k) if k > 1.0 => {
+                    return Err(self.err(
+                        &TOP,
+                        "planner.threat_weight",
+                        ErrorKind::Invalid(format!(
+                            "{} is above 1: the weight k of length against exposure is in \
+                             [0, 1]",
+                            compact(k)
+                        )),
+                    ))
+                }
+                k => k,
+            },
             seed: int("seed", 0, u64::MAX)?,
         })
     }

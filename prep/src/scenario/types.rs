@@ -97,6 +97,8 @@ pub enum Mode {
     Landmark,
     /// Terrain grid (Medeiros & da Silva), `"terrain"`.
     Terrain,
+    /// Voronoi graph of radar threats with exposure cost (Judd & McLain), `"voronoi"`.
+    Voronoi,
 }
 
 impl Mode {
@@ -106,6 +108,7 @@ impl Mode {
             Mode::Roadmap => "roadmap",
             Mode::Landmark => "landmark",
             Mode::Terrain => "terrain",
+            Mode::Voronoi => "voronoi",
         }
     }
 }
