@@ -75,6 +75,7 @@ pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize
         obstacles: obstacles.clone(),
         grid_cell_m: 2.0 * radius,
         landmark: None,
+        voronoi: None,
         terrain: None,
         provenance: Vec::new(),
     };

@@ -211,6 +211,7 @@ fn synthetic_network() -> Result<Vec<u8>, String> {
             .collect(),
         grid_cell_m: 100.0,
         landmark: None,
+        voronoi: None,
         terrain: None,
         provenance: Vec::new(),
     };
@@ -353,7 +354,7 @@ fn config_for(network: &Network<'_>) -> PlannerConfig {
             connect_radius_m: f32::INFINITY,
             ..PlannerConfig::DEFAULT
         },
-        Mode::Roadmap | Mode::Landmark | Mode::Unknown(_) => PlannerConfig::DEFAULT,
+        Mode::Roadmap | Mode::Landmark | Mode::Voronoi | Mode::Unknown(_) => PlannerConfig::DEFAULT,
     }
 }
 
@@ -391,6 +392,7 @@ fn run(args: Args) -> Result<(), String> {
     let states = match network.mode() {
         Mode::Landmark => return run_landmark(&args, &bytes, &source, &network),
         Mode::Terrain => ne + MAX_LINKS as u32,
+        Mode::Voronoi => nv.max(skyroute::planner::VORONOI_GRAPH_VERTICES as u32),
         Mode::Roadmap | Mode::Unknown(_) => nv,
     };
     let (v_cap, e_cap) = (capacity(states, 64), capacity(ne, 256));

@@ -43,6 +43,7 @@ fn spec(vertices: Vec<Pose>, edges: Vec<EdgeSpec>) -> NetworkSpec {
         obstacles: Vec::new(),
         grid_cell_m: CELL,
         landmark: None,
+        voronoi: None,
         terrain: None,
         provenance: Vec::new(),
     }

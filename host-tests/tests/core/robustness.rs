@@ -69,6 +69,7 @@ fn lattice_spec(n: usize, spacing: f32, origin: f32, radius: f32) -> NetworkSpec
         obstacles: Vec::new(),
         grid_cell_m: 2.0 * radius,
         landmark: None,
+        voronoi: None,
         terrain: None,
         provenance: Vec::new(),
     }
@@ -355,6 +356,7 @@ fn zero_and_one_capacities_never_panic() {
         }],
         grid_cell_m: 60.0,
         landmark: None,
+        voronoi: None,
         terrain: None,
         provenance: Vec::new(),
     };

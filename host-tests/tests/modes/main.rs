@@ -34,3 +34,6 @@ mod terrain_graph;
 mod terrain_plan;
 /// The terrain search against an exhaustive walk enumeration.
 mod terrain_search;
+/// Voronoi mode (Judd & McLain) end to end: the onboard graph, an f64 Dijkstra, flyable
+/// smoothed routes, the weight's effect, pop-up threats and bad threat calls.
+mod voronoi_plan;

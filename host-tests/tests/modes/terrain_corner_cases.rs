@@ -92,6 +92,7 @@ fn network(
             safety_height_m: 0.0,
         }),
         landmark: None,
+        voronoi: None,
         provenance: Vec::new(),
     };
     encode(&spec)

@@ -100,6 +100,7 @@ fn case(rng: &mut Rng) -> Case {
         obstacles: Vec::new(),
         grid_cell_m: 1000.0,
         landmark: None,
+        voronoi: None,
         terrain: Some(TerrainSpec {
             grid,
             coding: ElevationCoding {

@@ -1,0 +1,531 @@
+//! Voronoi mode (Judd & McLain) end to end on ruz-popups and voronoi-dense, through the ground
+//! tool's builder and the onboard planner, against independent references: a Dijkstra in f64
+//! over the planner's graph with exposure recomputed from the paper's formula, dense f64
+//! sampling of every smoothed piece (curvature from x′y″ − y′x″, continuity at the knots,
+//! clearance from the zones by the f64 reference geometry), and the diagram rebuilt from
+//! scratch after a threat pops up.
+
+use host_tests::damage::fix_crc;
+use host_tests::reference::{dist_polygon, inside, P};
+use host_tests::scenarios::scenario;
+use skyroute::geometry::spline::Piece;
+use skyroute::network::format::{Header, VertexRecord};
+use skyroute::network::write::ObstacleSpec;
+use skyroute::planner::{Threat, ThreatError, VoronoiStorage, MAX_THREATS};
+use skyroute::{Goal, LoadError, Planner, Pose, Query, Search, Vec2};
+use skyroute_prep::build::{build, BuildOptions, Built};
+use skyroute_prep::scenario::{Mode, Scenario};
+use std::collections::BinaryHeap;
+
+type VPlanner<'n> = Planner<'n, 1024, 1024, 4, 4096>;
+
+/// The scenario taken as a Voronoi scenario (as `--mode voronoi`), and its network.
+fn voronoi(name: &str) -> (Scenario, Built) {
+    let mut s = scenario(name).clone();
+    s.planner.mode = Mode::Voronoi;
+    let b = build(&s, &BuildOptions::default(), &|_, _| {})
+        .unwrap_or_else(|e| panic!("{name} builds as voronoi: {e}"));
+    (s, b)
+}
+
+/// A planner of the Voronoi network `bytes` (its storage leaked: a test's lifetime).
+fn planner(bytes: &[u8]) -> Box<VPlanner<'_>> {
+    let storage = Box::leak(Box::new(VoronoiStorage::new()));
+    let mut p: Box<VPlanner> = Box::new(Planner::new());
+    p.load_voronoi(bytes, storage)
+        .expect("the Voronoi network loads");
+    p
+}
+
+/// The scenario's start pose and goal in the local frame.
+fn query(s: &Scenario, b: &Built) -> Query {
+    let f = &b.frame;
+    let (st, g) = (s.start.as_ref().unwrap(), s.goal.as_ref().unwrap());
+    Query {
+        start: Pose {
+            position: skyroute_prep::build::local(f, st.lon, st.lat),
+            heading: skyroute_prep::build::local_heading(
+                f,
+                st.lon,
+                st.lat,
+                st.heading_deg.unwrap(),
+            ),
+        },
+        goal: Goal {
+            position: skyroute_prep::build::local(f, g.lon, g.lat),
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    }
+}
+
+fn p64(v: Vec2) -> P {
+    (v.x as f64, v.y as f64)
+}
+
+/// The paper's three-point exposure of `a → b`, in f64, written from the formula.
+fn exposure64(a: P, b: P, threats: &[Threat]) -> f64 {
+    let l = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+    let mut sum = 0.0;
+    for f in [1.0 / 6.0, 0.5, 5.0 / 6.0] {
+        let q = (a.0 + f * (b.0 - a.0), a.1 + f * (b.1 - a.1));
+        for t in threats {
+            let r = t.radius as f64;
+            let d = ((q.0 - t.position.x as f64).powi(2) + (q.1 - t.position.y as f64).powi(2))
+                .sqrt()
+                .max(0.01 * r);
+            sum += (r / d).powi(4);
+        }
+    }
+    l / 3.0 * sum
+}
+
+fn cost64(a: P, b: P, threats: &[Threat], k: f64) -> f64 {
+    let l = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+    k * l + (1.0 - k) * exposure64(a, b, threats)
+}
+
+/// The polygons of the network (no-fly zones), in f64.
+fn zones(b: &Built) -> Vec<Vec<P>> {
+    b.obstacles
+        .iter()
+        .filter_map(|o| match o {
+            ObstacleSpec::Polygon(points) => Some(points.iter().map(|q| p64(*q)).collect()),
+            ObstacleSpec::Circle { .. } => None,
+        })
+        .collect()
+}
+
+/// Whether the segment keeps `clearance` from every zone (f64 reference, sampled at 1 m: the
+/// segments checked here are graph edges and links, whose clearance the planner decides
+/// exactly; the reference only needs to agree away from touching).
+fn segment_clear(a: P, b: P, zones: &[Vec<P>], clearance: f64) -> bool {
+    zones.iter().all(|z| {
+        host_tests::reference::dist_segment_polygon(a, b, z) > clearance
+            && !inside(a, z)
+            && !inside(b, z)
+    })
+}
+
+/// The cheapest coarse route's cost by an independent Dijkstra in f64: start joined to the
+/// three nearest graph vertices with a clear segment, the same for the goal, and the direct
+/// segment.
+fn reference_cost(p: &VPlanner, q: &Query, zones: &[Vec<P>], clearance: f64, k: f64) -> f64 {
+    let g = p.threat_graph().unwrap();
+    let threats = p.threats();
+    let verts: Vec<P> = g.vertices().iter().map(|v| p64(*v)).collect();
+    let n = verts.len();
+    let (s, t) = (p64(q.start.position), p64(q.goal.position));
+    let links = |from: P| -> Vec<usize> {
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by(|&i, &j| {
+            let (di, dj) = (
+                host_tests::reference::dist(from, verts[i]),
+                host_tests::reference::dist(from, verts[j]),
+            );
+            di.partial_cmp(&dj).unwrap()
+        });
+        order
+            .into_iter()
+            .take(32)
+            .filter(|&i| segment_clear(from, verts[i], zones, clearance))
+            .take(3)
+            .collect()
+    };
+    let mut adj: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n + 2];
+    for e in g.edges() {
+        let (a, b) = (e.a as usize, e.b as usize);
+        if segment_clear(verts[a], verts[b], zones, clearance) {
+            let c = cost64(verts[a], verts[b], threats, k);
+            adj[a].push((b, c));
+            adj[b].push((a, c));
+        }
+    }
+    for i in links(s) {
+        adj[n].push((i, cost64(s, verts[i], threats, k)));
+    }
+    for i in links(t) {
+        adj[i].push((n + 1, cost64(verts[i], t, threats, k)));
+    }
+    if segment_clear(s, t, zones, clearance) {
+        adj[n].push((n + 1, cost64(s, t, threats, k)));
+    }
+    #[derive(PartialEq)]
+    struct Item(f64, usize);
+    impl Eq for Item {}
+    impl PartialOrd for Item {
+        fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+            Some(self.cmp(o))
+        }
+    }
+    impl Ord for Item {
+        fn cmp(&self, o: &Self) -> std::cmp::Ordering {
+            o.0.partial_cmp(&self.0).unwrap()
+        }
+    }
+    let mut dist = vec![f64::INFINITY; n + 2];
+    dist[n] = 0.0;
+    let mut heap = BinaryHeap::from([Item(0.0, n)]);
+    while let Some(Item(d, u)) = heap.pop() {
+        if d > dist[u] {
+            continue;
+        }
+        for &(v, c) in &adj[u] {
+            if d + c < dist[v] {
+                dist[v] = d + c;
+                heap.push(Item(d + c, v));
+            }
+        }
+    }
+    dist[n + 1]
+}
+
+/// The coarse route the planner flew (start, graph vertices, goal) and its cost in f64.
+fn coarse_cost(p: &VPlanner, k: f64) -> (Vec<P>, f64) {
+    let paths = p.route_paths();
+    let mut pts = vec![p64(paths[0].start.position)];
+    pts.extend(paths.iter().map(|q| p64(q.end().position)));
+    let c = pts
+        .windows(2)
+        .map(|w| cost64(w[0], w[1], p.threats(), k))
+        .sum();
+    (pts, c)
+}
+
+#[test]
+fn the_stored_graph_is_the_graph_built_onboard() {
+    for name in ["ruz-popups", "voronoi-dense"] {
+        let (_, b) = voronoi(name);
+        let p = planner(&b.bytes);
+        let g = p.threat_graph().unwrap();
+        let net = p.network();
+        assert_eq!(g.vertex_count(), net.vertex_count(), "{name}");
+        assert_eq!(2 * g.edges().len() as u32, net.edge_count(), "{name}");
+        for v in 0..net.vertex_count() {
+            let stored = net.vertex(v).unwrap().position;
+            assert_eq!(stored, g.vertex(v).unwrap(), "{name}: vertex {v}");
+        }
+    }
+}
+
+#[test]
+fn a_stored_graph_that_is_not_the_diagram_of_its_sites_is_refused() {
+    let (_, b) = voronoi("ruz-popups");
+    let net = skyroute::Network::from_bytes(&b.bytes).unwrap();
+    let (site, radius) = net.threat(0).unwrap();
+    let record: Vec<u8> = [site.x, site.y, radius]
+        .iter()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    let at = b
+        .bytes
+        .windows(record.len())
+        .position(|w| w == &record[..])
+        .expect("threat 0's record is in the image");
+    // Threat 0 moved 500 m east: the image is valid, its stored graph is not this diagram.
+    let mut moved = b.bytes.clone();
+    moved[at..at + 4].copy_from_slice(&(site.x + 500.0).to_le_bytes());
+    fix_crc(&mut moved);
+    skyroute::Network::from_bytes(&moved).expect("the loader alone cannot tell");
+    let mut p: Box<VPlanner> = Box::new(Planner::new());
+    assert_eq!(p.load(&b.bytes), Err(LoadError::NeedsVoronoiStorage));
+    let storage = Box::leak(Box::new(VoronoiStorage::new()));
+    assert!(
+        matches!(
+            p.load_voronoi(&moved, storage),
+            Err(LoadError::VoronoiMismatch { .. })
+        ),
+        "a network whose graph is not its sites' diagram loads"
+    );
+    // A stored vertex moved instead: refused by the loader or by the planner.
+    let mut shifted = b.bytes.clone();
+    let v = Header::SIZE + 3 * VertexRecord::SIZE;
+    let x = f32::from_le_bytes(shifted[v..v + 4].try_into().unwrap());
+    shifted[v..v + 4].copy_from_slice(&(x + 50.0).to_le_bytes());
+    fix_crc(&mut shifted);
+    let storage = Box::leak(Box::new(VoronoiStorage::new()));
+    assert!(matches!(
+        p.load_voronoi(&shifted, storage),
+        Err(LoadError::VoronoiMismatch { .. }) | Err(LoadError::EdgeMissesTarget { .. })
+    ));
+}
+
+#[test]
+fn the_coarse_route_is_the_cheapest_by_an_independent_dijkstra() {
+    for name in ["ruz-popups", "voronoi-dense"] {
+        let (s, b) = voronoi(name);
+        let zs = zones(&b);
+        let clearance = s.planner.clearance_m.unwrap_or(0.0);
+        for k in [0.1f32, 0.5, 0.9, 1.0] {
+            let mut p = planner(&b.bytes);
+            p.set_threat_weight(k).unwrap();
+            let q = query(&s, &b);
+            p.plan(&q, p.worst_case_work())
+                .unwrap_or_else(|e| panic!("{name} k={k}: {e}"));
+            let (_, got) = coarse_cost(&p, k as f64);
+            let want = reference_cost(&p, &q, &zs, clearance, k as f64);
+            assert!(
+                (got - want).abs() <= 1e-4 * want,
+                "{name} k={k}: planner's coarse route costs {got}, the f64 optimum {want}"
+            );
+        }
+    }
+}
+
+/// Curvature of a piece at `t` in f64 from its control points.
+fn curvature64(piece: &Piece, t: f64) -> (P, P, f64) {
+    match piece {
+        Piece::Line { a, b } => {
+            let d = (b.x as f64 - a.x as f64, b.y as f64 - a.y as f64);
+            ((a.x as f64 + t * d.0, a.y as f64 + t * d.1), d, 0.0)
+        }
+        Piece::Cubic { p } => {
+            let c: Vec<P> = p.iter().map(|q| p64(*q)).collect();
+            let u = 1.0 - t;
+            let pos = (
+                u * u * u * c[0].0
+                    + 3.0 * u * u * t * c[1].0
+                    + 3.0 * u * t * t * c[2].0
+                    + t * t * t * c[3].0,
+                u * u * u * c[0].1
+                    + 3.0 * u * u * t * c[1].1
+                    + 3.0 * u * t * t * c[2].1
+                    + t * t * t * c[3].1,
+            );
+            let d1 = |i: usize| (c[i + 1].0 - c[i].0, c[i + 1].1 - c[i].1);
+            let (q0, q1, q2) = (d1(0), d1(1), d1(2));
+            let v = (
+                3.0 * (u * u * q0.0 + 2.0 * u * t * q1.0 + t * t * q2.0),
+                3.0 * (u * u * q0.1 + 2.0 * u * t * q1.1 + t * t * q2.1),
+            );
+            let a = (
+                6.0 * (u * (q1.0 - q0.0) + t * (q2.0 - q1.0)),
+                6.0 * (u * (q1.1 - q0.1) + t * (q2.1 - q1.1)),
+            );
+            let speed = (v.0 * v.0 + v.1 * v.1).sqrt();
+            let k = if speed > 0.0 {
+                (v.0 * a.1 - v.1 * a.0) / speed.powi(3)
+            } else {
+                0.0
+            };
+            (pos, v, k)
+        }
+    }
+}
+
+#[test]
+fn smoothed_routes_are_flyable_and_clear_for_every_weight() {
+    for name in ["ruz-popups", "voronoi-dense"] {
+        let (s, b) = voronoi(name);
+        let zs = zones(&b);
+        let clearance = s.planner.clearance_m.unwrap_or(0.0);
+        for k in [0.1f32, 0.5, 0.9, 1.0] {
+            let mut p = planner(&b.bytes);
+            p.set_threat_weight(k).unwrap();
+            let q = query(&s, &b);
+            p.plan(&q, p.worst_case_work()).unwrap();
+            let kappa = 1.0 / p.network().turn_radius() as f64;
+            let pieces = p.route_pieces().to_vec();
+            assert!(!pieces.is_empty());
+            let (first, v0, _) = curvature64(&pieces[0], 0.0);
+            assert!(host_tests::reference::dist(first, p64(q.start.position)) < 0.01);
+            let h = v0.1.atan2(v0.0);
+            let dh = (h - q.start.heading as f64 + std::f64::consts::PI)
+                .rem_euclid(std::f64::consts::TAU)
+                - std::f64::consts::PI;
+            assert!(
+                dh.abs() < 1e-3,
+                "{name} k={k}: leaves at {h}, start heading {}",
+                q.start.heading
+            );
+            let (last, _, _) = curvature64(pieces.last().unwrap(), 1.0);
+            assert!(host_tests::reference::dist(last, p64(q.goal.position)) < 0.05);
+            let mut prev: Option<(P, f64, f64)> = None;
+            for (i, piece) in pieces.iter().enumerate() {
+                for j in 0..=400 {
+                    let t = j as f64 / 400.0;
+                    let (pos, v, kap) = curvature64(piece, t);
+                    assert!(
+                        kap.abs() <= kappa * 1.001 + 1e-9,
+                        "{name} k={k}: piece {i} t={t}: curvature {kap} > {kappa}"
+                    );
+                    for z in &zs {
+                        assert!(
+                            !inside(pos, z) && dist_polygon(pos, z) >= clearance - 0.5,
+                            "{name} k={k}: piece {i} within the clearance of a zone"
+                        );
+                    }
+                    if j == 0 {
+                        if let Some((end, heading, kend)) = prev {
+                            assert!(
+                                host_tests::reference::dist(end, pos) < 0.01,
+                                "{name} k={k}: gap before piece {i}"
+                            );
+                            let hh = v.1.atan2(v.0);
+                            let d = (hh - heading + std::f64::consts::PI)
+                                .rem_euclid(std::f64::consts::TAU)
+                                - std::f64::consts::PI;
+                            assert!(
+                                d.abs() < 1e-3,
+                                "{name} k={k}: heading jumps {d} rad before piece {i}"
+                            );
+                            assert!(
+                                (kap - kend).abs() <= 1e-3 * kappa + 1e-9,
+                                "{name} k={k}: curvature jumps {kend} -> {kap} before piece {i}"
+                            );
+                        }
+                    }
+                }
+                let (end, v, kend) = curvature64(piece, 1.0);
+                prev = Some((end, v.1.atan2(v.0), kend));
+            }
+        }
+    }
+}
+
+#[test]
+fn exposure_falls_and_length_grows_as_the_weight_falls() {
+    for name in ["ruz-popups", "voronoi-dense"] {
+        let (s, b) = voronoi(name);
+        let mut last: Option<(f64, f64, f32)> = None;
+        for k in [1.0f32, 0.9, 0.5, 0.1] {
+            let mut p = planner(&b.bytes);
+            p.set_threat_weight(k).unwrap();
+            p.plan(&query(&s, &b), p.worst_case_work()).unwrap();
+            let (pts, _) = coarse_cost(&p, k as f64);
+            let length: f64 = pts
+                .windows(2)
+                .map(|w| host_tests::reference::dist(w[0], w[1]))
+                .sum();
+            let exposure: f64 = pts
+                .windows(2)
+                .map(|w| exposure64(w[0], w[1], p.threats()))
+                .sum();
+            if let Some((l0, e0, k0)) = last {
+                assert!(
+                    exposure <= e0 * (1.0 + 1e-4),
+                    "{name}: exposure {exposure} at k={k} above {e0} at k={k0}"
+                );
+                assert!(
+                    length >= l0 * (1.0 - 1e-4),
+                    "{name}: length {length} at k={k} below {l0} at k={k0}"
+                );
+            }
+            last = Some((length, exposure, k));
+        }
+    }
+}
+
+#[test]
+fn a_popped_threat_reroutes_and_its_removal_restores_the_route() {
+    let (s, b) = voronoi("ruz-popups");
+    let mut p = planner(&b.bytes);
+    let q = query(&s, &b);
+    p.plan(&q, p.worst_case_work()).unwrap();
+    let before: Vec<Piece> = p.route_pieces().to_vec();
+    let (pts, _) = coarse_cost(&p, 0.5);
+    // A radar in the middle of the longest coarse leg.
+    let (i, _) = pts
+        .windows(2)
+        .enumerate()
+        .map(|(i, w)| (i, host_tests::reference::dist(w[0], w[1])))
+        .max_by(|a, b| a.1.partial_cmp(&b.1).unwrap())
+        .unwrap();
+    let at = Vec2::new(
+        ((pts[i].0 + pts[i + 1].0) / 2.0) as f32,
+        ((pts[i].1 + pts[i + 1].1) / 2.0) as f32,
+    );
+    let old_exposure_with_it: f64 = {
+        let mut threats = p.threats().to_vec();
+        threats.push(Threat {
+            position: at,
+            radius: 3000.0,
+            origin: skyroute::planner::ThreatOrigin::Popped(0),
+        });
+        pts.windows(2)
+            .map(|w| exposure64(w[0], w[1], &threats))
+            .sum()
+    };
+    let added = p.add_threat(at, 3000.0).unwrap();
+    assert!(added.work <= skyroute::planner::threat_rebuild_work_bound(p.threats().len() as u64));
+    // The incrementally updated graph is the graph of all the sites built from scratch.
+    let sites: Vec<Vec2> = p.threats().iter().map(|t| t.position).collect();
+    let mut fresh: Box<skyroute::geometry::voronoi::Delaunay<MAX_THREATS, { 2 * MAX_THREATS }>> =
+        Box::new(skyroute::geometry::voronoi::Delaunay::new());
+    fresh.rebuild(&sites).unwrap();
+    let mut g: Box<
+        skyroute::geometry::voronoi::VoronoiGraph<
+            { skyroute::planner::VORONOI_GRAPH_VERTICES },
+            { skyroute::planner::VORONOI_GRAPH_EDGES },
+        >,
+    > = Box::new(skyroute::geometry::voronoi::VoronoiGraph::new());
+    fresh
+        .graph(&p.network().voronoi_bounds().unwrap(), &mut g)
+        .unwrap();
+    assert_eq!(g.vertices(), p.threat_graph().unwrap().vertices());
+    assert_eq!(g.edges(), p.threat_graph().unwrap().edges());
+    p.plan(&q, p.worst_case_work()).unwrap();
+    let (new_pts, _) = coarse_cost(&p, 0.5);
+    let new_exposure: f64 = new_pts
+        .windows(2)
+        .map(|w| exposure64(w[0], w[1], p.threats()))
+        .sum();
+    assert!(new_exposure < old_exposure_with_it, "re-planned exposure {new_exposure} not below the old route's {old_exposure_with_it} under the new threat");
+    p.remove_threat(added.id).unwrap();
+    p.plan(&q, p.worst_case_work()).unwrap();
+    assert_eq!(
+        p.route_pieces(),
+        &before[..],
+        "removing the threat restores the route"
+    );
+}
+
+#[test]
+fn bad_threat_calls_are_refused_and_change_nothing() {
+    let (s, b) = voronoi("ruz-popups");
+    let mut p = planner(&b.bytes);
+    let threats = p.threats().to_vec();
+    let inside_box = threats[0].position + Vec2::new(100.0, 0.0);
+    assert_eq!(
+        p.add_threat(Vec2::new(f32::NAN, 0.0), 1.0),
+        Err(ThreatError::NonFinite)
+    );
+    assert_eq!(
+        p.add_threat(inside_box, f32::INFINITY),
+        Err(ThreatError::NonFinite)
+    );
+    assert_eq!(p.add_threat(inside_box, 0.0), Err(ThreatError::OutOfRange));
+    assert_eq!(p.add_threat(inside_box, -5.0), Err(ThreatError::OutOfRange));
+    assert_eq!(
+        p.add_threat(Vec2::new(9e6, 9e6), 100.0),
+        Err(ThreatError::OutsideBox)
+    );
+    assert!(matches!(
+        p.add_threat(threats[2].position, 100.0),
+        Err(ThreatError::Duplicate { .. })
+    ));
+    assert_eq!(p.remove_threat(7), Err(ThreatError::UnknownId { id: 7 }));
+    assert_eq!(p.set_threat_weight(1.5), Err(ThreatError::OutOfRange));
+    assert_eq!(p.set_threat_weight(f32::NAN), Err(ThreatError::NonFinite));
+    assert_eq!(p.threats(), &threats[..]);
+    let bounds = p.network().voronoi_bounds().unwrap();
+    let mut added = 0;
+    let mut k = 0u32;
+    while p.threats().len() < MAX_THREATS {
+        k += 1;
+        let at = Vec2::new(
+            bounds.min.x + 997.0 * k as f32 % (bounds.max.x - bounds.min.x),
+            bounds.min.y + 313.0 * k as f32 % (bounds.max.y - bounds.min.y),
+        );
+        if p.add_threat(at, 1000.0).is_ok() {
+            added += 1;
+        }
+    }
+    assert!(added > 0);
+    assert_eq!(p.add_threat(inside_box, 100.0), Err(ThreatError::Full));
+    // Still plans with a full diagram, within the bound.
+    let q = query(&s, &b);
+    if let Ok(r) = p.plan(&q, p.worst_case_work()) {
+        assert!(r.work.total() <= p.worst_case_work());
+    }
+}
