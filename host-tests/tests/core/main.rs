@@ -33,5 +33,7 @@ mod trig;
 /// The Voronoi diagram of threat sites against an exact brute force, SciPy's CSV and closed
 /// forms for degenerate inputs; its work bound and the clipped graph's shape.
 mod voronoi;
+/// Judd & McLain's three-point exposure rule against an adaptive f64 integral.
+mod voronoi_exposure;
 /// Counted work never below independently recomputed lower bounds.
 mod work_lower_bounds;

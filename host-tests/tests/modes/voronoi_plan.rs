@@ -529,3 +529,103 @@ fn bad_threat_calls_are_refused_and_change_nothing() {
         assert!(r.work.total() <= p.worst_case_work());
     }
 }
+
+#[test]
+fn random_queries_and_threats_stay_within_the_work_bound() {
+    use host_tests::rng::Rng;
+    use skyroute::planner::PlanError;
+    let mut rng = Rng(29);
+    for name in ["ruz-popups", "voronoi-dense"] {
+        let (_, b) = voronoi(name);
+        let mut p = planner(&b.bytes);
+        let bounds = p.network().voronoi_bounds().unwrap();
+        let mut routes = 0;
+        for i in 0..host_tests::cases(40, 400) {
+            let at = |rng: &mut Rng| {
+                Vec2::new(
+                    rng.range(bounds.min.x as f64, bounds.max.x as f64) as f32,
+                    rng.range(bounds.min.y as f64, bounds.max.y as f64) as f32,
+                )
+            };
+            if i % 7 == 3 {
+                let r = rng.range(500.0, 5000.0) as f32;
+                let _ = p.add_threat(at(&mut rng), r);
+            }
+            if i % 11 == 5 {
+                let ids: Vec<u8> = p
+                    .threats()
+                    .iter()
+                    .filter_map(|t| match t.origin {
+                        skyroute::planner::ThreatOrigin::Popped(id) => Some(id),
+                        skyroute::planner::ThreatOrigin::Network(_) => None,
+                    })
+                    .collect();
+                if let Some(id) = ids.first() {
+                    p.remove_threat(*id).unwrap();
+                }
+            }
+            p.set_threat_weight(rng.unit() as f32).unwrap();
+            let q = Query {
+                start: Pose {
+                    position: at(&mut rng),
+                    heading: rng.range(-3.2, 3.2) as f32,
+                },
+                goal: Goal {
+                    position: at(&mut rng),
+                    heading: rng.chance(0.5).then(|| rng.range(-3.2, 3.2) as f32),
+                },
+                search: Search::Dijkstra,
+            };
+            let bound = p.worst_case_work();
+            match p.plan(&q, bound) {
+                Ok(r) => {
+                    routes += 1;
+                    assert!(
+                        r.work.total() <= bound,
+                        "{name}: work {} > bound {bound}",
+                        r.work.total()
+                    );
+                }
+                // A start or goal in a zone, or an end the curvature cannot meet nearby.
+                Err(PlanError::InsideObstacle { .. }) | Err(PlanError::Smoothing { .. }) => {}
+                Err(e) => panic!("{name}: query {i} {q:?}: {e}"),
+            }
+        }
+        println!("{name}: {routes} routes");
+        assert!(routes > 0);
+    }
+}
+
+#[test]
+fn a_popup_obstacle_in_flight_is_kept_clear_of() {
+    let (s, b) = voronoi("voronoi-dense");
+    let mut p = planner(&b.bytes);
+    let q = query(&s, &b);
+    p.plan(&q, p.worst_case_work()).unwrap();
+    // A 1.5 km disc on the middle of the first route's longest straight piece.
+    let (a, c) = p
+        .route_pieces()
+        .iter()
+        .filter_map(|piece| match piece {
+            Piece::Line { a, b } => Some((*a, *b)),
+            Piece::Cubic { .. } => None,
+        })
+        .max_by(|x, y| x.0.distance(x.1).partial_cmp(&y.0.distance(y.1)).unwrap())
+        .unwrap();
+    let centre = (a + c) * 0.5;
+    let radius = 1500.0;
+    p.add_popup(skyroute::Popup::Circle { centre, radius })
+        .unwrap();
+    p.plan(&q, p.worst_case_work()).unwrap();
+    let clearance = p.network().clearance() as f64;
+    for (i, piece) in p.route_pieces().iter().enumerate() {
+        for j in 0..=400 {
+            let (pos, _, _) = curvature64(piece, j as f64 / 400.0);
+            let d = host_tests::reference::dist(pos, p64(centre));
+            assert!(
+                d >= radius as f64 + clearance - 0.5,
+                "piece {i} passes {d} m from the pop-up's centre"
+            );
+        }
+    }
+}

@@ -26,7 +26,7 @@ pub const VORONOI_LINKS: usize = 3;
 pub const CHORD_TOLERANCE_M: f32 = 2.0;
 
 /// The most line chords one cubic piece gets in [`Planner::route`].
-pub const CHORDS_PER_CUBIC: u32 = 32;
+pub const CHORDS_PER_CUBIC: u32 = 64;
 
 /// The chords a piece gets: 1 for a line; for a cubic the fewest within
 /// [`CHORD_TOLERANCE_M`], at most [`CHORDS_PER_CUBIC`].
