@@ -237,6 +237,9 @@ pub struct VoronoiBoundInputs {
     /// The spline fit's bound for a coarse route through every graph vertex
     /// ([`fit_work_bound`](crate::geometry::spline::fit_work_bound)).
     pub fit_steps: u64,
+    /// The most clearance queries the fit makes for such a route: `2(n + 4) + 1` for `n`
+    /// corners (`geometry::spline::fit`).
+    pub fit_clears: u64,
 }
 
 /// The most work one Voronoi [`Planner::plan`](super::Planner::plan) can count. With
@@ -248,8 +251,8 @@ pub struct VoronoiBoundInputs {
 /// * search: |V_g| heap resets; ≤ |V_g| pops, ≤ 3 + 2|E_g| pushes or decreases, each ≤
 ///   L = ⌊log2 |V_g|⌋ + 1 levels; ≤ 2|E_g| + 3|V_g| relaxations (half-edges and goal links);
 /// * walk-back: ≤ |V_g| + 1 vertex scans;
-/// * smoothing: its fit steps, each with at most one clearance query of a triangle
-///   (3c + O + P).
+/// * smoothing: its fit steps, and its clearance queries, each of a segment (c) or of a
+///   triangle (its three sides and a containment test per zone and pop-up, 3c + O + P).
 pub fn voronoi_plan_work_bound(n: &VoronoiBoundInputs) -> u64 {
     let v = n.graph_vertices;
     let e = n.graph_edges;
@@ -264,9 +267,10 @@ pub fn voronoi_plan_work_bound(n: &VoronoiBoundInputs) -> u64 {
         .saturating_add((v + 3 + 2 * e).saturating_mul(levels))
         .saturating_add(2 * e + 3 * v);
     let walk = v + 1;
-    let smoothing = n
-        .fit_steps
-        .saturating_mul(1 + 3 * segment + n.obstacles + n.popups);
+    let smoothing = n.fit_steps.saturating_add(
+        n.fit_clears
+            .saturating_mul(3 * segment + n.obstacles + n.popups),
+    );
     endpoints
         .saturating_add(pricing)
         .saturating_add(links)

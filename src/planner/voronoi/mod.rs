@@ -127,6 +127,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             popup_vertices: super::MAX_POPUP_VERTICES as u64,
             candidates: super::MAX_CANDIDATES as u64,
             fit_steps: crate::geometry::spline::fit_work_bound(VORONOI_GRAPH_VERTICES),
+            fit_clears: 2 * (VORONOI_GRAPH_VERTICES as u64 + 4) + 1,
         }
     }
 
