@@ -10,6 +10,7 @@
 //! A new planner is all-zero, so such a `static` lands in `.bss` and costs no flash.
 
 mod connect;
+pub mod decision;
 mod error;
 pub mod heap;
 mod landmark;

@@ -1,0 +1,224 @@
+//! The pop-up decision (`skyroute::planner::decision`, Ruz et al. eqs 33–36) against a brute
+//! force over every combination: the same least risk on random instances, infeasible exactly
+//! when no combination meets both limits (with the tightest limit named as the brute force
+//! finds it), the work within its bound, bad input refused by name.
+
+use host_tests::rng::Rng;
+use skyroute::planner::decision::{
+    decide, decision_work_bound, Alternative, DecisionError, DecisionLimits, Limit,
+    MAX_ALTERNATIVES, MAX_DECISION_POPUPS,
+};
+
+/// Every combination: `(risk, mean time, mean fuel, choice)`, in lexicographic order.
+fn combinations(alts: &[Vec<Alternative>]) -> Vec<(f64, f64, f64, Vec<u8>)> {
+    let mut out = vec![(0.0, 0.0, 0.0, Vec::new())];
+    for a in alts {
+        let mut next = Vec::new();
+        for (r, t, f, c) in &out {
+            for (k, x) in a.iter().enumerate() {
+                let mut c2 = c.clone();
+                c2.push(k as u8);
+                next.push((r + x.risk as f64, t + x.time as f64, f + x.fuel as f64, c2));
+            }
+        }
+        out = next;
+    }
+    let n = alts.len().max(1) as f64;
+    out.into_iter()
+        .map(|(r, t, f, c)| (r, t / n, f / n, c))
+        .collect()
+}
+
+fn random_instance(rng: &mut Rng) -> (Vec<Vec<Alternative>>, DecisionLimits) {
+    let n = rng.below(MAX_DECISION_POPUPS as u64 + 1) as usize;
+    // Coarse values make ties and limits met exactly common.
+    let q = |rng: &mut Rng| (rng.below(11) as f32) / 10.0;
+    let alts = (0..n)
+        .map(|_| {
+            (0..1 + rng.below(MAX_ALTERNATIVES as u64) as usize)
+                .map(|_| Alternative {
+                    risk: q(rng),
+                    time: q(rng),
+                    fuel: q(rng),
+                })
+                .collect()
+        })
+        .collect();
+    let limits = DecisionLimits {
+        time_max: q(rng),
+        fuel_max: q(rng),
+    };
+    (alts, limits)
+}
+
+#[test]
+fn the_decision_is_the_brute_force_optimum() {
+    let mut rng = Rng(33);
+    let (mut feasible, mut infeasible) = (0, 0);
+    for case in 0..host_tests::cases(3000, 30000) {
+        let (alts, limits) = random_instance(&mut rng);
+        let slices: Vec<&[Alternative]> = alts.iter().map(|a| a.as_slice()).collect();
+        let all = combinations(&alts);
+        let tol = 1e-5;
+        let meets =
+            |t: f64, f: f64| t <= limits.time_max as f64 + tol && f <= limits.fuel_max as f64 + tol;
+        let best = all
+            .iter()
+            .filter(|(_, t, f, _)| meets(*t, *f))
+            .map(|(r, ..)| *r)
+            .fold(f64::INFINITY, f64::min);
+        let counts: Vec<usize> = alts.iter().map(Vec::len).collect();
+        match decide(&slices, &limits) {
+            Ok(d) => {
+                feasible += 1;
+                assert!(
+                    (d.risk as f64 - best).abs() <= 1e-5,
+                    "case {case}: risk {} but the brute force finds {best}",
+                    d.risk
+                );
+                let (r, t, f, _) = all.iter().find(|(.., c)| c[..] == d.choice[..]).unwrap();
+                assert!(
+                    (r - d.risk as f64).abs() <= 1e-5 && meets(*t, *f),
+                    "case {case}"
+                );
+                assert!(d.work <= decision_work_bound(&counts), "case {case}");
+            }
+            Err(DecisionError::Infeasible { limit, least, max }) => {
+                infeasible += 1;
+                assert!(
+                    best.is_infinite(),
+                    "case {case}: infeasible, but {best} meets both"
+                );
+                // The least mean of each factor among choices meeting the other limit.
+                let least_time = all
+                    .iter()
+                    .filter(|(_, _, f, _)| *f <= limits.fuel_max as f64 + tol)
+                    .map(|(_, t, ..)| *t)
+                    .fold(f64::INFINITY, f64::min);
+                let least_fuel = all
+                    .iter()
+                    .filter(|(_, t, _, _)| *t <= limits.time_max as f64 + tol)
+                    .map(|(_, _, f, _)| *f)
+                    .fold(f64::INFINITY, f64::min);
+                let want = match limit {
+                    Limit::Time => (least_time, limits.time_max),
+                    Limit::Fuel => (least_fuel, limits.fuel_max),
+                };
+                assert_eq!(max, want.1, "case {case}");
+                assert!(
+                    (least as f64 - want.0).abs() <= 1e-5
+                        || (least.is_infinite() && want.0.is_infinite()),
+                    "case {case}: {limit:?} least {least}, brute force {}",
+                    want.0
+                );
+                let over =
+                    |l: f64, m: f32| (l - m as f64) / (m.abs().max(f32::MIN_POSITIVE)) as f64;
+                let (ot, of) = (
+                    over(least_time, limits.time_max),
+                    over(least_fuel, limits.fuel_max),
+                );
+                match limit {
+                    Limit::Time => assert!(ot >= of - 1e-4 || ot.is_infinite(), "case {case}"),
+                    Limit::Fuel => assert!(of >= ot - 1e-4 || of.is_infinite(), "case {case}"),
+                }
+            }
+            Err(e) => panic!("case {case}: {e:?}"),
+        }
+    }
+    println!("{feasible} feasible, {infeasible} infeasible instances");
+    assert!(feasible > 0 && infeasible > 0);
+}
+
+#[test]
+fn the_papers_instance_decides_within_its_limits() {
+    // 3 pop-ups × 3 alternatives, limits 0.35 (time) and 0.40 (fuel), as in Ruz et al.
+    let a = |risk, time, fuel| Alternative { risk, time, fuel };
+    let alts = [
+        vec![
+            a(0.30, 0.10, 0.20),
+            a(0.10, 0.40, 0.35),
+            a(0.05, 0.60, 0.50),
+        ],
+        vec![
+            a(0.25, 0.15, 0.10),
+            a(0.12, 0.30, 0.45),
+            a(0.02, 0.55, 0.60),
+        ],
+        vec![
+            a(0.40, 0.05, 0.05),
+            a(0.20, 0.35, 0.30),
+            a(0.08, 0.50, 0.55),
+        ],
+    ];
+    let slices: Vec<&[Alternative]> = alts.iter().map(|v| v.as_slice()).collect();
+    let limits = DecisionLimits {
+        time_max: 0.35,
+        fuel_max: 0.40,
+    };
+    let d = decide(&slices, &limits).unwrap();
+    assert!(d.mean_time <= 0.35 + 1e-6 && d.mean_fuel <= 0.40 + 1e-6);
+    let best = combinations(&alts)
+        .into_iter()
+        .filter(|(_, t, f, _)| *t <= 0.35 + 1e-6 && *f <= 0.40 + 1e-6)
+        .map(|(r, ..)| r)
+        .fold(f64::INFINITY, f64::min);
+    assert!((d.risk as f64 - best).abs() < 1e-6);
+}
+
+#[test]
+fn bad_input_is_refused_by_name() {
+    let a = Alternative {
+        risk: 0.1,
+        time: 0.1,
+        fuel: 0.1,
+    };
+    let ok = DecisionLimits {
+        time_max: 0.5,
+        fuel_max: 0.5,
+    };
+    let nine: Vec<&[Alternative]> = (0..9).map(|_| std::slice::from_ref(&a)).collect();
+    assert_eq!(
+        decide(&nine, &ok),
+        Err(DecisionError::TooManyPopups { count: 9 })
+    );
+    let empty: [&[Alternative]; 2] = [std::slice::from_ref(&a), &[]];
+    assert_eq!(
+        decide(&empty, &ok),
+        Err(DecisionError::BadAlternativeCount { popup: 1, count: 0 })
+    );
+    let five = [a; 5];
+    assert_eq!(
+        decide(&[&five[..]], &ok),
+        Err(DecisionError::BadAlternativeCount { popup: 0, count: 5 })
+    );
+    for bad in [
+        Alternative {
+            risk: f32::NAN,
+            ..a
+        },
+        Alternative { risk: 1.5, ..a },
+        Alternative {
+            time: f32::INFINITY,
+            ..a
+        },
+        Alternative {
+            fuel: f32::NAN,
+            ..a
+        },
+    ] {
+        assert_eq!(
+            decide(&[std::slice::from_ref(&bad)], &ok),
+            Err(DecisionError::BadNumber { popup: 0 })
+        );
+    }
+    let nan = DecisionLimits {
+        time_max: f32::NAN,
+        fuel_max: 0.5,
+    };
+    assert_eq!(
+        decide(&[std::slice::from_ref(&a)], &nan),
+        Err(DecisionError::BadNumber { popup: usize::MAX })
+    );
+    let none = decide(&[], &ok).unwrap();
+    assert!(none.choice.is_empty() && none.risk == 0.0);
+}
