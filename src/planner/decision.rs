@@ -20,6 +20,11 @@ pub const MAX_DECISION_POPUPS: usize = 8;
 /// The most alternatives a pop-up has.
 pub const MAX_ALTERNATIVES: usize = 4;
 
+/// The largest magnitude of a time or fuel factor or limit (they are normalised, near
+/// [0, 1]): beyond it a figure is refused as [`DecisionError::BadNumber`], which keeps every
+/// sum of at most [`MAX_DECISION_POPUPS`] factors exact enough and finite in f32.
+pub const MAX_FACTOR: f32 = 1e6;
+
 /// One bypass alternative's figures.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -84,7 +89,8 @@ pub enum DecisionError {
         /// Its alternatives.
         count: usize,
     },
-    /// A figure or a limit is NaN or infinite, or a risk is outside [0, 1].
+    /// A figure or a limit is NaN, infinite or beyond [`MAX_FACTOR`] in magnitude, or a risk
+    /// is outside [0, 1].
     BadNumber {
         /// The pop-up (`usize::MAX` for the limits).
         popup: usize,
@@ -177,7 +183,8 @@ impl Search<'_> {
 /// risk whose mean time and fuel factors are within `limits`. Exact (module documentation).
 /// Work: at most [`decision_work_bound`] nodes; an infeasible instance takes two more
 /// searches of as many to name its tightest limit (three in all). Recursion depth at most
-/// [`MAX_DECISION_POPUPS`]. No pop-ups: the empty choice.
+/// [`MAX_DECISION_POPUPS`]. No pop-ups: the empty choice, whatever the limits (a mean over no
+/// pop-ups constrains nothing).
 pub fn decide(
     alternatives: &[&[Alternative]],
     limits: &DecisionLimits,
@@ -186,7 +193,8 @@ pub fn decide(
     if n > MAX_DECISION_POPUPS {
         return Err(DecisionError::TooManyPopups { count: n });
     }
-    if !(limits.time_max.is_finite() && limits.fuel_max.is_finite()) {
+    let factor = |x: f32| x.is_finite() && x.abs() <= MAX_FACTOR;
+    if !(factor(limits.time_max) && factor(limits.fuel_max)) {
         return Err(DecisionError::BadNumber { popup: usize::MAX });
     }
     let mut rest = [(0.0f32, 0.0f32, 0.0f32); MAX_DECISION_POPUPS + 1];
