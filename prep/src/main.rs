@@ -169,18 +169,22 @@ enum Command {
         #[arg(long)]
         pretty: bool,
     },
-    /// Draw a network, and optionally a route, a scenario's endpoints and pop-ups, as SVG or PNG.
+    /// Draw a network, and optionally routes, a scenario's endpoints and pop-ups, as SVG or PNG.
     ///
     /// Grid north up, equal scale on both axes, with a scale bar. Obstacles grey with their
     /// clearance band, network edges thin and light, the route bold with one colour per leg and
     /// arrowheads in the direction of flight, start/waypoints/goal labelled, pop-ups red. The
-    /// panel lists the legs and the route's closest approach to obstacles and pop-ups.
+    /// panel lists the legs and the route's closest approach to obstacles and pop-ups. A
+    /// Voronoi network is drawn over its exposure heat map (Σ (r/d)⁴ per metre, log scale) with
+    /// its threat sites and their reference distances dashed; a Voronoi route as its smoothed
+    /// pieces with its coarse route dashed, and radars that popped up in flight in magenta.
     Render {
         /// The network image.
         network: PathBuf,
-        /// A route written by `skyroute plan` on this network.
+        /// A route written by `skyroute plan` on this network (repeatable: several routes are
+        /// drawn one colour each, with a legend entry "k = …, length …, exposure …" each).
         #[arg(long)]
-        route: Option<PathBuf>,
+        route: Vec<PathBuf>,
         /// The scenario: draws its start, waypoints, goal and `popup` features.
         #[arg(long)]
         scenario: Option<PathBuf>,
@@ -430,7 +434,7 @@ fn demo_command(dir: &Path) -> CliResult {
     let request = skyroute_prep::render::RenderRequest {
         network,
         mode: None,
-        route: Some(route),
+        routes: vec![route],
         scenario: Some(scenario_path),
         popups: Vec::new(),
         output: picture.clone(),
@@ -541,7 +545,7 @@ fn run(cli: Cli) -> CliResult {
             let request = skyroute_prep::render::RenderRequest {
                 network,
                 mode,
-                route,
+                routes: route,
                 scenario: scenario_path,
                 popups: popup,
                 output,
