@@ -142,7 +142,10 @@ enum Command {
         mode: Option<Mode>,
         /// Voronoi networks: the weight k of length against exposure, in [0, 1] (default: the
         /// scenario's planner.threat_weight, or 0.5). 1 flies the shortest route, 0 the least
-        /// exposed.
+        /// exposed. Roadmap networks: plans on the ground instead of with the onboard core (which
+        /// does not weigh exposure): Dijkstra over the roadmap's Dubins edges with cost
+        /// k·L + (1 − k)·exposure to the scenario's threats (three-point rule), ends joined by
+        /// Dubins paths to the nearest vertices, no post-processing.
         #[arg(long, value_parser = parse_weight)]
         threat_weight: Option<f32>,
         /// Voronoi networks: a radar that popped up in flight, `LON,LAT,RADIUS_M` (repeatable;
