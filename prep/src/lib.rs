@@ -18,6 +18,7 @@ pub mod plan_cli;
 pub mod provenance;
 pub mod render;
 pub mod roadmap;
+pub mod roadmap_exposure;
 pub mod route_geojson;
 pub mod route_json;
 pub mod scenario;

@@ -142,7 +142,10 @@ enum Command {
         mode: Option<Mode>,
         /// Voronoi networks: the weight k of length against exposure, in [0, 1] (default: the
         /// scenario's planner.threat_weight, or 0.5). 1 flies the shortest route, 0 the least
-        /// exposed.
+        /// exposed. Roadmap networks: plans on the ground instead of with the onboard core (which
+        /// does not weigh exposure): Dijkstra over the roadmap's Dubins edges with cost
+        /// k·L + (1 − k)·exposure to the scenario's threats (three-point rule), ends joined by
+        /// Dubins paths to the nearest vertices, no post-processing.
         #[arg(long, value_parser = parse_weight)]
         threat_weight: Option<f32>,
         /// Voronoi networks: a radar that popped up in flight, `LON,LAT,RADIUS_M` (repeatable;
@@ -169,18 +172,22 @@ enum Command {
         #[arg(long)]
         pretty: bool,
     },
-    /// Draw a network, and optionally a route, a scenario's endpoints and pop-ups, as SVG or PNG.
+    /// Draw a network, and optionally routes, a scenario's endpoints and pop-ups, as SVG or PNG.
     ///
     /// Grid north up, equal scale on both axes, with a scale bar. Obstacles grey with their
     /// clearance band, network edges thin and light, the route bold with one colour per leg and
     /// arrowheads in the direction of flight, start/waypoints/goal labelled, pop-ups red. The
-    /// panel lists the legs and the route's closest approach to obstacles and pop-ups.
+    /// panel lists the legs and the route's closest approach to obstacles and pop-ups. A
+    /// Voronoi network is drawn over its exposure heat map (Σ (r/d)⁴ per metre, log scale) with
+    /// its threat sites and their reference distances dashed; a Voronoi route as its smoothed
+    /// pieces with its coarse route dashed, and radars that popped up in flight in magenta.
     Render {
         /// The network image.
         network: PathBuf,
-        /// A route written by `skyroute plan` on this network.
+        /// A route written by `skyroute plan` on this network (repeatable: several routes are
+        /// drawn one colour each, with a legend entry "k = …, length …, exposure …" each).
         #[arg(long)]
-        route: Option<PathBuf>,
+        route: Vec<PathBuf>,
         /// The scenario: draws its start, waypoints, goal and `popup` features.
         #[arg(long)]
         scenario: Option<PathBuf>,
@@ -430,7 +437,7 @@ fn demo_command(dir: &Path) -> CliResult {
     let request = skyroute_prep::render::RenderRequest {
         network,
         mode: None,
-        route: Some(route),
+        routes: vec![route],
         scenario: Some(scenario_path),
         popups: Vec::new(),
         output: picture.clone(),
@@ -541,7 +548,7 @@ fn run(cli: Cli) -> CliResult {
             let request = skyroute_prep::render::RenderRequest {
                 network,
                 mode,
-                route,
+                routes: route,
                 scenario: scenario_path,
                 popups: popup,
                 output,

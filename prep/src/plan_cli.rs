@@ -41,7 +41,8 @@ pub struct PlanRequest<'a> {
     pub output: &'a Path,
     /// `--mode`: the mode to take the scenario as.
     pub mode: Option<scenario::Mode>,
-    /// `--threat-weight`: the weight k (Voronoi networks).
+    /// `--threat-weight`: the weight k (Voronoi networks; on a roadmap network, the ground
+    /// planner of `crate::roadmap_exposure`).
     pub threat_weight: Option<f32>,
     /// `--threat`: radars that popped up, `(lon, lat, radius_m)` (Voronoi networks).
     pub threats: &'a [(f64, f64, f64)],
@@ -86,11 +87,21 @@ pub fn plan_command(req: &PlanRequest) -> CliResult {
         .into());
     }
     let s = load_scenario(req.scenario, req.hull_repair, req.mode)?;
-    if s.planner.mode != scenario::Mode::Voronoi
-        && (req.threat_weight.is_some() || !req.threats.is_empty())
+    if s.planner.mode != scenario::Mode::Voronoi && !req.threats.is_empty() {
+        return Err(format!(
+            "--threat applies to voronoi networks; {} is a {} network",
+            req.network.display(),
+            net.mode().name()
+        )
+        .into());
+    }
+    if !matches!(
+        s.planner.mode,
+        scenario::Mode::Voronoi | scenario::Mode::Roadmap
+    ) && req.threat_weight.is_some()
     {
         return Err(format!(
-            "--threat-weight and --threat apply to voronoi networks; {} is a {} network",
+            "--threat-weight applies to voronoi and roadmap networks; {} is a {} network",
             req.network.display(),
             net.mode().name()
         )
@@ -117,6 +128,9 @@ pub fn plan_command(req: &PlanRequest) -> CliResult {
     let mut json = match s.planner.mode {
         scenario::Mode::Landmark => {
             plan_landmark_route(req, &s, &bytes, &frame, &local_popups, t0)?
+        }
+        scenario::Mode::Roadmap if req.threat_weight.is_some() => {
+            plan_ground_exposure_route(req, &s, &net, &frame, &local_popups, t0)?
         }
         scenario::Mode::Roadmap | scenario::Mode::Terrain => {
             plan_mission_route(req, &s, &bytes, &frame, &local_popups, t0)?
@@ -244,6 +258,61 @@ fn plan_mission_route(
     Ok(crate::route_json::mission_json(&m, frame, &s.name))
 }
 
+/// `skyroute plan --threat-weight` on a roadmap network: the ground planner under the exposure
+/// cost (`crate::roadmap_exposure`; the onboard roadmap planner does not weigh exposure).
+fn plan_ground_exposure_route(
+    req: &PlanRequest,
+    s: &scenario::Scenario,
+    net: &skyroute::Network,
+    frame: &crate::frame::LocalFrame,
+    popups: &[LocalPopup],
+    t0: Instant,
+) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    use crate::roadmap_exposure::{ground_route_json, plan_roadmap_exposure, GroundPlanError};
+    // The shortest decimal of the f32 the option was parsed into (0.1, not 0.10000000149).
+    let k: f64 = req
+        .threat_weight
+        .map_or(0.5, |w| w.to_string().parse().unwrap_or(w as f64));
+    let m = plan_roadmap_exposure(net, s, frame, popups, k).map_err(
+        |e| -> Box<dyn std::error::Error> {
+            let message = format!("{}: {e}", req.scenario.display());
+            match e {
+                GroundPlanError::BadInput(_) => message.into(),
+                GroundPlanError::NoRoute(_) => Box::new(NoRoute(message)),
+            }
+        },
+    )?;
+    for l in &m.legs {
+        println!(
+            "  {} -> {}: {:.1} m, {} network edges, exposure {:.1} (three-point {:.1}){}",
+            l.from,
+            l.to,
+            l.length_m,
+            l.network_edges,
+            l.exposure_flown,
+            l.exposure_three_point,
+            if l.widened {
+                "; connected beyond the network's radius to the nearest vertices"
+            } else {
+                ""
+            }
+        );
+    }
+    println!(
+        "planned {} on the ground (roadmap edges, cost k*L + (1 - k)*exposure; not the onboard \
+         planner) with k = {k}: {:.1} m, exposure {:.1}, {} threats, {} edges blocked by \
+         pop-ups, {:.3} s -> {}",
+        s.name,
+        m.legs.iter().map(|l| l.length_m).sum::<f64>(),
+        m.legs.iter().map(|l| l.exposure_flown).sum::<f64>(),
+        m.threats.len(),
+        m.blocked_edges,
+        t0.elapsed().as_secs_f64(),
+        req.output.display()
+    );
+    Ok(ground_route_json(&m, frame, &s.name))
+}
+
 /// `skyroute plan` on a Voronoi network: the route file's JSON.
 fn plan_voronoi_route(
     req: &PlanRequest,
@@ -292,7 +361,7 @@ fn plan_voronoi_route(
     let length: f32 = m.legs.iter().map(|l| l.summary.length).sum();
     let exposure: f64 = m.legs.iter().map(|l| l.flown_exposure).sum();
     println!(
-        "planned {} with k = {}: {:.1} m, exposure {:.1}, {} threats ({} in flight), {:.2} s -> {}",
+        "planned {} with k = {}: {:.1} m, exposure {:.1}, {} threats ({} in flight), {:.3} s -> {}",
         s.name,
         m.threat_weight,
         length,

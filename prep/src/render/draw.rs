@@ -1,7 +1,8 @@
 //! Drawing helpers shared by the layers: the page's constants, XML escaping, the map view, path
 //! data for lines and arcs, bounding boxes, round lengths and labels.
 
-use skyroute::{Primitive, Vec2};
+use skyroute::network::Mode;
+use skyroute::{Network, Primitive, Vec2};
 use std::f64::consts::FRAC_PI_2;
 use std::fmt::Write as _;
 
@@ -135,4 +136,20 @@ pub(super) fn text(svg: &mut String, x: f64, y: f64, size: f64, anchor: &str, fi
         r##"<text x="{x:.1}" y="{y:.1}" font-size="{size}" text-anchor="{anchor}" font-weight="bold" fill="{fill}" stroke="#fff" stroke-width="3" stroke-linejoin="round" paint-order="stroke">{}</text>"##,
         xml(s)
     );
+}
+
+/// Whether a network is drawn as a Voronoi network (heat map, threat sites, dark edges).
+pub(super) fn is_voronoi(net: &Network) -> bool {
+    match net.mode() {
+        Mode::Voronoi => true,
+        Mode::Roadmap | Mode::Landmark | Mode::Terrain | Mode::Unknown(_) => false,
+    }
+}
+
+/// Whether a network is drawn as a terrain network (blocked cells, no edge legend).
+pub(super) fn is_terrain(net: &Network) -> bool {
+    match net.mode() {
+        Mode::Terrain => true,
+        Mode::Roadmap | Mode::Landmark | Mode::Voronoi | Mode::Unknown(_) => false,
+    }
 }

@@ -23,11 +23,16 @@ mod route_layer;
 mod svg;
 #[cfg(test)]
 mod tests;
+mod threat_layer;
 
-pub use picture::{scenario_marks, EndpointMark, Picture, PopupMark, Route, RouteLeg};
+pub(crate) use panel::primitive_obstacle_distance;
+pub use picture::{scenario_marks, EndpointMark, Picture, PopupMark, Route, RouteLeg, ThreatMark};
 pub use png::svg_to_png;
-pub use route_file::{parse_route, primitive_from_json, read_route, route_from_json};
+pub use route_file::{
+    parse_route, piece_from_json, primitive_from_json, read_route, route_from_json,
+};
 pub use svg::render_svg;
+pub use threat_layer::exposure_density;
 
 use crate::export::{network_frame, read_network};
 use crate::scenario;
@@ -41,8 +46,9 @@ pub struct RenderRequest {
     pub network: PathBuf,
     /// `--mode`: the mode to take the scenario as.
     pub mode: Option<scenario::Mode>,
-    /// A route file from `skyroute plan`.
-    pub route: Option<PathBuf>,
+    /// Route files from `skyroute plan` (`--route`, repeatable): one is drawn a colour per leg,
+    /// several a colour per route.
+    pub routes: Vec<PathBuf>,
     /// A scenario for the start, waypoints, goal and pop-ups.
     pub scenario: Option<PathBuf>,
     /// Extra pop-ups, `(lon, lat, radius_m)`.
@@ -63,27 +69,34 @@ fn is_png(p: &Path) -> bool {
     p.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"))
 }
 
+/// Reads a route file and checks that it was planned in `net`'s frame; errors name the file.
+fn read_route_on(path: &Path, net: &Network, net_path: &Path) -> Result<Route, String> {
+    let r = read_route(path)?;
+    let (lat, lon) = net.origin_deg();
+    if (r.origin_deg.0 - lat).abs() > 1e-9 || (r.origin_deg.1 - lon).abs() > 1e-9 {
+        return Err(format!(
+            "{}: the route's frame origin ({}, {}) is not the network's ({lat}, {lon}): was it \
+             planned on {}?",
+            path.display(),
+            r.origin_deg.0,
+            r.origin_deg.1,
+            net_path.display()
+        ));
+    }
+    Ok(r)
+}
+
 /// Reads the inputs, draws, writes the picture(s). Returns the files written. Errors name the
 /// file concerned.
 pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::Error>> {
     let bytes = read_network(&req.network)?;
     let net = Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", req.network.display()))?;
     let frame = network_frame(&net);
-    let route = req.route.as_deref().map(read_route).transpose()?;
-    if let (Some(r), Some(path)) = (&route, &req.route) {
-        let (lat, lon) = net.origin_deg();
-        if (r.origin_deg.0 - lat).abs() > 1e-9 || (r.origin_deg.1 - lon).abs() > 1e-9 {
-            return Err(format!(
-                "{}: the route's frame origin ({}, {}) is not the network's ({lat}, {lon}): was it \
-                 planned on {}?",
-                path.display(),
-                r.origin_deg.0,
-                r.origin_deg.1,
-                req.network.display()
-            )
-            .into());
-        }
-    }
+    let routes = req
+        .routes
+        .iter()
+        .map(|path| read_route_on(path, &net, &req.network))
+        .collect::<Result<Vec<_>, _>>()?;
     let s = req
         .scenario
         .as_deref()
@@ -99,13 +112,37 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
         .as_ref()
         .map(|s| scenario_marks(s, &frame))
         .unwrap_or_default();
-    // The pop-ups the route was planned round, unless the scenario already drew them.
-    for p in route.iter().flat_map(|r| r.popups.iter()) {
+    // Routes that were all planned without the scenario's pop-ups (`--no-scenario-popups`)
+    // are drawn without them.
+    if !routes.is_empty()
+        && routes
+            .iter()
+            .all(|r| r.scenario_popups_applied == Some(false))
+    {
+        popups.clear();
+    }
+    // The pop-ups the routes were planned round, unless the scenario already drew them (the
+    // route file holds the centre in f32, the scenario in f64: equal within a metre).
+    let same = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).hypot(a.1 - b.1) < 1.0;
+    for p in routes.iter().flat_map(|r| r.popups.iter()) {
         if !popups
             .iter()
-            .any(|q| q.centre == p.centre && q.radius == p.radius)
+            .any(|q| same(q.centre, p.centre) && (q.radius - p.radius).abs() < 1e-3)
         {
             popups.push(p.clone());
+        }
+    }
+    let mut threats: Vec<ThreatMark> = (0..net.threat_count())
+        .filter_map(|i| net.threat(i))
+        .map(|(c, r)| ThreatMark {
+            centre: (c.x as f64, c.y as f64),
+            radius: r as f64,
+            popped: false,
+        })
+        .collect();
+    for t in routes.iter().flat_map(|r| r.threats.iter()) {
+        if t.popped && !threats.iter().any(|q| same(q.centre, t.centre)) {
+            threats.push(t.clone());
         }
     }
     popups.extend(
@@ -122,8 +159,8 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
         .as_ref()
         .map(|s| s.name.clone())
         .or_else(|| {
-            route
-                .as_ref()
+            routes
+                .first()
                 .map(|r| r.scenario.clone())
                 .filter(|n| !n.is_empty())
         })
@@ -132,7 +169,8 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
         title,
         network: Some(net),
         edges: !req.no_edges,
-        route,
+        routes,
+        threats,
         endpoints,
         popups,
         map_width_px: if req.map_width_px > 0.0 {
@@ -152,7 +190,7 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
         crate::output::write_atomically(path, png.as_deref().unwrap_or_default())
     };
     let mut inputs = vec![req.network.as_path()];
-    inputs.extend(req.route.as_deref());
+    inputs.extend(req.routes.iter().map(PathBuf::as_path));
     inputs.extend(req.scenario.as_deref());
     for out in std::iter::once(&req.output).chain(req.png.iter()) {
         crate::output::refuse_overwriting_inputs(out, &inputs)?;

@@ -1,6 +1,6 @@
 //! The map's background grid and the network's edges and vertices.
 
-use super::draw::{nice_length, path_data, BBox, View, MARGIN_PX};
+use super::draw::{is_voronoi, nice_length, path_data, BBox, View, MARGIN_PX};
 use skyroute::Network;
 use std::fmt::Write as _;
 
@@ -34,8 +34,14 @@ pub(super) fn grid(svg: &mut String, view: &View, bb: BBox, map_w: f64, map_h: f
     (fine, coarse)
 }
 
-/// The network's edges, one path, and its vertices as dots.
+/// The network's edges, one path, and its vertices as dots (a Voronoi network's darker, to show
+/// over the heat map).
 pub(super) fn edges(svg: &mut String, net: &Network, view: &View) {
+    let (edge_colour, edge_width, rendering) = if is_voronoi(net) {
+        ("#34495e", 1.3, "geometricPrecision")
+    } else {
+        ("#c9d6e6", 1.0, "crispEdges")
+    };
     let mut d = String::new();
     for i in 0..net.edge_count() {
         if let Some(path) = net.edge_path(i) {
@@ -47,7 +53,7 @@ pub(super) fn edges(svg: &mut String, net: &Network, view: &View) {
     }
     let _ = writeln!(
         svg,
-        r##"<path d="{d}" fill="none" stroke="#c9d6e6" stroke-width="1" shape-rendering="crispEdges"/>"##
+        r##"<path class="edges" d="{d}" fill="none" stroke="{edge_colour}" stroke-width="{edge_width}" shape-rendering="{rendering}"/>"##
     );
     let mut dots = String::new();
     for i in 0..net.vertex_count() {

@@ -1,8 +1,12 @@
 //! The panel right of the map: title, network figures, legend, the route's legs and its
 //! smallest distances to obstacles and pop-ups, and the scale bar.
 
-use super::draw::{metres, nice_length, xml, LEG_COLOURS, MARGIN_PX, PANEL_PX};
+use super::draw::{
+    is_terrain, is_voronoi, metres, nice_length, xml, LEG_COLOURS, MARGIN_PX, PANEL_PX,
+};
 use super::picture::{Picture, PopupMark, Route};
+use super::route_layer::{route_colour, route_width};
+use super::threat_layer::site_symbol;
 use skyroute::geometry::predicates::{
     point_in_polygon, primitive_point_distance, primitive_segment_distance, PolygonView,
 };
@@ -14,9 +18,71 @@ use std::fmt::Write as _;
 pub(super) fn panel(svg: &mut String, pic: &Picture, px0: f64) {
     let sym_y = heading(svg, pic, px0);
     let sym_y = legend(svg, pic, px0, sym_y);
-    if let Some(route) = &pic.route {
-        route_summary(svg, pic, route, px0, sym_y + 4.0);
+    match pic.routes.as_slice() {
+        [] => {}
+        [route] => route_summary(svg, pic, route, px0, sym_y + 4.0),
+        routes => routes_summary(svg, pic, routes, px0, sym_y + 4.0),
     }
+}
+
+/// A route's legend text: its weight k, length and exposure when it has them.
+fn route_label(r: &Route) -> String {
+    let mut s = String::new();
+    if let Some(k) = r.threat_weight {
+        let _ = write!(s, "k = {k:.2}, ");
+    }
+    let _ = write!(s, "length {:.1} km", r.length_m() / 1000.0);
+    if let Some(e) = r.exposure_flown {
+        let _ = write!(s, ", exposure {e:.1}");
+    }
+    s
+}
+
+/// Several routes: a legend entry each in its colour, then their smallest distances to
+/// obstacles and pop-ups.
+fn routes_summary(svg: &mut String, pic: &Picture, routes: &[Route], px0: f64, mut y: f64) {
+    y += 8.0;
+    let _ = writeln!(
+        svg,
+        r##"<text x="{px0:.1}" y="{y:.1}" font-size="15" font-weight="bold">{} routes</text>"##,
+        routes.len()
+    );
+    y += 8.0;
+    for (i, r) in routes.iter().enumerate() {
+        y += 22.0;
+        let (c, w) = (route_colour(i), route_width(i, routes.len()));
+        let _ = writeln!(
+            svg,
+            r##"<path d="M{px0:.1} {:.1}h32" stroke="#fff" stroke-width="{:.1}"/><path d="M{px0:.1} {:.1}h32" stroke="{c}" stroke-width="{w:.1}"/>"##,
+            y - 5.0,
+            w + 3.5,
+            y - 5.0,
+        );
+        let _ = writeln!(
+            svg,
+            r##"<text class="route-legend" x="{:.1}" y="{y:.1}" font-size="14">{}</text>"##,
+            px0 + 44.0,
+            xml(&route_label(r))
+        );
+    }
+    if routes
+        .iter()
+        .any(|r| r.legs.iter().any(|l| l.coarse.len() >= 2))
+    {
+        y += 22.0;
+        let _ = writeln!(
+            svg,
+            r##"<path d="M{px0:.1} {:.1}h32" stroke="#333" stroke-width="1.2" stroke-dasharray="7 5"/><text x="{:.1}" y="{y:.1}" font-size="14">coarse route (Voronoi edges)</text>"##,
+            y - 5.0,
+            px0 + 44.0
+        );
+    }
+    let net = pic.network.as_ref();
+    let all = Route {
+        legs: routes.iter().flat_map(|r| r.legs.iter().cloned()).collect(),
+        ..Route::default()
+    };
+    closest(svg, net, &all, &pic.popups, px0, y);
 }
 
 /// The title and the network's figures; returns where the legend starts.
@@ -36,6 +102,11 @@ fn heading(svg: &mut String, pic: &Picture, px0: f64) -> f64 {
     };
     line(svg, 14.0, 20.0, "bold", "#000", &pic.title);
     if let Some(net) = net {
+        let threats = if is_voronoi(net) {
+            format!(", {} threats", net.threat_count())
+        } else {
+            String::new()
+        };
         line(
             svg,
             24.0,
@@ -43,7 +114,7 @@ fn heading(svg: &mut String, pic: &Picture, px0: f64) -> f64 {
             "normal",
             "#333",
             &format!(
-                "network: {} vertices, {} edges, {} obstacles",
+                "network: {} vertices, {} edges, {} obstacles{threats}",
                 net.vertex_count(),
                 net.edge_count(),
                 net.obstacle_count()
@@ -91,19 +162,37 @@ fn legend(svg: &mut String, pic: &Picture, px0: f64, mut sym_y: f64) -> f64 {
                 t.altitude_m, t.safety_height_m
             ),
         );
-    } else if net.is_some() {
+    } else if net.is_some_and(|n| n.obstacle_count() > 0) {
         symbol(
             svg,
             r##"<g transform="translate({X} {Y})"><rect x="-2" y="-10" width="34" height="20" fill="#e9d9c4"/><rect x="6" y="-5" width="18" height="10" fill="#8a8a8a" stroke="#555"/></g>"##.to_string(),
             &format!("obstacle, {clearance:.0} m clearance band"),
         );
-        if pic.edges {
-            symbol(
-                svg,
-                r##"<g transform="translate({X} {Y})"><path d="M0 4C10 -8 20 8 32 -4" fill="none" stroke="#a9bdd6" stroke-width="1.5"/><circle cx="0" cy="4" r="1.5" fill="#5a7aa0"/></g>"##.to_string(),
-                "network edge / vertex",
-            );
-        }
+    }
+    if pic.edges && net.is_some_and(|n| !is_terrain(n)) {
+        let voronoi = net.is_some_and(is_voronoi);
+        symbol(
+            svg,
+            format!(
+                r##"<g transform="translate({{X}} {{Y}})"><path d="M0 4C10 -8 20 8 32 -4" fill="none" stroke="{}" stroke-width="1.5"/><circle cx="0" cy="4" r="1.5" fill="#5a7aa0"/></g>"##,
+                if voronoi { "#34495e" } else { "#a9bdd6" }
+            ),
+            if voronoi {
+                "Voronoi edge (and the box border) / vertex"
+            } else {
+                "network edge / vertex"
+            },
+        );
+    }
+    if pic.threats.iter().any(|t| !t.popped) {
+        symbol(
+            svg,
+            site_symbol(false),
+            "radar threat, dashed at its reference distance",
+        );
+    }
+    if pic.threats.iter().any(|t| t.popped) {
+        symbol(svg, site_symbol(true), "radar threat popped up in flight");
     }
     if !pic.popups.is_empty() {
         symbol(
@@ -140,8 +229,6 @@ fn legend(svg: &mut String, pic: &Picture, px0: f64, mut sym_y: f64) -> f64 {
 /// below the network's clearance), from `y` down.
 fn route_summary(svg: &mut String, pic: &Picture, route: &Route, px0: f64, mut y: f64) {
     let net = pic.network.as_ref();
-    let clearance = net.map_or(0.0, |n| n.clearance() as f64);
-
     let total: f64 = route.legs.iter().map(|l| l.length_m).sum();
     y += 8.0;
     let _ = writeln!(
@@ -171,7 +258,39 @@ fn route_summary(svg: &mut String, pic: &Picture, route: &Route, px0: f64, mut y
             l.length_m
         );
     }
-    let (d_obs, d_pop) = route_distances(net, route, &pic.popups);
+    if route.threat_weight.is_some() || route.exposure_flown.is_some() {
+        y += 22.0;
+        let _ = writeln!(
+            svg,
+            r##"<text class="route-legend" x="{px0:.1}" y="{y:.1}" font-size="14">{}</text>"##,
+            xml(&route_label(route))
+        );
+    }
+    if route.legs.iter().any(|l| l.coarse.len() >= 2) {
+        y += 22.0;
+        let _ = writeln!(
+            svg,
+            r##"<path d="M{px0:.1} {:.1}h32" stroke="{}" stroke-width="1.2" stroke-dasharray="7 5"/><text x="{:.1}" y="{y:.1}" font-size="14">coarse route (Voronoi edges)</text>"##,
+            y - 5.0,
+            LEG_COLOURS[0],
+            px0 + 44.0
+        );
+    }
+    closest(svg, net, route, &pic.popups, px0, y);
+}
+
+/// The route's smallest distances to obstacles and pop-ups (red when below the network's
+/// clearance), from `y` down.
+fn closest(
+    svg: &mut String,
+    net: Option<&Network>,
+    route: &Route,
+    popups: &[PopupMark],
+    px0: f64,
+    mut y: f64,
+) {
+    let clearance = net.map_or(0.0, |n| n.clearance() as f64);
+    let (d_obs, d_pop) = route_distances(net, route, popups);
     let tol = 1e-2;
     for (what, d) in [("obstacle", d_obs), ("pop-up", d_pop)] {
         if let Some(d) = d {
@@ -226,7 +345,7 @@ pub(super) fn scale_bar(svg: &mut String, px0: f64, height: f64, scale: f64, gri
 }
 
 /// The smallest distance from a primitive to an obstacle (0 inside a polygon or disc).
-fn primitive_obstacle_distance(p: &Primitive, o: &Obstacle) -> f64 {
+pub(crate) fn primitive_obstacle_distance(p: &Primitive, o: &Obstacle) -> f64 {
     match o {
         Obstacle::Polygon(poly) => {
             if point_in_polygon(p.start(), poly) {

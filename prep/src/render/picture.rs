@@ -3,7 +3,8 @@
 
 use crate::frame::LocalFrame;
 use crate::scenario::{self, Scenario};
-use skyroute::{Network, Primitive};
+use skyroute::geometry::spline::Piece;
+use skyroute::{Network, Primitive, Vec2};
 
 /// A leg of a route file written by `skyroute plan`.
 #[derive(Clone, Debug, PartialEq)]
@@ -14,12 +15,16 @@ pub struct RouteLeg {
     pub to: String,
     /// Length, metres.
     pub length_m: f64,
-    /// Its lines and arcs in the local frame.
+    /// Its lines and arcs in the local frame (for a Voronoi route, the chords of its pieces).
     pub primitives: Vec<Primitive>,
+    /// A Voronoi route's smoothed pieces (lines and cubics); empty for other routes.
+    pub pieces: Vec<Piece>,
+    /// A Voronoi route's coarse polyline (start, graph vertices, goal); empty for other routes.
+    pub coarse: Vec<Vec2>,
 }
 
 /// A route file written by `skyroute plan`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Route {
     /// The scenario it was planned for.
     pub scenario: String,
@@ -29,6 +34,33 @@ pub struct Route {
     pub legs: Vec<RouteLeg>,
     /// The pop-ups it was planned round (its `popups` member; empty when the file has none).
     pub popups: Vec<PopupMark>,
+    /// The threats in force when it was planned (its `threats` member; empty when none).
+    pub threats: Vec<ThreatMark>,
+    /// The weight k of length against exposure it was planned with (`threat_weight`).
+    pub threat_weight: Option<f64>,
+    /// Its exposure, the dense integral along the flown route (`exposure_flown`).
+    pub exposure_flown: Option<f64>,
+    /// Whether it was planned round the scenario's `popup` features (`scenario_popups_applied`;
+    /// `None` when the file does not say).
+    pub scenario_popups_applied: Option<bool>,
+}
+
+impl Route {
+    /// The total length of its legs, metres.
+    pub fn length_m(&self) -> f64 {
+        self.legs.iter().map(|l| l.length_m).sum()
+    }
+}
+
+/// A radar threat to draw, in the local frame: a site with its exposure's reference distance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ThreatMark {
+    /// Site, metres.
+    pub centre: (f64, f64),
+    /// Reference distance r (the exposure density is (r/d)⁴ at distance d), metres.
+    pub radius: f64,
+    /// Whether it popped up in flight (`plan --threat`) rather than being one of the network's.
+    pub popped: bool,
 }
 
 /// A circular pop-up threat to draw, in the local frame.
@@ -64,8 +96,12 @@ pub struct Picture<'a> {
     pub network: Option<Network<'a>>,
     /// Draw the network's edges.
     pub edges: bool,
-    /// The route, in the network's frame.
-    pub route: Option<Route>,
+    /// The routes, in the network's frame: one is drawn a colour per leg, several a colour per
+    /// route with a legend entry each.
+    pub routes: Vec<Route>,
+    /// Radar threats (a Voronoi network's sites, and pop-up ones from the routes); with a
+    /// Voronoi network they also give the exposure heat map.
+    pub threats: Vec<ThreatMark>,
     /// Start, waypoints and goal.
     pub endpoints: Vec<EndpointMark>,
     /// Pop-up threats.

@@ -1,7 +1,8 @@
 //! Reading route files written by `skyroute plan`.
 
-use super::picture::{PopupMark, Route, RouteLeg};
+use super::picture::{PopupMark, Route, RouteLeg, ThreatMark};
 use serde_json::Value;
+use skyroute::geometry::spline::Piece;
 use skyroute::{Arc, Primitive, Segment, Vec2};
 use std::path::Path;
 
@@ -45,6 +46,88 @@ pub fn primitive_from_json(v: &Value) -> Result<Primitive, String> {
     }
 }
 
+/// A piece from the JSON written by [`crate::voronoi_mission::piece_json`].
+pub fn piece_from_json(v: &Value) -> Result<Piece, String> {
+    match v.get("type").and_then(Value::as_str) {
+        Some("line") => Ok(Piece::Line {
+            a: point(v, "start")?,
+            b: point(v, "end")?,
+        }),
+        Some("cubic") => {
+            let pts = v
+                .get("control_points")
+                .and_then(Value::as_array)
+                .ok_or("control_points: missing or not an array")?;
+            if pts.len() != 4 {
+                return Err(format!(
+                    "control_points: expected 4 points, got {}",
+                    pts.len()
+                ));
+            }
+            let mut p = [Vec2::new(0.0, 0.0); 4];
+            for (k, q) in pts.iter().enumerate() {
+                p[k] = xy(q).ok_or_else(|| format!("control_points[{k}]: expected [x, y]"))?;
+            }
+            Ok(Piece::Cubic { p })
+        }
+        Some(t) => Err(format!("type: unknown piece type {t:?}")),
+        None => Err("type: missing".to_string()),
+    }
+}
+
+/// An `[x, y]` pair of numbers.
+fn xy(v: &Value) -> Option<Vec2> {
+    match v.as_array().map(|a| a.as_slice()) {
+        Some([x, y]) => Some(Vec2::new(x.as_f64()? as f32, y.as_f64()? as f32)),
+        _ => None,
+    }
+}
+
+/// A Voronoi leg's `pieces` and `coarse` (both empty when the leg has none).
+fn leg_curves(leg: &Value, i: usize) -> Result<(Vec<Piece>, Vec<Vec2>), String> {
+    let pieces = leg
+        .get("pieces")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .enumerate()
+        .map(|(k, p)| piece_from_json(p).map_err(|e| format!("legs[{i}].pieces[{k}].{e}")))
+        .collect::<Result<Vec<_>, _>>()?;
+    let coarse = leg
+        .get("coarse")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .enumerate()
+        .map(|(k, p)| xy(p).ok_or_else(|| format!("legs[{i}].coarse[{k}]: expected [x, y]")))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((pieces, coarse))
+}
+
+/// The route file's `threats` (absent: none). A threat whose `origin` starts with `in flight`
+/// popped up in flight.
+fn threats_from_json(v: &Value) -> Result<Vec<ThreatMark>, String> {
+    let mut out = Vec::new();
+    for (i, t) in v
+        .get("threats")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .enumerate()
+    {
+        let centre = point(t, "centre").map_err(|e| format!("threats[{i}].{e}"))?;
+        out.push(ThreatMark {
+            centre: (centre.x as f64, centre.y as f64),
+            radius: num(t, "radius_m").map_err(|e| format!("threats[{i}].{e}"))?,
+            popped: t
+                .get("origin")
+                .and_then(Value::as_str)
+                .is_some_and(|o| o.starts_with("in flight")),
+        });
+    }
+    Ok(out)
+}
+
 /// A route from the JSON text of a route file.
 pub fn parse_route(text: &str) -> Result<Route, String> {
     let v: Value = serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
@@ -85,11 +168,14 @@ pub fn route_from_json(v: &Value) -> Result<Route, String> {
             .get("length_m")
             .and_then(Value::as_f64)
             .unwrap_or_else(|| primitives.iter().map(|p| p.length() as f64).sum());
+        let (pieces, coarse) = leg_curves(leg, i)?;
         out.push(RouteLeg {
             from: name("from"),
             to: name("to"),
             length_m,
             primitives,
+            pieces,
+            coarse,
         });
     }
     let mut popups = Vec::new();
@@ -120,6 +206,10 @@ pub fn route_from_json(v: &Value) -> Result<Route, String> {
             .to_string(),
         origin_deg,
         legs: out,
+        threats: threats_from_json(v)?,
+        threat_weight: v.get("threat_weight").and_then(Value::as_f64),
+        exposure_flown: v.get("exposure_flown").and_then(Value::as_f64),
+        scenario_popups_applied: v.get("scenario_popups_applied").and_then(Value::as_bool),
     })
 }
 

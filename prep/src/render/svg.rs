@@ -1,8 +1,9 @@
 //! The SVG document: the map's extent and view, then the layers bottom to top, then the panel.
 
-use super::draw::{xml, BBox, View, FONT, MARGIN_PX, PANEL_PX};
+use super::draw::{is_voronoi, xml, BBox, View, FONT, MARGIN_PX, PANEL_PX};
 use super::picture::Picture;
-use super::{mark_layer, network_layer, obstacle_layer, panel, route_layer};
+use super::route_layer::{route_colour, route_width, Colouring};
+use super::{mark_layer, network_layer, obstacle_layer, panel, route_layer, threat_layer};
 use std::fmt::Write as _;
 
 /// Draws the picture as an SVG document.
@@ -44,6 +45,10 @@ pub fn render_svg(pic: &Picture) -> String {
     );
     let _ = writeln!(svg, r##"<g clip-path="url(#map)">"##);
 
+    let voronoi = net.is_some_and(is_voronoi);
+    if voronoi {
+        threat_layer::heat_map(&mut svg, &pic.threats, &view, map_w, map_h);
+    }
     let (fine, coarse) = network_layer::grid(&mut svg, &view, bb, map_w, map_h);
     if let Some(net) = net {
         obstacle_layer::obstacles(&mut svg, net, &view, clearance);
@@ -53,8 +58,20 @@ pub fn render_svg(pic: &Picture) -> String {
         }
     }
     mark_layer::popups(&mut svg, &pic.popups, &view, clearance);
-    if let Some(route) = &pic.route {
-        route_layer::route(&mut svg, route, &view);
+    threat_layer::sites(&mut svg, &pic.threats, &view);
+    let n = pic.routes.len();
+    let colouring = |i: usize| {
+        if n == 1 {
+            Colouring::PerLeg
+        } else {
+            Colouring::Whole(route_colour(i), route_width(i, n))
+        }
+    };
+    for (i, route) in pic.routes.iter().enumerate() {
+        route_layer::underlay(&mut svg, route, &view, colouring(i));
+    }
+    for (i, route) in pic.routes.iter().enumerate() {
+        route_layer::route(&mut svg, route, &view, colouring(i));
     }
     mark_layer::endpoints(&mut svg, &pic.endpoints, &view);
     let _ = writeln!(svg, "</g>");
@@ -63,6 +80,9 @@ pub fn render_svg(pic: &Picture) -> String {
     let px0 = MARGIN_PX * 2.0 + map_w;
     panel::panel(&mut svg, pic, px0);
     panel::scale_bar(&mut svg, px0, height, scale, (fine, coarse));
+    if voronoi {
+        threat_layer::colour_bar(&mut svg, px0, height - MARGIN_PX - 110.0, PANEL_PX - 60.0);
+    }
     svg.push_str("</svg>\n");
     svg
 }
@@ -95,7 +115,7 @@ fn extent(pic: &Picture) -> BBox {
             }
         }
     }
-    if let Some(route) = &pic.route {
+    for route in &pic.routes {
         for p in route.legs.iter().flat_map(|l| l.primitives.iter()) {
             let (lo, hi) = p.bounding_box();
             bb.add_box(lo, hi);
