@@ -2,7 +2,7 @@
 # A short run of every cargo-fuzz target (fuzz/, its own workspace, nightly toolchain):
 # writes the networks the planner target loads (fuzz/networks/: Voronoi networks of ruz-popups
 # and voronoi-dense, and the firmware fixtures' roadmap, terrain and landmark networks), seeds
-# the loader's corpus with them, then runs each target for FUZZ_SECONDS (default 20) seconds.
+# the loader's corpus with the smaller of them, then runs each target for FUZZ_SECONDS (default 20) seconds.
 # A crash fails the run and leaves its input in fuzz/artifacts/TARGET/.
 #
 #   scripts/fuzz-smoke.sh [TARGET ...]     (default: load planner_ops voronoi decision)
@@ -35,13 +35,16 @@ skyroute=target/release/skyroute
 cp firmware-example/fixture/network.bin fuzz/networks/roadmap-niendorf.bin
 cp firmware-example/fixture-terrain/network.bin fuzz/networks/terrain-jacksboro.bin
 cp firmware-example/fixture-landmark/network.bin fuzz/networks/landmark-babel-II-N.bin
-cp fuzz/networks/*.bin fuzz/corpus/load/
+# The loader's seeds: the small images (a mutated megabyte image costs milliseconds a run), and
+# a sparse roadmap of niendorf-urban.
+"$skyroute" build scenarios/niendorf-urban.geojson --sample-spacing 400 -o fuzz/corpus/load/roadmap-sparse.bin >/dev/null
+cp fuzz/networks/ruz-voronoi.bin fuzz/networks/voronoi-dense.bin fuzz/networks/terrain-jacksboro.bin fuzz/corpus/load/
 
 mkdir -p target/fuzz-logs
 for t in "${targets[@]}"; do
     max_len=()
     if [[ $t == load ]]; then
-        max_len=(-max_len=1048576)
+        max_len=(-max_len=400000)
     fi
     log=target/fuzz-logs/$t.log
     echo "fuzz: $t for ${seconds} s (log: $log)"

@@ -4,7 +4,8 @@
 #   firmware fixture → firmware build → firmware clippy → firmware under QEMU → sizes, for the
 #   roadmap (niendorf-urban, binary `roadmap`), again for terrain (medeiros-jacksboro, binary
 #   `terrain`) and for landmarks (babel-II-N, binary `landmark`: plan, lose a landmark in
-#   flight, re-plan).
+#   flight, re-plan) → a short run of every fuzz target (scripts/fuzz-smoke.sh; skipped, with a
+#   message, where no nightly toolchain is installed).
 # Runnable from any directory. Stops at the first failing step; KEEP_GOING=1 runs every step
 # and fails at the end instead.
 #
@@ -145,6 +146,7 @@ install_missing() {
 fmt_check() {
     cargo fmt --all --check
     (cd firmware-example && cargo fmt --check)
+    (cd fuzz && cargo fmt --check)
 }
 
 ompl_reference() {
@@ -280,6 +282,9 @@ step "landmark firmware build (release, bin landmark)" firmware_build landmark
 step "landmark firmware clippy (bin landmark)" firmware_clippy landmark
 step "landmark firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/landmark"
 step "landmark firmware size" firmware_size "$firmware_release/landmark"
+
+step "fuzz smoke run (each cargo-fuzz target for FUZZ_SECONDS, default 20 s)" \
+    scripts/fuzz-smoke.sh
 
 summary
 [[ ${#failed[@]} -eq 0 ]]

@@ -5,9 +5,7 @@
 
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
-use skyroute::planner::decision::{
-    decide, decision_work_bound, Alternative, DecisionLimits,
-};
+use skyroute::planner::decision::{decide, decision_work_bound, Alternative, DecisionLimits};
 
 #[derive(Arbitrary, Debug)]
 struct Input {
@@ -20,7 +18,11 @@ fuzz_target!(|input: Input| {
     let alts: Vec<Vec<Alternative>> = input
         .alternatives
         .iter()
-        .map(|a| a.iter().map(|&(risk, time, fuel)| Alternative { risk, time, fuel }).collect())
+        .map(|a| {
+            a.iter()
+                .map(|&(risk, time, fuel)| Alternative { risk, time, fuel })
+                .collect()
+        })
         .collect();
     let slices: Vec<&[Alternative]> = alts.iter().map(|a| a.as_slice()).collect();
     let limits = DecisionLimits {

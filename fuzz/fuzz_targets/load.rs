@@ -33,7 +33,12 @@ fn check(data: &[u8]) {
         let _ = net.out_edges(v);
     }
     for e in 0..=net.edge_count() {
-        let _ = (net.edge(e), net.edge_path(e), net.edge_length(e), net.edge_cost_target(e));
+        let _ = (
+            net.edge(e),
+            net.edge_path(e),
+            net.edge_length(e),
+            net.edge_cost_target(e),
+        );
     }
     for o in 0..=net.obstacle_count() {
         let _ = net.obstacle(o);

@@ -16,7 +16,7 @@ use skyroute::planner::{ThreatOrigin, VoronoiStorage, MAX_POPUP_VERTICES};
 use skyroute::{Goal, Planner, Popup, Pose, Query, Search, Vec2};
 use std::sync::{Mutex, OnceLock};
 
-type FuzzPlanner = Planner<'static, 8192, 16384, 4, 512>;
+type FuzzPlanner = Planner<'static, 8192, 32768, 4, 512>;
 
 /// A coordinate: most inside the network's extent (where routes exist), some raw floats
 /// (NaN, infinities, huge values).
@@ -28,14 +28,27 @@ enum Coord {
 
 #[derive(Arbitrary, Debug)]
 enum Op {
-    PopupCircle { x: Coord, y: Coord, r: f32 },
-    PopupPolygon { points: Vec<(Coord, Coord)> },
+    PopupCircle {
+        x: Coord,
+        y: Coord,
+        r: f32,
+    },
+    PopupPolygon {
+        points: Vec<(Coord, Coord)>,
+    },
     RemovePopup(u8),
-    AddThreat { x: Coord, y: Coord, r: f32 },
+    AddThreat {
+        x: Coord,
+        y: Coord,
+        r: f32,
+    },
     RemoveThreat(u8),
     Weight(f32),
     Weather(u32),
-    Rosette { landmark: u32, qualities: Vec<f32> },
+    Rosette {
+        landmark: u32,
+        qualities: Vec<f32>,
+    },
     ClearRosette(u32),
     Altitude(f32, f32),
     Plan {
@@ -221,13 +234,25 @@ fuzz_target!(|input: Input| {
                         position: Vec2::new(x(gx), y(gy)),
                         heading: goal_heading,
                     },
-                    search: if astar { Search::AStar } else { Search::Dijkstra },
+                    search: if astar {
+                        Search::AStar
+                    } else {
+                        Search::Dijkstra
+                    },
                 };
                 let bound = p.worst_case_work();
                 let budget = budget.unwrap_or(bound);
                 if let Ok(s) = p.plan(&query, budget) {
-                    assert!(s.work.total() <= budget, "work {} over budget {budget}", s.work.total());
-                    assert!(s.work.total() <= bound, "work {} over the bound {bound}", s.work.total());
+                    assert!(
+                        s.work.total() <= budget,
+                        "work {} over budget {budget}",
+                        s.work.total()
+                    );
+                    assert!(
+                        s.work.total() <= bound,
+                        "work {} over the bound {bound}",
+                        s.work.total()
+                    );
                     assert!(s.length.is_finite());
                 }
             }

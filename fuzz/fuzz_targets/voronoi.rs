@@ -43,9 +43,13 @@ fuzz_target!(|input: Input| {
         } else {
             assert_eq!(d.site_count(), before, "a refused site changed the diagram");
         }
-        assert!(d.work() <= delaunay_work_bound(calls), "work over its bound");
+        assert!(
+            d.work() <= delaunay_work_bound(calls),
+            "work over its bound"
+        );
         if input.rebuild_at == Some(i as u8) {
-            d.rebuild(&inserted).expect("sites accepted before are accepted again");
+            d.rebuild(&inserted)
+                .expect("sites accepted before are accepted again");
             calls = inserted.len() as u64;
         }
     }
