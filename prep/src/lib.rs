@@ -20,6 +20,7 @@ pub mod render;
 pub mod roadmap;
 pub mod route_geojson;
 pub mod route_json;
+pub mod ruz;
 pub mod scenario;
 pub mod terrain;
 pub mod voronoi;
