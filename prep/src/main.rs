@@ -195,7 +195,7 @@ enum Command {
         /// Where to write the results (JSON).
         #[arg(short, long)]
         output: PathBuf,
-        /// Write the histograms as PREFIX-decision.png and PREFIX-baseline.png.
+        /// Write the histograms as PREFIX-decision.svg/.png and PREFIX-baseline.svg/.png.
         #[arg(long, value_name = "PREFIX")]
         histograms: Option<PathBuf>,
     },

@@ -32,7 +32,8 @@ pub struct MonteCarloRequest<'a> {
     pub limits: DecisionLimits,
     /// Where to write the results (JSON).
     pub output: &'a Path,
-    /// Where to write the histograms: `PREFIX-decision.png` and `PREFIX-baseline.png`.
+    /// Where to write the histograms: `PREFIX-decision.{svg,png}` and
+    /// `PREFIX-baseline.{svg,png}`.
     pub histograms: Option<&'a Path>,
 }
 
@@ -136,9 +137,14 @@ pub fn montecarlo_command(req: &MonteCarloRequest) -> CliResult {
                 mean: t.mean(),
                 colour,
             });
-            let path = format!("{}-{suffix}.png", prefix.display());
-            write_atomically(Path::new(&path), &crate::render::svg_to_png(&svg)?)?;
-            println!("  histogram -> {path}");
+            // The SVG keeps its text where the PNG has no system font to draw it with.
+            let path = format!("{}-{suffix}", prefix.display());
+            write_atomically(Path::new(&format!("{path}.svg")), svg.as_bytes())?;
+            write_atomically(
+                Path::new(&format!("{path}.png")),
+                &crate::render::svg_to_png(&svg)?,
+            )?;
+            println!("  histogram -> {path}.svg, {path}.png");
         }
     }
     let record = json!({
