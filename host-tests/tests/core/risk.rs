@@ -37,9 +37,17 @@ fn params() -> RiskParams {
 fn shadow_area(a: f64, b: f64, c: f64, d: [f64; 3]) -> f64 {
     let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
     let d = [d[0] / n, d[1] / n, d[2] / n];
-    let helper = if d[0].abs() < 0.9 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let helper = if d[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
     let cross = |x: [f64; 3], y: [f64; 3]| {
-        [x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]]
+        [
+            x[1] * y[2] - x[2] * y[1],
+            x[2] * y[0] - x[0] * y[2],
+            x[0] * y[1] - x[1] * y[0],
+        ]
     };
     let e1 = cross(d, helper);
     let m = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
@@ -126,7 +134,11 @@ fn reference(p: &RiskParams, route: &[Primitive], known: &[Vec2], popup: Vec2) -
                     Primitive::Line(l) => {
                         let (dx, dy) = ((l.end.x - l.start.x) as f64, (l.end.y - l.start.y) as f64);
                         let n = dx.hypot(dy);
-                        (l.start.x as f64 + dx * t / n, l.start.y as f64 + dy * t / n, dy.atan2(dx))
+                        (
+                            l.start.x as f64 + dx * t / n,
+                            l.start.y as f64 + dy * t / n,
+                            dy.atan2(dx),
+                        )
                     }
                     Primitive::Arc(a) => {
                         let sign = a.sweep.signum() as f64;
@@ -205,7 +217,10 @@ fn route_figures_match_a_direct_f64_evaluation() {
         }),
         Primitive::Line(Segment {
             start: Vec2::new(r * 1.2f32.sin(), r - r * 1.2f32.cos()),
-            end: Vec2::new(r * 1.2f32.sin() + 15_000.0 * 1.2f32.cos(), r - r * 1.2f32.cos() + 15_000.0 * 1.2f32.sin()),
+            end: Vec2::new(
+                r * 1.2f32.sin() + 15_000.0 * 1.2f32.cos(),
+                r - r * 1.2f32.cos() + 15_000.0 * 1.2f32.sin(),
+            ),
         }),
     ];
     let known = [
@@ -222,9 +237,15 @@ fn route_figures_match_a_direct_f64_evaluation() {
         ("survival_popup", got.survival_popup as f64, want[2]),
         ("fuel", got.fuel as f64, want[3]),
     ] {
-        assert!((g - w).abs() <= 2e-4 * w.max(1e-3) + 1e-6, "{name}: {g} against {w}");
+        assert!(
+            (g - w).abs() <= 2e-4 * w.max(1e-3) + 1e-6,
+            "{name}: {g} against {w}"
+        );
     }
-    assert!(want[1] < 0.99 && want[2] < 0.999, "the radars see the route: {want:?}");
+    assert!(
+        want[1] < 0.99 && want[2] < 0.999,
+        "the radars see the route: {want:?}"
+    );
     // The risk from the two stored figures, against the total probability over the pop-up.
     let ar = AlternativeRisk {
         survival_known: got.survival_known,
