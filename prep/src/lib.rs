@@ -21,6 +21,7 @@ pub mod roadmap;
 pub mod roadmap_exposure;
 pub mod route_geojson;
 pub mod route_json;
+pub mod ruz;
 pub mod scenario;
 pub mod terrain;
 pub mod voronoi;

@@ -2,9 +2,12 @@
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
+use skyroute::planner::decision::DecisionLimits;
 use skyroute_prep::build::{build, BuildOptions};
 use skyroute_prep::output::{refuse_overwriting_inputs, write_atomically};
 use skyroute_prep::plan_cli::{load_scenario, plan_command, CliResult, NoRoute, PlanRequest};
+use skyroute_prep::ruz::cli::plan_decided_command;
+use skyroute_prep::ruz::study_cli::{montecarlo_command, MonteCarloRequest};
 use skyroute_prep::scenario::Mode;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -152,6 +155,52 @@ enum Command {
         /// RADIUS_M is its exposure's reference distance, like a scenario threat's).
         #[arg(long, value_parser = parse_popup)]
         threat: Vec<(f64, f64, f64)>,
+        /// Roadmap and terrain networks: the scenario's pop-up NAME may appear, with its
+        /// `probability` (repeatable; Ruz et al.). With this option only the named pop-ups are
+        /// considered and the scenario's other pop-ups are left out: for each named one, 3
+        /// bypass alternatives that never enter its disc are planned and scored by risk, time
+        /// and fuel, one per pop-up is chosen (least total risk with the mean time and fuel
+        /// factors within --time-limit and --fuel-limit), and the route flies every chosen
+        /// alternative. The route file records the alternatives and the choice; when no choice
+        /// meets the limits, exit code 3 names the tightest.
+        #[arg(long, value_name = "NAME", conflicts_with_all = ["popup", "no_scenario_popups"])]
+        popup_appears: Vec<String>,
+        /// With --popup-appears: the largest mean time factor f_t = 1 − τ/T (τ the nominal
+        /// route's time, T the alternative's).
+        #[arg(long, default_value_t = skyroute_prep::ruz::cli::TIME_LIMIT, value_parser = parse_limit)]
+        time_limit: f32,
+        /// With --popup-appears: the largest mean fuel factor (mean normalised turn effort).
+        #[arg(long, default_value_t = skyroute_prep::ruz::cli::FUEL_LIMIT, value_parser = parse_limit)]
+        fuel_limit: f32,
+    },
+    /// The Monte Carlo study of pop-ups under uncertainty (Ruz et al.): missions in which the
+    /// scenario's pop-ups appear by their probabilities, flown with the decision on risk, time
+    /// and fuel and with a baseline deciding on time and fuel alone (docs/RUZ.md).
+    #[command(after_help = EXIT_CODES)]
+    Montecarlo {
+        /// The network image (roadmap or terrain).
+        network: PathBuf,
+        /// The scenario it was built from, with its `popup` features.
+        #[arg(long)]
+        scenario: PathBuf,
+        /// Missions to fly.
+        #[arg(long, default_value_t = 1_000_000)]
+        missions: u64,
+        /// The random seed.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// The largest mean time factor.
+        #[arg(long, default_value_t = skyroute_prep::ruz::cli::TIME_LIMIT, value_parser = parse_limit)]
+        time_limit: f32,
+        /// The largest mean fuel factor.
+        #[arg(long, default_value_t = skyroute_prep::ruz::cli::FUEL_LIMIT, value_parser = parse_limit)]
+        fuel_limit: f32,
+        /// Where to write the results (JSON).
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Write the histograms as PREFIX-decision.svg/.png and PREFIX-baseline.svg/.png.
+        #[arg(long, value_name = "PREFIX")]
+        histograms: Option<PathBuf>,
     },
     /// Describe a network image: mode, counts and bytes, what it records of its scenario, the
     /// planner capacities (`V`, `E`) and RAM it needs onboard, and the worst-case work of a
@@ -247,6 +296,17 @@ fn parse_weight(s: &str) -> Result<f32, String> {
     match s.trim().parse::<f32>() {
         Ok(k) if (0.0..=1.0).contains(&k) => Ok(k),
         _ => Err(format!("expected a weight in [0, 1], got {s:?}")),
+    }
+}
+
+fn limits(time_max: f32, fuel_max: f32) -> DecisionLimits {
+    DecisionLimits { time_max, fuel_max }
+}
+
+fn parse_limit(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        _ => Err(format!("expected a non-negative number, got {s:?}")),
     }
 }
 
@@ -433,6 +493,8 @@ fn demo_command(dir: &Path) -> CliResult {
         mode: None,
         threat_weight: None,
         threats: &[],
+        popup_appears: &[],
+        limits: skyroute_prep::ruz::cli::LIMITS,
     })?;
     let request = skyroute_prep::render::RenderRequest {
         network,
@@ -494,20 +556,50 @@ fn run(cli: Cli) -> CliResult {
             mode,
             threat_weight,
             threat,
-        } => plan_command(&PlanRequest {
-            network: &network,
-            scenario: &scenario_path,
-            popups: &popup,
-            scenario_popups: !no_scenario_popups,
-            connect_radius_m: connect_radius,
-            weather: weather.as_deref(),
-            hull_repair,
-            output: &output,
-            mode,
-            threat_weight,
-            threats: &threat,
-        }),
+            popup_appears,
+            time_limit,
+            fuel_limit,
+        } => {
+            let request = PlanRequest {
+                network: &network,
+                scenario: &scenario_path,
+                popups: &popup,
+                scenario_popups: !no_scenario_popups,
+                connect_radius_m: connect_radius,
+                weather: weather.as_deref(),
+                hull_repair,
+                output: &output,
+                mode,
+                threat_weight,
+                threats: &threat,
+                popup_appears: &popup_appears,
+                limits: limits(time_limit, fuel_limit),
+            };
+            let command = match popup_appears.is_empty() {
+                true => plan_command,
+                false => plan_decided_command,
+            };
+            command(&request)
+        }
         Command::Demo { output } => demo_command(&output),
+        Command::Montecarlo {
+            network,
+            scenario,
+            missions,
+            seed,
+            time_limit,
+            fuel_limit,
+            output,
+            histograms,
+        } => montecarlo_command(&MonteCarloRequest {
+            network: &network,
+            scenario: &scenario,
+            missions,
+            seed,
+            limits: limits(time_limit, fuel_limit),
+            output: &output,
+            histograms: histograms.as_deref(),
+        }),
         Command::Info { network } => {
             let bytes =
                 std::fs::read(&network).map_err(|e| format!("{}: {e}", network.display()))?;

@@ -46,10 +46,15 @@ pub struct PlanRequest<'a> {
     pub threat_weight: Option<f32>,
     /// `--threat`: radars that popped up, `(lon, lat, radius_m)` (Voronoi networks).
     pub threats: &'a [(f64, f64, f64)],
+    /// `--popup-appears`: the scenario pop-ups that may appear (`crate::ruz::cli`; ignored by
+    /// [`plan_command`]).
+    pub popup_appears: &'a [String],
+    /// `--time-limit` and `--fuel-limit`.
+    pub limits: skyroute::planner::decision::DecisionLimits,
 }
 
 /// The route file's record of the pop-ups a plan applied.
-fn popups_json(popups: &[PopupInput], frame: &crate::frame::LocalFrame) -> serde_json::Value {
+pub fn popups_json(popups: &[PopupInput], frame: &crate::frame::LocalFrame) -> serde_json::Value {
     popups
         .iter()
         .map(|p| {

@@ -15,6 +15,7 @@ mod error;
 pub mod heap;
 mod landmark;
 mod popup;
+pub mod risk;
 mod search;
 mod smooth;
 mod state;

@@ -25,6 +25,8 @@ mod popup_grid_search;
 mod popup_validation;
 /// Collision predicates against sampling and exact rational references.
 mod predicates;
+/// The radar risk model (Ruz et al.) against a direct f64 evaluation.
+mod risk;
 /// Bad input and budgets: over-budget reports, overlapping records, huge pop-ups, non-finite
 /// routes, degenerate capacities and random extreme call sequences never panic.
 mod robustness;
