@@ -23,33 +23,64 @@ fn density(p: (f64, f64), threats: &[Threat]) -> f64 {
         .sum()
 }
 
+/// A panel of the adaptive Simpson rule: its ends and midpoint with their values, and the
+/// panel's Simpson estimate.
+#[derive(Clone, Copy)]
+struct Panel {
+    a: f64,
+    b: f64,
+    fa: f64,
+    fm: f64,
+    fb: f64,
+    whole: f64,
+}
+
+/// ∫ of `f` over the panel by adaptive Simpson to relative tolerance `tol` (Richardson
+/// corrected), at most `depth` halvings deep.
+fn refine(f: &dyn Fn(f64) -> f64, p: Panel, tol: f64, depth: u32) -> f64 {
+    let m = 0.5 * (p.a + p.b);
+    let (flm, frm) = (f(0.5 * (p.a + m)), f(0.5 * (m + p.b)));
+    let left = (m - p.a) / 6.0 * (p.fa + 4.0 * flm + p.fm);
+    let right = (p.b - m) / 6.0 * (p.fm + 4.0 * frm + p.fb);
+    if depth == 0 || (left + right - p.whole).abs() <= 15.0 * tol * (left + right).abs() {
+        return left + right + (left + right - p.whole) / 15.0;
+    }
+    let l = Panel {
+        a: p.a,
+        b: m,
+        fa: p.fa,
+        fm: flm,
+        fb: p.fm,
+        whole: left,
+    };
+    let r = Panel {
+        a: m,
+        b: p.b,
+        fa: p.fm,
+        fm: frm,
+        fb: p.fb,
+        whole: right,
+    };
+    refine(f, l, tol, depth - 1) + refine(f, r, tol, depth - 1)
+}
+
 /// ∫ of `f` over [a, b] by adaptive Simpson to relative tolerance `tol`.
 fn simpson(f: &dyn Fn(f64) -> f64, a: f64, b: f64, tol: f64) -> f64 {
-    fn step(
-        f: &dyn Fn(f64) -> f64,
-        a: f64,
-        b: f64,
-        fa: f64,
-        fm: f64,
-        fb: f64,
-        whole: f64,
-        tol: f64,
-        depth: u32,
-    ) -> f64 {
-        let m = 0.5 * (a + b);
-        let (lm, rm) = (0.5 * (a + m), 0.5 * (m + b));
-        let (flm, frm) = (f(lm), f(rm));
-        let left = (m - a) / 6.0 * (fa + 4.0 * flm + fm);
-        let right = (b - m) / 6.0 * (fm + 4.0 * frm + fb);
-        if depth == 0 || (left + right - whole).abs() <= 15.0 * tol * (left + right).abs() {
-            return left + right + (left + right - whole) / 15.0;
-        }
-        step(f, a, m, fa, flm, fm, left, tol, depth - 1)
-            + step(f, m, b, fm, frm, fb, right, tol, depth - 1)
-    }
     let (fa, fb, fm) = (f(a), f(b), f(0.5 * (a + b)));
     let whole = (b - a) / 6.0 * (fa + 4.0 * fm + fb);
-    step(f, a, b, fa, fm, fb, whole, tol, 48)
+    refine(
+        f,
+        Panel {
+            a,
+            b,
+            fa,
+            fm,
+            fb,
+            whole,
+        },
+        tol,
+        48,
+    )
 }
 
 /// The integral along `a → b`, f64.
