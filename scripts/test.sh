@@ -14,7 +14,7 @@
 #   FIXTURE_SYNTHETIC=1  use the fixture tool's small synthetic grid network instead (debugging)
 #   FIXTURE_ARGS         extra options of the fixture tool, e.g. "--start x,y,h --goal x,y
 #                        --popup x,y,r" (local metres, radians CCW from east); defaults: see
-#                        host-tests/src/bin/firmware_fixture.rs
+#                        host-tests/src/bin/firmware_fixture/
 #   FIRMWARE_TIMEOUT     seconds the firmware may run under QEMU (default 300)
 #   KEEP_GOING=1         run every step even after a failure
 set -euo pipefail
