@@ -21,8 +21,18 @@
 //! stored start to its stored goal in weather 0, then loses the first landmark the route
 //! overflies (`update_rosette` with all-zero qualities) and plans again; `query.rs` then holds
 //! both answers of the host (see [`landmark::run_landmark`]).
+//!
+//! A Voronoi network (Judd & McLain) takes its start and goal from `--scenario FILE` (or
+//! `--start`/`--goal`), and `--threat x,y,r | --threat-on-route r` and `--replan-after m`: the
+//! firmware plans, adds the radar in flight and re-plans (see [`voronoi`]).
+//!
+//! ```text
+//! firmware_fixture VORONOI-NETWORK.bin OUT_DIR (--scenario FILE | --start x,y,h --goal x,y[,h])
+//!     [--threat x,y,r | --threat-on-route r] [--replan-after m]
+//! ```
 
 mod landmark;
+mod voronoi;
 
 use skyroute::geometry::predicates::{
     conflicts_with_polygon, point_in_polygon, point_segment_distance, PolygonView,
@@ -52,7 +62,8 @@ const FLASH_BYTES: usize = 1024 * 1024;
 type HostPlanner<'n> = Planner<'n, HOST_V, HOST_E, P_CAP, R_CAP>;
 
 const USAGE: &str = "usage: firmware_fixture (NETWORK.bin | --synthetic) OUT_DIR \
-[--start x,y,heading_rad] [--goal x,y[,heading_rad]] [--popup x,y,radius | --popup-on-route radius]";
+[--start x,y,heading_rad] [--goal x,y[,heading_rad]] [--popup x,y,radius | --popup-on-route radius] \
+[--scenario FILE] [--threat x,y,radius | --threat-on-route radius] [--replan-after m] (Voronoi)";
 
 #[derive(Debug, Default)]
 struct Args {
@@ -64,6 +75,14 @@ struct Args {
     /// Radius of a pop-up centred on the middle of the longest straight of the route planned
     /// without it (so that it certainly changes the route).
     popup_on_route: Option<f32>,
+    /// Voronoi: the scenario whose start and goal to plan between.
+    scenario: Option<PathBuf>,
+    /// Voronoi: the radar that pops up (x, y, reference distance).
+    threat: Option<(f32, f32, f32)>,
+    /// Voronoi: the pop-up radar's reference distance, on the first route's longest straight.
+    threat_on_route: Option<f32>,
+    /// Voronoi: metres flown along the first route before the re-plan.
+    replan_after: Option<f32>,
 }
 
 fn floats(s: &str, what: &str, counts: &[usize]) -> Result<Vec<f32>, String> {
@@ -107,6 +126,19 @@ fn parse_args() -> Result<Args, String> {
             "--popup-on-route" => {
                 let v = floats(&value("--popup-on-route")?, "--popup-on-route", &[1])?;
                 args.popup_on_route = Some(v[0]);
+            }
+            "--scenario" => args.scenario = Some(PathBuf::from(value("--scenario")?)),
+            "--threat" => {
+                let v = floats(&value("--threat")?, "--threat", &[3])?;
+                args.threat = Some((v[0], v[1], v[2]));
+            }
+            "--threat-on-route" => {
+                let v = floats(&value("--threat-on-route")?, "--threat-on-route", &[1])?;
+                args.threat_on_route = Some(v[0]);
+            }
+            "--replan-after" => {
+                let v = floats(&value("--replan-after")?, "--replan-after", &[1])?;
+                args.replan_after = Some(v[0]);
             }
             "-h" | "--help" => return Err(USAGE.into()),
             s if s.starts_with("--") => return Err(format!("unknown option {s}\n{USAGE}")),
@@ -391,10 +423,20 @@ fn run(args: Args) -> Result<(), String> {
     }
     // Search states: the vertices of a roadmap; a terrain search runs over directed edges and
     // start links.
+    let voronoi_options = args.scenario.is_some()
+        || args.threat.is_some()
+        || args.threat_on_route.is_some()
+        || args.replan_after.is_some();
     let states = match network.mode() {
+        Mode::Roadmap | Mode::Terrain | Mode::Landmark | Mode::Unknown(_) if voronoi_options => {
+            return Err(format!(
+                "{source}: --scenario, --threat, --threat-on-route and --replan-after apply to \
+                 Voronoi networks only"
+            ))
+        }
         Mode::Landmark => return landmark::run_landmark(&args, &bytes, &source, &network),
         Mode::Terrain => ne + MAX_LINKS as u32,
-        Mode::Voronoi => nv.max(skyroute::planner::VORONOI_GRAPH_VERTICES as u32),
+        Mode::Voronoi => return voronoi::run_voronoi(&args, &bytes, &source, &network),
         Mode::Roadmap | Mode::Unknown(_) => nv,
     };
     let (v_cap, e_cap) = (capacity(states, 64), capacity(ne, 256));
