@@ -210,6 +210,38 @@ pub(super) fn run_landmark(
         );
     }
 
+    let q = query_rs(
+        source,
+        (nv, ne),
+        (v_cap, e_cap),
+        budget,
+        &first,
+        lost,
+        &replan,
+    );
+
+    let out = &args.out_dir;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    write(&out.join("network.bin"), bytes)?;
+    write(&out.join("query.rs"), q.as_bytes())?;
+    eprintln!(
+        "firmware_fixture: wrote {}/{{network.bin,query.rs}}",
+        out.display()
+    );
+    Ok(())
+}
+
+/// `query.rs` of a landmark network: capacities, weather, the host's answer, the budget, the
+/// landmark lost and the re-plan.
+fn query_rs(
+    source: &str,
+    (nv, ne): (u32, u32),
+    (v_cap, e_cap): (usize, usize),
+    budget: u64,
+    first: &RouteSummary,
+    lost: u32,
+    replan: &Result<RouteSummary, PlanError>,
+) -> String {
     let mut q = String::new();
     let w = &mut q;
     let _ = writeln!(
@@ -283,13 +315,5 @@ pub(super) fn run_landmark(
         "pub const EXPECTED_REPLAN: Option<(f32, u32, u64)> = {replan_value};"
     );
 
-    let out = &args.out_dir;
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    write(&out.join("network.bin"), bytes)?;
-    write(&out.join("query.rs"), q.as_bytes())?;
-    eprintln!(
-        "firmware_fixture: wrote {}/{{network.bin,query.rs}}",
-        out.display()
-    );
-    Ok(())
+    q
 }

@@ -504,6 +504,36 @@ fn run(args: Args) -> Result<(), String> {
         );
     }
 
+    let q = query_rs(&source, &network, (v_cap, e_cap), &chosen);
+
+    let out = &args.out_dir;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    write(&out.join("network.bin"), &bytes)?;
+    write(&out.join("query.rs"), q.as_bytes())?;
+    eprintln!(
+        "firmware_fixture: wrote {}/{{network.bin,query.rs}}",
+        out.display()
+    );
+    Ok(())
+}
+
+/// `query.rs` of a roadmap or terrain network: capacities, connection settings, query, pop-up,
+/// the host's answer and the budget.
+fn query_rs(
+    source: &str,
+    network: &Network<'_>,
+    (v_cap, e_cap): (usize, usize),
+    chosen: &Chosen,
+) -> String {
+    let (nv, ne) = (network.vertex_count(), network.edge_count());
+    let &Chosen {
+        start,
+        goal,
+        popup,
+        budget,
+        summary,
+        ..
+    } = chosen;
     let mut q = String::new();
     let w = &mut q;
     let _ = writeln!(
@@ -521,7 +551,7 @@ fn run(args: Args) -> Result<(), String> {
     let _ = writeln!(w, "pub const P_CAP: usize = {P_CAP};");
     let _ = writeln!(w, "/// Route primitives the planner holds.");
     let _ = writeln!(w, "pub const R_CAP: usize = {R_CAP};");
-    let config = config_for(&network);
+    let config = config_for(network);
     let radius = if config.connect_radius_m.is_finite() {
         lit(config.connect_radius_m)
     } else {
@@ -588,15 +618,7 @@ fn run(args: Args) -> Result<(), String> {
     );
     let _ = writeln!(w, "pub const BUDGET: u64 = {budget};");
 
-    let out = &args.out_dir;
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    write(&out.join("network.bin"), &bytes)?;
-    write(&out.join("query.rs"), q.as_bytes())?;
-    eprintln!(
-        "firmware_fixture: wrote {}/{{network.bin,query.rs}}",
-        out.display()
-    );
-    Ok(())
+    q
 }
 
 /// Writes a file only when its contents change (keeps the firmware build from redoing work).
