@@ -4,8 +4,9 @@
 #   firmware fixture → firmware build → firmware clippy → firmware under QEMU → sizes, for the
 #   roadmap (niendorf-urban, binary `roadmap`), again for terrain (medeiros-jacksboro, binary
 #   `terrain`) and for landmarks (babel-II-N, binary `landmark`: plan, lose a landmark in
-#   flight, re-plan) → a short run of every fuzz target (scripts/fuzz-smoke.sh; skipped, with a
-#   message, where no nightly toolchain is installed).
+#   flight, re-plan) and for radar threats (ruz-popups as a Voronoi network, binary `voronoi`:
+#   plan, a radar pops up in flight, re-plan) → a short run of every fuzz target
+#   (scripts/fuzz-smoke.sh; skipped, with a message, where no nightly toolchain is installed).
 # Runnable from any directory. Stops at the first failing step; KEEP_GOING=1 runs every step
 # and fails at the end instead.
 #
@@ -15,9 +16,12 @@
 #   FIXTURE_SYNTHETIC=1  use the fixture tool's small synthetic grid network instead (debugging)
 #   FIXTURE_ARGS         extra options of the fixture tool, e.g. "--start x,y,h --goal x,y
 #                        --popup x,y,r" (local metres, radians CCW from east); defaults: see
-#                        host-tests/src/bin/firmware_fixture.rs
+#                        host-tests/src/bin/firmware_fixture/
 #   FIRMWARE_TIMEOUT     seconds the firmware may run under QEMU (default 300)
 #   KEEP_GOING=1         run every step even after a failure
+#   STEPS=REGEX          run only the steps whose name matches REGEX (grep -E), e.g.
+#                        STEPS=firmware for the four firmware binaries' steps, or
+#                        STEPS='voronoi firmware' for one binary's
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -49,7 +53,12 @@ terrain_query="--start -3547.7197,-9893.968,0.78498753 --goal 3539.5775,9895.572
 landmark_scenario=scenarios/babel-II-N.geojson
 landmark_src=target/fixture/landmark-src.bin
 landmark_fixture_dir=firmware-example/fixture-landmark
-# The firmware binaries' ELFs: $firmware_release/{roadmap,terrain,landmark}.
+# The Voronoi firmware's network: ruz-popups (a roadmap scenario) taken as a Voronoi scenario;
+# the fixture tool reads the scenario for its start P and goal Q in the network's local frame.
+voronoi_scenario=scenarios/ruz-popups.geojson
+voronoi_src=target/fixture/voronoi-src.bin
+voronoi_fixture_dir=firmware-example/fixture-voronoi
+# The firmware binaries' ELFs: $firmware_release/{roadmap,terrain,landmark,voronoi}.
 firmware_release=firmware-example/target/thumbv7em-none-eabihf/release
 
 script_start=$SECONDS
@@ -65,6 +74,9 @@ banner() {
 step() {
     local name=$1
     shift
+    if [[ -n ${STEPS:-} ]] && ! grep -qE -- "$STEPS" <<<"$name"; then
+        return 0
+    fi
     banner "$name"
     local t0=$SECONDS status=0
     # A subshell with -e of its own: inside `cmd || …` bash would ignore -e in functions.
@@ -182,8 +194,8 @@ fixture() {
         "$network_src" "$fixture_dir" ${extra[@]+"${extra[@]}"}
 }
 
-# firmware_build BIN: builds the firmware binary BIN (roadmap, terrain or landmark), which
-# embeds its own fixture (fixture/, fixture-terrain/, fixture-landmark/).
+# firmware_build BIN: builds the firmware binary BIN (roadmap, terrain, landmark or voronoi),
+# which embeds its own fixture (fixture/, fixture-terrain/, fixture-landmark/, fixture-voronoi/).
 firmware_build() {
     (cd firmware-example && cargo build --release --bin "$1")
 }
@@ -210,6 +222,18 @@ landmark_fixture() {
         -o "$landmark_src" --grid-cell 8000
     cargo run --release -q -p host-tests --bin firmware_fixture -- \
         "$landmark_src" "$landmark_fixture_dir"
+}
+
+# The ruz-popups Voronoi network and the fixture: the host plans P → Q, adds a radar (3 km
+# reference distance) on the middle of the route's longest straight, and re-plans from 5 km along
+# the route, as the firmware will.
+voronoi_fixture() {
+    mkdir -p "$(dirname "$voronoi_src")"
+    cargo run --release -q -p skyroute-prep --bin skyroute -- build "$voronoi_scenario" \
+        --mode voronoi -o "$voronoi_src"
+    cargo run --release -q -p host-tests --bin firmware_fixture -- \
+        "$voronoi_src" "$voronoi_fixture_dir" --scenario "$voronoi_scenario" \
+        --threat-on-route 3000 --replan-after 5000
 }
 
 # firmware_run ELF: boots the firmware ELF under QEMU; its exit code is the verdict.
@@ -282,6 +306,11 @@ step "landmark firmware build (release, bin landmark)" firmware_build landmark
 step "landmark firmware clippy (bin landmark)" firmware_clippy landmark
 step "landmark firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/landmark"
 step "landmark firmware size" firmware_size "$firmware_release/landmark"
+step "voronoi firmware fixture (ruz-popups)" voronoi_fixture
+step "voronoi firmware build (release, bin voronoi)" firmware_build voronoi
+step "voronoi firmware clippy (bin voronoi)" firmware_clippy voronoi
+step "voronoi firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/voronoi"
+step "voronoi firmware size" firmware_size "$firmware_release/voronoi"
 
 step "fuzz smoke run (each cargo-fuzz target for FUZZ_SECONDS, default 20 s)" \
     scripts/fuzz-smoke.sh

@@ -1,19 +1,23 @@
-//! skyroute on a Cortex-M4F: what the three firmware binaries share.
+//! skyroute on a Cortex-M4F: what the four firmware binaries share.
 //!
-//! Each binary embeds its own fixture, which `build.rs` picks: `src/bin/roadmap.rs` embeds
-//! `fixture/` (a roadmap network), `terrain.rs` `fixture-terrain/` (a terrain network over the
-//! Jacksboro DEM), `landmark.rs` `fixture-landmark/` (a Babel landmark network): the network
-//! image in flash and the constants of `query.rs` (written by host-tests' `firmware_fixture`:
-//! capacities, query, the host's answers). Each keeps its planner in a `static` sized by those
-//! capacities, and its entry point
+//! Each binary embeds its own fixture with `include!`/`include_bytes!`: `src/bin/roadmap.rs`
+//! embeds `fixture/` (a roadmap network), `terrain.rs` `fixture-terrain/` (a terrain network
+//! over the Jacksboro DEM), `landmark.rs` `fixture-landmark/` (a Babel landmark network),
+//! `voronoi.rs` `fixture-voronoi/` (a Judd & McLain Voronoi network of radar threats): the
+//! network image in flash and the constants of `query.rs` (written by host-tests'
+//! `firmware_fixture`: capacities, query, the host's answers). Each keeps its planner in a
+//! `static` sized by those capacities, and its entry point
 //!
-//! 1. calls [`start`]: starts the SysTick [`clock`], loads (validates) the image and logs the
+//! 1. calls [`start`] (or, for a Voronoi network, [`voronoi::run`] calls [`boot`] and
+//!    `load_voronoi`): starts the SysTick [`clock`], loads (validates) the image and logs the
 //!    network;
 //! 2. runs its mission: [`popup_mission::run`] for a roadmap or terrain network (adds the
 //!    fixture's pop-up, then runs the [`autopilot`] route task for a few cycles, measuring each
 //!    `plan` call with SysTick; every route's length must match the host's), [`landmark::run`]
 //!    for a landmark network (plans from the stored start to the stored goal, loses a landmark
-//!    in flight with `update_rosette`, plans again; both answers must equal the host's);
+//!    in flight with `update_rosette`, plans again; both answers must equal the host's),
+//!    [`voronoi::run`] for a Voronoi network (plans, a radar pops up: `add_threat`, re-plans from
+//!    a pose along the route; every answer must equal the host's);
 //! 3. [`exit`]s through semihosting with the verdict: success only if the host match holds.
 //!
 //! Logs go over defmt (semihosting); panics and hard faults exit with failure. Run a binary with
@@ -25,6 +29,7 @@ pub mod clock;
 pub mod landmark;
 pub mod popup_mission;
 pub mod stack;
+pub mod voronoi;
 
 use clock::Clock;
 use cortex_m_rt::{exception, ExceptionFrame};
@@ -45,24 +50,7 @@ pub fn start<const V: usize, const E: usize, const P: usize, const R: usize>(
     network: &'static [u8],
     config: Option<PlannerConfig>,
 ) -> Option<Clock> {
-    let Some(core) = cortex_m::Peripherals::take() else {
-        defmt::error!("core peripherals already taken");
-        return None;
-    };
-    let clock = Clock::start(core.SYST);
-    defmt::info!(
-        "skyroute firmware example: STM32F405 (Cortex-M4F), SysTick at {=u32} Hz",
-        clock::CORE_HZ
-    );
-    defmt::info!(
-        "planner capacities V={=usize} E={=usize} P={=usize} R={=usize}: {=usize} B of RAM",
-        V,
-        E,
-        P,
-        R,
-        core::mem::size_of::<Planner<'static, V, E, P, R>>()
-    );
-
+    let clock = boot::<V, E, P, R>()?;
     let t = clock.now();
     if let Err(e) = planner.load(network) {
         defmt::error!("load failed: {}", e);
@@ -102,7 +90,31 @@ pub fn start<const V: usize, const E: usize, const P: usize, const R: usize>(
     Some(clock)
 }
 
-/// Logs the peak stack use ([`stack::high_water`]); both missions end with it.
+/// The start of every binary, before its network is loaded: takes the core peripherals,
+/// starts SysTick and logs the planner's capacities and size. `None` (after logging) when the
+/// core peripherals are taken already.
+pub fn boot<const V: usize, const E: usize, const P: usize, const R: usize>() -> Option<Clock> {
+    let Some(core) = cortex_m::Peripherals::take() else {
+        defmt::error!("core peripherals already taken");
+        return None;
+    };
+    let clock = Clock::start(core.SYST);
+    defmt::info!(
+        "skyroute firmware example: STM32F405 (Cortex-M4F), SysTick at {=u32} Hz",
+        clock::CORE_HZ
+    );
+    defmt::info!(
+        "planner capacities V={=usize} E={=usize} P={=usize} R={=usize}: {=usize} B of RAM",
+        V,
+        E,
+        P,
+        R,
+        core::mem::size_of::<Planner<'static, V, E, P, R>>()
+    );
+    Some(clock)
+}
+
+/// Logs the peak stack use ([`stack::high_water`]); every mission ends with it.
 pub fn log_stack() {
     let (stack_used, stack_size) = stack::high_water();
     defmt::info!(

@@ -153,7 +153,7 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
             "turn arcs checked in the last query: {}",
             task.planner().arc_check_stats()
         ),
-        Mode::Roadmap | Mode::Landmark | Mode::Unknown(_) => {}
+        Mode::Roadmap | Mode::Landmark | Mode::Voronoi | Mode::Unknown(_) => {}
     }
     log_stack();
     if verdict {

@@ -2,13 +2,15 @@
 //! planning query on the `niendorf-urban` roadmap; the terrain query P → Q on the
 //! `medeiros-jacksboro` network, the network load (validation), and an arc check against the
 //! elevation grid; the landmark query on `babel-II-N`, with an in-flight rosette update, and its
-//! load. Run: `cargo bench -p host-tests --bench core`.
+//! load; the Voronoi query P → Q on `ruz-popups` (as the `voronoi` firmware plans it), its load,
+//! a radar popping up (`add_threat`) and the re-plan. Run: `cargo bench -p host-tests --bench core`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use skyroute::geometry::predicates::{
     arc_segment_distance, conflicts_with_polygon, segment_segment_distance,
 };
-use skyroute::planner::{Goal, Popup, Query, Search};
+use skyroute::geometry::spline::Piece;
+use skyroute::planner::{Goal, Popup, Query, Search, VoronoiStorage};
 use skyroute::{Arc, DubinsPath, Planner, Pose, Primitive, Segment, Vec2};
 use std::f32::consts::PI;
 use std::path::Path;
@@ -276,5 +278,126 @@ fn babel(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, geometry, niendorf, jacksboro, babel);
+/// The Voronoi firmware's planner type (`firmware-example/fixture-voronoi/query.rs`).
+type VoronoiPlanner<'n> = Planner<'n, 320, 768, 4, 256>;
+
+/// The pose `distance` metres along `pieces` on a line piece (the end of a cubic piece
+/// otherwise), as `firmware_fixture` picks the Voronoi re-plan's start.
+fn pose_along(pieces: &[Piece], distance: f32) -> Pose {
+    let mut flown = 0.0;
+    for p in pieces {
+        let length = p.length();
+        if flown + length >= distance {
+            let t = match p {
+                Piece::Line { .. } => ((distance - flown) / length).clamp(0.0, 1.0),
+                Piece::Cubic { .. } => 1.0,
+            };
+            let d = p.tangent(t).expect("tangent");
+            let q = p.point(t);
+            return Pose::new(q.x, q.y, d.y.atan2(d.x));
+        }
+        flown += length;
+    }
+    panic!("the route is shorter than {distance} m")
+}
+
+fn voronoi(c: &mut Criterion) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/ruz-popups.geojson");
+    let mut scenario = skyroute_prep::scenario::load(&path).expect("scenario");
+    scenario.planner.mode = skyroute_prep::scenario::Mode::Voronoi;
+    let built =
+        skyroute_prep::build::build(&scenario, &Default::default(), &|_, _| {}).expect("network");
+    let bytes: &'static [u8] = Box::leak(built.bytes.into_boxed_slice());
+    let frame = &built.frame;
+    let (start, goal) = (
+        scenario.start.as_ref().expect("start"),
+        scenario.goal.as_ref().expect("goal"),
+    );
+    let query = Query {
+        start: skyroute_prep::build::local_pose(frame, start.lon, start.lat, start.heading_deg),
+        goal: Goal {
+            position: skyroute_prep::build::local(frame, goal.lon, goal.lat),
+            heading: goal
+                .heading_deg
+                .map(|h| skyroute_prep::build::local_heading(frame, goal.lon, goal.lat, h)),
+        },
+        search: Search::Dijkstra,
+    };
+    let storage: &'static mut VoronoiStorage = Box::leak(Box::new(VoronoiStorage::new()));
+    let mut planner: Box<VoronoiPlanner<'static>> = Box::new(Planner::new());
+    planner.load_voronoi(bytes, storage).expect("loads");
+    let budget = planner.worst_case_work();
+    let s = planner.plan(&query, budget).expect("route");
+    let pieces = planner.route_pieces().to_vec();
+    // The firmware fixture's radar: 3 km, on the middle of the longest straight.
+    let (a, b) = pieces
+        .iter()
+        .filter_map(|p| match p {
+            Piece::Line { a, b } => Some((*a, *b)),
+            Piece::Cubic { .. } => None,
+        })
+        .max_by(|x, y| x.0.distance(x.1).total_cmp(&y.0.distance(y.1)))
+        .expect("a straight");
+    let site = (a + b) * 0.5;
+    let requery = Query {
+        start: pose_along(&pieces, 5000.0),
+        ..query
+    };
+    eprintln!(
+        "ruz-popups Voronoi network: {} bytes; P → Q {} m, {} pieces, work {} (bound {budget})",
+        bytes.len(),
+        s.length,
+        pieces.len(),
+        s.work.total()
+    );
+    c.bench_function("plan_voronoi_ruz_p_to_q", |b| {
+        b.iter(|| black_box(planner.plan(&query, budget)))
+    });
+    // Only the timed call is counted (a fresh planner per iteration, untimed).
+    c.bench_function("load_voronoi_ruz", |b| {
+        b.iter_custom(|iters| {
+            let mut storage = Box::new(VoronoiStorage::new());
+            let mut total = std::time::Duration::ZERO;
+            for _ in 0..iters {
+                let mut p: Box<VoronoiPlanner<'_>> = Box::new(Planner::new());
+                let t = std::time::Instant::now();
+                black_box(p.load_voronoi(bytes, &mut storage)).expect("loads");
+                total += t.elapsed();
+            }
+            total
+        })
+    });
+    // Only the timed call is counted: each iteration loads afresh (untimed) so that the radar
+    // is inserted into the network's diagram every time.
+    c.bench_function("add_threat_ruz_r3000_on_route", |b| {
+        b.iter_custom(|iters| {
+            let mut storage = Box::new(VoronoiStorage::new());
+            let mut total = std::time::Duration::ZERO;
+            for _ in 0..iters {
+                let mut p: Box<VoronoiPlanner<'_>> = Box::new(Planner::new());
+                p.load_voronoi(bytes, &mut storage).expect("loads");
+                let t = std::time::Instant::now();
+                black_box(p.add_threat(site, 3000.0)).expect("threat");
+                total += t.elapsed();
+            }
+            total
+        })
+    });
+    let added = planner.add_threat(site, 3000.0).expect("threat");
+    let r = planner.plan(&requery, budget).expect("re-plan");
+    eprintln!(
+        "add_threat ({}, {}) r 3000 m: {added:?}; re-plan from {:?}: {} m, {} pieces, work {}",
+        site.x,
+        site.y,
+        requery.start,
+        r.length,
+        planner.route_pieces().len(),
+        r.work.total()
+    );
+    c.bench_function("replan_voronoi_ruz_after_threat", |b| {
+        b.iter(|| black_box(planner.plan(&requery, budget)))
+    });
+}
+
+criterion_group!(benches, geometry, niendorf, jacksboro, babel, voronoi);
 criterion_main!(benches);

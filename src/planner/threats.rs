@@ -13,6 +13,10 @@ use crate::geometry::Vec2;
 use crate::network::{LoadError, Network};
 use heapless::Vec;
 
+// For the documentation's links only.
+#[cfg(doc)]
+use crate::planner::Planner;
+
 /// Where a threat in the planner's list came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
