@@ -122,7 +122,9 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
             mark: [false; T],
             boundary: [[0; 4]; T],
             first: [0; N],
-            ghost_first: NONE,
+            // Scratch, stale until an insertion writes it (readers check): 0 keeps `new`
+            // all zero bytes, so a `static` lands in `.bss` and costs no flash.
+            ghost_first: 0,
             work: 0,
         }
     }
