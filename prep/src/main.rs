@@ -6,6 +6,7 @@ use skyroute::planner::decision::DecisionLimits;
 use skyroute_prep::build::{build, BuildOptions};
 use skyroute_prep::output::{refuse_overwriting_inputs, write_atomically};
 use skyroute_prep::plan_cli::{load_scenario, plan_command, CliResult, NoRoute, PlanRequest};
+use skyroute_prep::route_mission::{Autopilot, MissionOutput};
 use skyroute_prep::ruz::cli::plan_decided_command;
 use skyroute_prep::ruz::study_cli::{montecarlo_command, MonteCarloRequest};
 use skyroute_prep::scenario::Mode;
@@ -137,7 +138,10 @@ enum Command {
         #[arg(long)]
         hull_repair: bool,
         /// Where to write the route: `.json` the detailed route file (local frame, every
-        /// primitive), `.geojson` RFC 7946 GeoJSON (lon/lat, a feature per leg and pop-up).
+        /// primitive), `.geojson` RFC 7946 GeoJSON (lon/lat, a feature per leg and pop-up),
+        /// `.plan` a QGroundControl plan (mission, no-fly zones as geofence, goal as rally
+        /// point), `.waypoints` the MAVLink QGC WPL 110 text format, `.kml` KML for Google Earth
+        /// (docs/AUTOPILOTS.md).
         #[arg(short, long)]
         output: PathBuf,
         /// Take the scenario as this mode, as the network was built (`build --mode`).
@@ -172,6 +176,14 @@ enum Command {
         /// With --popup-appears: the largest mean fuel factor (mean normalised turn effort).
         #[arg(long, default_value_t = skyroute_prep::ruz::cli::FUEL_LIMIT, value_parser = parse_limit)]
         fuel_limit: f32,
+        /// `.plan` outputs: the flight stack, `px4` (firmwareType 12) or `ardupilot` (3).
+        #[arg(long, default_value = "px4", value_parser = parse_autopilot)]
+        autopilot: Autopilot,
+        /// `.plan`, `.waypoints` and `.kml` outputs: the altitude, metres above home (default
+        /// 100); on a terrain network metres above mean sea level (default the network's
+        /// altitude).
+        #[arg(long, value_parser = parse_altitude)]
+        altitude: Option<f64>,
     },
     /// The Monte Carlo study of pop-ups under uncertainty (Ruz et al.): missions in which the
     /// scenario's pop-ups appear by their probabilities, flown with the decision on risk, time
@@ -289,6 +301,21 @@ fn parse_mode(s: &str) -> Result<Mode, String> {
         _ => Err(format!(
             "expected roadmap, landmark, terrain or voronoi, got {s:?}"
         )),
+    }
+}
+
+fn parse_autopilot(s: &str) -> Result<Autopilot, String> {
+    match s.trim() {
+        "px4" => Ok(Autopilot::Px4),
+        "ardupilot" => Ok(Autopilot::ArduPilot),
+        _ => Err(format!("expected px4 or ardupilot, got {s:?}")),
+    }
+}
+
+fn parse_altitude(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(a) if a.is_finite() => Ok(a),
+        _ => Err(format!("expected a finite number of metres, got {s:?}")),
     }
 }
 
@@ -495,6 +522,7 @@ fn demo_command(dir: &Path) -> CliResult {
         threats: &[],
         popup_appears: &[],
         limits: skyroute_prep::ruz::cli::LIMITS,
+        mission: MissionOutput::default(),
     })?;
     let request = skyroute_prep::render::RenderRequest {
         network,
@@ -559,6 +587,8 @@ fn run(cli: Cli) -> CliResult {
             popup_appears,
             time_limit,
             fuel_limit,
+            autopilot,
+            altitude,
         } => {
             let request = PlanRequest {
                 network: &network,
@@ -574,6 +604,10 @@ fn run(cli: Cli) -> CliResult {
                 threats: &threat,
                 popup_appears: &popup_appears,
                 limits: limits(time_limit, fuel_limit),
+                mission: MissionOutput {
+                    autopilot,
+                    altitude_m: altitude,
+                },
             };
             let command = match popup_appears.is_empty() {
                 true => plan_command,

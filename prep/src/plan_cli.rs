@@ -9,7 +9,8 @@ use crate::mission::{plan_mission_with, LocalPopup, MissionOptions};
 use crate::output::{refuse_overwriting_inputs, write_atomically};
 use crate::plan_checks::{check_query, gather_popups, PopupInput, PopupSource};
 use crate::provenance::check_binding;
-use crate::route_geojson::{route_geojson, RouteFormat};
+use crate::route_mission::{mission_route, mission_summary, MissionOutput};
+use crate::route_output::{route_text, RouteFormat};
 use crate::scenario;
 use std::path::Path;
 use std::time::Instant;
@@ -51,6 +52,8 @@ pub struct PlanRequest<'a> {
     pub popup_appears: &'a [String],
     /// `--time-limit` and `--fuel-limit`.
     pub limits: skyroute::planner::decision::DecisionLimits,
+    /// `--autopilot` and `--altitude`: how `.plan`, `.waypoints` and `.kml` outputs are written.
+    pub mission: MissionOutput,
 }
 
 /// The route file's record of the pop-ups a plan applied.
@@ -147,10 +150,23 @@ pub fn plan_command(req: &PlanRequest) -> CliResult {
     if let Some(t) = net.terrain() {
         json["altitude_m"] = serde_json::json!(t.altitude_m);
     }
-    let text = match format {
-        RouteFormat::Detailed => serde_json::to_string_pretty(&json)?,
-        RouteFormat::GeoJson => serde_json::to_string(&route_geojson(&json)?)?,
-    };
+    write_route(req, format, &json, &s)
+}
+
+/// Writes a planned route's JSON to `req.output` in `format`, saying for a mission how closely
+/// its waypoints follow the route. Errors name the output file.
+pub fn write_route(
+    req: &PlanRequest,
+    format: RouteFormat,
+    json: &serde_json::Value,
+    s: &scenario::Scenario,
+) -> CliResult {
+    let at = |e: &dyn std::fmt::Display| format!("{}: {e}", req.output.display());
+    let text = route_text(format, json, s, &req.mission).map_err(|e| at(&e))?;
+    if format.is_mission() {
+        let m = mission_route(json, s).map_err(|e| at(&e))?;
+        println!("  {}", mission_summary(&m));
+    }
     write_atomically(req.output, text.as_bytes())?;
     Ok(())
 }

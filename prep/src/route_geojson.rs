@@ -147,32 +147,3 @@ pub fn route_geojson(route_json: &Value) -> Result<Value, String> {
         },
     }))
 }
-
-/// The route formats `skyroute plan -o FILE` writes, by the file's extension.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RouteFormat {
-    /// `.json`: the detailed route file (local frame, every primitive and Hermite piece, work).
-    Detailed,
-    /// `.geojson`: RFC 7946 GeoJSON in longitude/latitude.
-    GeoJson,
-}
-
-impl RouteFormat {
-    /// The format of `path` by its extension; `Err` names the extension and the known ones.
-    pub fn of(path: &std::path::Path) -> Result<Self, String> {
-        let ext = path
-            .extension()
-            .map(|e| e.to_string_lossy().to_lowercase())
-            .unwrap_or_default();
-        match ext.as_str() {
-            "json" => Ok(RouteFormat::Detailed),
-            "geojson" => Ok(RouteFormat::GeoJson),
-            other => Err(format!(
-                "{}: route format {:?} unknown by its extension; use .json (the detailed route \
-                 file) or .geojson (RFC 7946 GeoJSON)",
-                path.display(),
-                if other.is_empty() { "(none)" } else { other }
-            )),
-        }
-    }
-}

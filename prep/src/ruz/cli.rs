@@ -13,11 +13,11 @@
 use super::alternatives::{study, Planning, PopupAlternatives, ScoredRoute, Study};
 use super::risk_params;
 use crate::mission::MissionOptions;
-use crate::output::{refuse_overwriting_inputs, write_atomically};
+use crate::output::refuse_overwriting_inputs;
 use crate::plan_checks::{check_query, gather_popups, PopupInput};
 use crate::plan_cli::{load_scenario, popups_json, CliResult, NoRoute, PlanRequest};
 use crate::provenance::check_binding;
-use crate::route_geojson::{route_geojson, RouteFormat};
+use crate::route_output::RouteFormat;
 use crate::scenario::{self, Scenario};
 use serde_json::{json, Value};
 use skyroute::planner::decision::{
@@ -362,10 +362,5 @@ pub fn plan_decided_command(req: &PlanRequest) -> CliResult {
         t0.elapsed().as_secs_f64(),
         req.output.display()
     );
-    let text = match format {
-        RouteFormat::Detailed => serde_json::to_string_pretty(&json)?,
-        RouteFormat::GeoJson => serde_json::to_string(&route_geojson(&json)?)?,
-    };
-    write_atomically(req.output, text.as_bytes())?;
-    Ok(())
+    crate::plan_cli::write_route(req, format, &json, s)
 }
