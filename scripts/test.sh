@@ -147,6 +147,10 @@ install_missing() {
     if ! python3 -c 'import scipy' 2>/dev/null; then
         python3 -m pip install scipy
     fi
+    # The mission check (scripts/check_mission.py) loads the missions with pymavlink.
+    if ! python3 -c 'import pymavlink' 2>/dev/null; then
+        python3 -m pip install pymavlink
+    fi
     local qemu_version
     qemu_version=$(qemu-system-arm --version)
     echo "rustc: $(rustc --version)"

@@ -1,5 +1,6 @@
 //! `skyroute plan -o FILE` picks the route format by the extension: the detailed `.json` route
-//! file, or RFC 7946 GeoJSON (`.geojson`) that GDAL opens; an unknown extension is refused.
+//! file, or RFC 7946 GeoJSON (`.geojson`) that GDAL opens; an unknown extension is refused
+//! (the mission and KML formats: `route_missions.rs`).
 
 mod common;
 
@@ -142,10 +143,10 @@ fn geojson_routes_are_rfc7946_and_match_the_detailed_route() {
 #[test]
 fn an_unknown_route_extension_is_refused_before_planning() {
     let dir = TempDir::new("route-ext");
-    let out = dir.file("route.kml");
+    let out = dir.file("route.kmz");
     let o = skyroute(&["plan", "missing.bin", "--scenario", &niendorf(), "-o", &out]);
     assert_eq!(code(&o), 1);
     let e = stderr(&o);
-    assert!(e.contains("route.kml") && e.contains(".geojson"), "{e}");
+    assert!(e.contains("route.kmz") && e.contains(".geojson"), "{e}");
     assert!(!Path::new(&out).exists());
 }
