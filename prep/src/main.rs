@@ -182,8 +182,8 @@ enum Command {
         /// `.plan`, `.waypoints` and `.kml` outputs: the altitude, metres above home (default
         /// 100); on a terrain network metres above mean sea level (default the network's
         /// altitude).
-        #[arg(long, value_parser = parse_altitude)]
-        altitude: Option<f64>,
+        #[arg(long = "altitude", value_parser = parse_altitude)]
+        altitude_m: Option<f64>,
     },
     /// The Monte Carlo study of pop-ups under uncertainty (Ruz et al.): missions in which the
     /// scenario's pop-ups appear by their probabilities, flown with the decision on risk, time
@@ -588,7 +588,7 @@ fn run(cli: Cli) -> CliResult {
             time_limit,
             fuel_limit,
             autopilot,
-            altitude,
+            altitude_m,
         } => {
             let request = PlanRequest {
                 network: &network,
@@ -604,10 +604,7 @@ fn run(cli: Cli) -> CliResult {
                 threats: &threat,
                 popup_appears: &popup_appears,
                 limits: limits(time_limit, fuel_limit),
-                mission: MissionOutput {
-                    autopilot,
-                    altitude_m: altitude,
-                },
+                mission: MissionOutput::new(autopilot, altitude_m),
             };
             let command = match popup_appears.is_empty() {
                 true => plan_command,

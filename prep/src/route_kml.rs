@@ -34,11 +34,11 @@ fn coordinates(points: impl Iterator<Item = (f64, f64)>, alt: f64) -> String {
 /// A polygon placemark of a ring `(lon, lat)` (closed here).
 fn polygon(out: &mut String, name: &str, style: &str, ring: &[(f64, f64)]) {
     let closed = ring.iter().chain(ring.first()).copied();
-    let _ = write!(
+    let _ = writeln!(
         out,
         "<Placemark><name>{}</name><styleUrl>#{style}</styleUrl><Polygon><tessellate>1</tessellate>\
          <outerBoundaryIs><LinearRing><coordinates>{}</coordinates></LinearRing></outerBoundaryIs>\
-         </Polygon></Placemark>\n",
+         </Polygon></Placemark>",
         escape(name),
         coordinates(closed, 0.0)
     );
@@ -46,10 +46,10 @@ fn polygon(out: &mut String, name: &str, style: &str, ring: &[(f64, f64)]) {
 
 /// A point placemark.
 fn point(out: &mut String, name: &str, style: &str, lon: f64, lat: f64, alt: f64, mode: &str) {
-    let _ = write!(
+    let _ = writeln!(
         out,
         "<Placemark><name>{}</name><styleUrl>#{style}</styleUrl><Point><altitudeMode>{mode}\
-         </altitudeMode><coordinates>{lon},{lat},{alt}</coordinates></Point></Placemark>\n",
+         </altitudeMode><coordinates>{lon},{lat},{alt}</coordinates></Point></Placemark>",
         escape(name)
     );
 }
@@ -78,11 +78,11 @@ pub fn route_kml(route_json: &Value, s: &Scenario, out: &MissionOutput) -> Resul
     k.push_str("<Folder><name>Route</name>\n");
     for (i, leg) in m.route.legs.iter().enumerate() {
         let pts = sampled_lon_lat(&leg.primitives, &m.frame, SAMPLE_STEP_M);
-        let _ = write!(
+        let _ = writeln!(
             k,
             "<Placemark><name>leg {i}: {} - {}</name><description>{:.1} m</description>\
              <styleUrl>#leg</styleUrl><LineString><tessellate>1</tessellate><altitudeMode>{mode}\
-             </altitudeMode><coordinates>{}</coordinates></LineString></Placemark>\n",
+             </altitudeMode><coordinates>{}</coordinates></LineString></Placemark>",
             escape(&leg.from),
             escape(&leg.to),
             leg.length_m,

@@ -72,6 +72,16 @@ pub struct MissionOutput {
     pub altitude_m: Option<f64>,
 }
 
+impl MissionOutput {
+    /// A mission for `autopilot` at `altitude_m` (`None`: the default altitude).
+    pub fn new(autopilot: Autopilot, altitude_m: Option<f64>) -> Self {
+        MissionOutput {
+            autopilot,
+            altitude_m,
+        }
+    }
+}
+
 /// The mission's altitude and MAVLink frame: on a terrain network the network's altitude (or
 /// `--altitude`) above mean sea level in `MAV_FRAME_GLOBAL`, since the route was checked against
 /// the terrain at that altitude and the home's ground elevation is not known here; otherwise
