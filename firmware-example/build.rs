@@ -3,8 +3,8 @@
 //!
 //! The fixtures are not this script's business: each binary `include!`s its own
 //! (`src/bin/roadmap.rs` ← `fixture/`, `terrain.rs` ← `fixture-terrain/`, `landmark.rs` ←
-//! `fixture-landmark/`, `voronoi.rs` ← `fixture-voronoi/`), rustc tracks those files, and a
-//! binary whose fixture has not been generated fails to compile naming the missing file, while
+//! `fixture-landmark/`, `voronoi.rs` ← `fixture-voronoi/`, `ruz.rs` ← `fixture-ruz/query.rs`),
+//! rustc tracks those files, and a binary whose fixture has not been generated fails to compile naming the missing file, while
 //! the others build.
 
 use std::path::PathBuf;

@@ -5,7 +5,9 @@
 #   roadmap (niendorf-urban, binary `roadmap`), again for terrain (medeiros-jacksboro, binary
 #   `terrain`) and for landmarks (babel-II-N, binary `landmark`: plan, lose a landmark in
 #   flight, re-plan) and for radar threats (ruz-popups as a Voronoi network, binary `voronoi`:
-#   plan, a radar pops up in flight, re-plan) → a short run of every fuzz target
+#   plan, a radar pops up in flight, re-plan) and for the pop-up decision (ruz-popups' bypass
+#   alternatives as constants, binary `ruz`: decide a sequence of announcements and a worst
+#   case as the host does) → a short run of every fuzz target
 #   (scripts/fuzz-smoke.sh; skipped, with a message, where no nightly toolchain is installed).
 # Runnable from any directory. Stops at the first failing step; KEEP_GOING=1 runs every step
 # and fails at the end instead.
@@ -20,7 +22,7 @@
 #   FIRMWARE_TIMEOUT     seconds the firmware may run under QEMU (default 300)
 #   KEEP_GOING=1         run every step even after a failure
 #   STEPS=REGEX          run only the steps whose name matches REGEX (grep -E), e.g.
-#                        STEPS=firmware for the four firmware binaries' steps, or
+#                        STEPS=firmware for the five firmware binaries' steps, or
 #                        STEPS='voronoi firmware' for one binary's
 set -euo pipefail
 
@@ -58,7 +60,12 @@ landmark_fixture_dir=firmware-example/fixture-landmark
 voronoi_scenario=scenarios/ruz-popups.geojson
 voronoi_src=target/fixture/voronoi-src.bin
 voronoi_fixture_dir=firmware-example/fixture-voronoi
-# The firmware binaries' ELFs: $firmware_release/{roadmap,terrain,landmark,voronoi}.
+# The pop-up decision firmware (Ruz et al.): the alternatives of ruz-popups' pop-ups, planned on
+# its roadmap network by the fixture tool, as constants (no network image in the firmware).
+ruz_scenario=scenarios/ruz-popups.geojson
+ruz_src=target/fixture/ruz-src.bin
+ruz_fixture_dir=firmware-example/fixture-ruz
+# The firmware binaries' ELFs: $firmware_release/{roadmap,terrain,landmark,voronoi,ruz}.
 firmware_release=firmware-example/target/thumbv7em-none-eabihf/release
 
 script_start=$SECONDS
@@ -198,8 +205,9 @@ fixture() {
         "$network_src" "$fixture_dir" ${extra[@]+"${extra[@]}"}
 }
 
-# firmware_build BIN: builds the firmware binary BIN (roadmap, terrain, landmark or voronoi),
-# which embeds its own fixture (fixture/, fixture-terrain/, fixture-landmark/, fixture-voronoi/).
+# firmware_build BIN: builds the firmware binary BIN (roadmap, terrain, landmark, voronoi or
+# ruz), which embeds its own fixture (fixture/, fixture-terrain/, fixture-landmark/,
+# fixture-voronoi/, fixture-ruz/).
 firmware_build() {
     (cd firmware-example && cargo build --release --bin "$1")
 }
@@ -238,6 +246,16 @@ voronoi_fixture() {
     cargo run --release -q -p host-tests --bin firmware_fixture -- \
         "$voronoi_src" "$voronoi_fixture_dir" --scenario "$voronoi_scenario" \
         --threat-on-route 3000 --replan-after 5000
+}
+
+# The Ruz decision's fixture: ruz-popups as a roadmap network; the host plans every pop-up's
+# bypass alternatives with the ground tool's code and decides a sequence of announcements and a
+# worst case, as the firmware will (only query.rs: the firmware embeds no network).
+ruz_fixture() {
+    mkdir -p "$(dirname "$ruz_src")"
+    cargo run --release -q -p skyroute-prep --bin skyroute -- build "$ruz_scenario" -o "$ruz_src"
+    cargo run --release -q -p host-tests --bin firmware_fixture -- \
+        "$ruz_src" "$ruz_fixture_dir" --ruz --scenario "$ruz_scenario"
 }
 
 # firmware_run ELF: boots the firmware ELF under QEMU; its exit code is the verdict.
@@ -315,6 +333,11 @@ step "voronoi firmware build (release, bin voronoi)" firmware_build voronoi
 step "voronoi firmware clippy (bin voronoi)" firmware_clippy voronoi
 step "voronoi firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/voronoi"
 step "voronoi firmware size" firmware_size "$firmware_release/voronoi"
+step "ruz decision firmware fixture (ruz-popups)" ruz_fixture
+step "ruz decision firmware build (release, bin ruz)" firmware_build ruz
+step "ruz decision firmware clippy (bin ruz)" firmware_clippy ruz
+step "ruz decision firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/ruz"
+step "ruz decision firmware size" firmware_size "$firmware_release/ruz"
 
 step "fuzz smoke run (each cargo-fuzz target for FUZZ_SECONDS, default 20 s)" \
     scripts/fuzz-smoke.sh

@@ -1,4 +1,4 @@
-//! skyroute on a Cortex-M4F: what the four firmware binaries share.
+//! skyroute on a Cortex-M4F: what the five firmware binaries share.
 //!
 //! Each binary embeds its own fixture with `include!`/`include_bytes!`: `src/bin/roadmap.rs`
 //! embeds `fixture/` (a roadmap network), `terrain.rs` `fixture-terrain/` (a terrain network
@@ -20,6 +20,11 @@
 //!    a pose along the route; every answer must equal the host's);
 //! 3. [`exit`]s through semihosting with the verdict: success only if the host match holds.
 //!
+//! The fifth, `ruz.rs`, has no network and no planner: it embeds only `fixture-ruz/query.rs`
+//! (the bypass alternatives' figures of ruz-popups, a sequence of announcements and the host's
+//! decisions), calls [`start_clock`], lets [`ruz::run`] decide every announcement and compare
+//! it with the host's, and [`exit`]s with the verdict.
+//!
 //! Logs go over defmt (semihosting); panics and hard faults exit with failure. Run a binary with
 //! `scripts/run-firmware.sh` (or `cargo run --release --bin roadmap` in `firmware-example/`).
 #![no_std]
@@ -28,6 +33,7 @@ pub mod autopilot;
 pub mod clock;
 pub mod landmark;
 pub mod popup_mission;
+pub mod ruz;
 pub mod stack;
 pub mod voronoi;
 
@@ -94,6 +100,21 @@ pub fn start<const V: usize, const E: usize, const P: usize, const R: usize>(
 /// starts SysTick and logs the planner's capacities and size. `None` (after logging) when the
 /// core peripherals are taken already.
 pub fn boot<const V: usize, const E: usize, const P: usize, const R: usize>() -> Option<Clock> {
+    let clock = start_clock()?;
+    defmt::info!(
+        "planner capacities V={=usize} E={=usize} P={=usize} R={=usize}: {=usize} B of RAM",
+        V,
+        E,
+        P,
+        R,
+        core::mem::size_of::<Planner<'static, V, E, P, R>>()
+    );
+    Some(clock)
+}
+
+/// Takes the core peripherals, starts SysTick and logs the board. `None` (after logging) when
+/// the core peripherals are taken already.
+pub fn start_clock() -> Option<Clock> {
     let Some(core) = cortex_m::Peripherals::take() else {
         defmt::error!("core peripherals already taken");
         return None;
@@ -102,14 +123,6 @@ pub fn boot<const V: usize, const E: usize, const P: usize, const R: usize>() ->
     defmt::info!(
         "skyroute firmware example: STM32F405 (Cortex-M4F), SysTick at {=u32} Hz",
         clock::CORE_HZ
-    );
-    defmt::info!(
-        "planner capacities V={=usize} E={=usize} P={=usize} R={=usize}: {=usize} B of RAM",
-        V,
-        E,
-        P,
-        R,
-        core::mem::size_of::<Planner<'static, V, E, P, R>>()
     );
     Some(clock)
 }

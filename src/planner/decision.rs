@@ -95,10 +95,12 @@ pub enum DecisionError {
         /// The pop-up (`usize::MAX` for the limits).
         popup: usize,
     },
-    /// No choice meets both limits. `limit` is the tightest one: the limit that would have to
-    /// be relaxed the most, relative to itself, for the other to be met — `least` is the
-    /// smallest mean of that factor among the choices meeting the other limit (infinite when
-    /// none meets the other limit either).
+    /// No choice meets both limits. `limit` is the tightest one: `least` is the smallest mean
+    /// of that factor among the choices meeting the other limit, so relaxing `limit` to `least`
+    /// makes the instance feasible. When relaxing either limit alone would do, it is the one
+    /// that would have to be relaxed the most, relative to itself; when only one would, that
+    /// one; when neither would (no choice meets either limit), the time limit, with `least`
+    /// infinite.
     Infeasible {
         /// The tightest limit.
         limit: Limit,
@@ -262,7 +264,8 @@ pub fn decide(
 
 /// Names the tightest limit of an infeasible instance: the least mean time among choices
 /// meeting the fuel limit, and the least mean fuel among those meeting the time limit; the
-/// limit that needs the larger relative relaxation is the tightest. Work: two more searches
+/// tightest is the limit whose relaxation alone makes the instance feasible, the one that needs
+/// the larger relative relaxation when both would ([`DecisionError::Infeasible`]). Work: two more searches
 /// of at most [`decision_work_bound`] nodes each.
 fn infeasible(search: &mut Search<'_>, limits: &DecisionLimits) -> DecisionError {
     let n = search.alts.len().max(1) as f32;
@@ -277,7 +280,14 @@ fn infeasible(search: &mut Search<'_>, limits: &DecisionLimits) -> DecisionError
     let time = least(1, false, true);
     let fuel = least(2, true, false);
     let over = |least: f32, max: f32| (least - max) / max.abs().max(f32::MIN_POSITIVE);
-    if over(time, limits.time_max) >= over(fuel, limits.fuel_max) {
+    // A limit whose relaxation alone cannot help (its `least` infinite) is not the one to name
+    // while the other's can.
+    let name_time = match (time.is_finite(), fuel.is_finite()) {
+        (true, false) => true,
+        (false, true) => false,
+        _ => over(time, limits.time_max) >= over(fuel, limits.fuel_max),
+    };
+    if name_time {
         DecisionError::Infeasible {
             limit: Limit::Time,
             least: time,

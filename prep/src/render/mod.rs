@@ -9,8 +9,11 @@
 //! waypoints and goal, labelled by name, with heading ticks where the heading is fixed. A panel
 //! on the right holds the title, a legend, the legs with their lengths, the route's smallest
 //! distance to any obstacle or pop-up (in red when it is below the network's clearance) and a
-//! scale bar.
+//! scale bar. A route flying a decision among pop-up bypass alternatives (`plan
+//! --popup-appears`) is drawn thin and dark over the nominal route and every alternative, with
+//! their legend in the panel (`decision_layer`).
 
+mod decision_layer;
 mod draw;
 mod mark_layer;
 mod network_layer;
@@ -26,7 +29,10 @@ mod tests;
 mod threat_layer;
 
 pub(crate) use panel::primitive_obstacle_distance;
-pub use picture::{scenario_marks, EndpointMark, Picture, PopupMark, Route, RouteLeg, ThreatMark};
+pub use picture::{
+    scenario_marks, AlternativeMark, DecisionMark, DecisionPopup, EndpointMark, Picture, PopupMark,
+    Route, RouteLeg, ThreatMark,
+};
 pub use png::svg_to_png;
 pub use route_file::{
     parse_route, piece_from_json, primitive_from_json, read_route, route_from_json,
@@ -130,6 +136,21 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
             .any(|q| same(q.centre, p.centre) && (q.radius - p.radius).abs() < 1e-3)
         {
             popups.push(p.clone());
+        }
+    }
+    // The pop-ups a route's decision weighed are labelled with their appearance probability.
+    for p in routes
+        .iter()
+        .filter_map(|r| r.decision.as_ref())
+        .flat_map(|d| &d.popups)
+    {
+        // A route file names a scenario's pop-up `pop-up "U1"`, the scenario `U1`.
+        let quoted = format!("pop-up {:?}", p.name);
+        for q in popups
+            .iter_mut()
+            .filter(|q| q.name == p.name || q.name == quoted)
+        {
+            q.name = format!("{}, P_A {}", p.name, p.probability);
         }
     }
     let mut threats: Vec<ThreatMark> = (0..net.threat_count())

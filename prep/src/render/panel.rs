@@ -1,6 +1,7 @@
 //! The panel right of the map: title, network figures, legend, the route's legs and its
 //! smallest distances to obstacles and pop-ups, and the scale bar.
 
+use super::decision_layer;
 use super::draw::{
     is_terrain, is_voronoi, metres, nice_length, xml, LEG_COLOURS, MARGIN_PX, PANEL_PX,
 };
@@ -20,7 +21,13 @@ pub(super) fn panel(svg: &mut String, pic: &Picture, px0: f64) {
     let sym_y = legend(svg, pic, px0, sym_y);
     match pic.routes.as_slice() {
         [] => {}
-        [route] => route_summary(svg, pic, route, px0, sym_y + 4.0),
+        [route] => match &route.decision {
+            Some(d) => {
+                let y = decision_layer::panel(svg, route, d, px0, sym_y + 4.0);
+                closest(svg, pic.network.as_ref(), route, &pic.popups, px0, y);
+            }
+            None => route_summary(svg, pic, route, px0, sym_y + 4.0),
+        },
         routes => routes_summary(svg, pic, routes, px0, sym_y + 4.0),
     }
 }

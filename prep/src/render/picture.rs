@@ -43,6 +43,55 @@ pub struct Route {
     /// Whether it was planned round the scenario's `popup` features (`scenario_popups_applied`;
     /// `None` when the file does not say).
     pub scenario_popups_applied: Option<bool>,
+    /// The decision among pop-up bypass alternatives it flies (`plan --popup-appears`: its
+    /// `decision` member), if any.
+    pub decision: Option<DecisionMark>,
+}
+
+/// One bypass alternative of a pop-up, as a route file's `decision` records it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct AlternativeMark {
+    /// Its lines and arcs in the local frame, start to goal.
+    pub primitives: Vec<Primitive>,
+    /// Length, metres.
+    pub length_m: f64,
+    /// R_K for the pop-up's appearance probability.
+    pub risk: f64,
+    /// Time factor f_t.
+    pub time: f64,
+    /// Fuel factor F_c.
+    pub fuel: f64,
+}
+
+/// A pop-up of a decision: its alternatives and the one chosen.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DecisionPopup {
+    /// Its name in the scenario.
+    pub name: String,
+    /// P_A, its appearance probability.
+    pub probability: f64,
+    /// Index of the chosen alternative.
+    pub chosen: usize,
+    /// Its alternatives, in order.
+    pub alternatives: Vec<AlternativeMark>,
+}
+
+/// A route file's `decision`: the nominal route, every pop-up's alternatives, the choice and
+/// its figures against the limits.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DecisionMark {
+    /// The nominal route (no pop-ups).
+    pub nominal: Vec<Primitive>,
+    /// The pop-ups decided, in order.
+    pub popups: Vec<DecisionPopup>,
+    /// T_max and F_cmax.
+    pub limits: (f64, f64),
+    /// Σ R_K of the choice.
+    pub total_risk: f64,
+    /// Its mean time factor.
+    pub mean_time: f64,
+    /// Its mean fuel factor.
+    pub mean_fuel: f64,
 }
 
 impl Route {

@@ -1,6 +1,8 @@
 //! Reading route files written by `skyroute plan`.
 
-use super::picture::{PopupMark, Route, RouteLeg, ThreatMark};
+use super::picture::{
+    AlternativeMark, DecisionMark, DecisionPopup, PopupMark, Route, RouteLeg, ThreatMark,
+};
 use serde_json::Value;
 use skyroute::geometry::spline::Piece;
 use skyroute::{Arc, Primitive, Segment, Vec2};
@@ -128,6 +130,82 @@ fn threats_from_json(v: &Value) -> Result<Vec<ThreatMark>, String> {
     Ok(out)
 }
 
+/// The lines and arcs of `v`'s `primitives` member.
+fn primitives_of(v: &Value) -> Result<Vec<Primitive>, String> {
+    v.get("primitives")
+        .and_then(Value::as_array)
+        .ok_or("primitives: missing or not an array")?
+        .iter()
+        .enumerate()
+        .map(|(k, p)| primitive_from_json(p).map_err(|e| format!("primitives[{k}].{e}")))
+        .collect()
+}
+
+/// A pop-up of the route file's `decision` (`what` names it in errors).
+fn decision_popup(p: &Value, what: &str) -> Result<DecisionPopup, String> {
+    let alternatives = p
+        .get("alternatives")
+        .and_then(Value::as_array)
+        .ok_or_else(|| format!("{what}.alternatives: missing or not an array"))?
+        .iter()
+        .enumerate()
+        .map(|(k, a)| {
+            let at = |e: String| format!("{what}.alternatives[{k}].{e}");
+            Ok(AlternativeMark {
+                primitives: primitives_of(a).map_err(at)?,
+                length_m: num(a, "length_m").map_err(at)?,
+                risk: num(a, "risk").map_err(at)?,
+                time: num(a, "time_factor").map_err(at)?,
+                fuel: num(a, "fuel_factor").map_err(at)?,
+            })
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    let chosen = p
+        .get("chosen")
+        .and_then(Value::as_u64)
+        .filter(|&c| (c as usize) < alternatives.len())
+        .ok_or_else(|| format!("{what}.chosen: missing or not an alternative's index"))?;
+    Ok(DecisionPopup {
+        name: p
+            .get("name")
+            .and_then(Value::as_str)
+            .unwrap_or("?")
+            .to_string(),
+        probability: num(p, "probability").map_err(|e| format!("{what}.{e}"))?,
+        chosen: chosen as usize,
+        alternatives,
+    })
+}
+
+/// The route file's `decision` (`plan --popup-appears`), or `None` when it has none.
+fn decision_from_json(v: &Value) -> Result<Option<DecisionMark>, String> {
+    let Some(d) = v.get("decision") else {
+        return Ok(None);
+    };
+    let at = |e: String| format!("decision.{e}");
+    let nominal = d.get("nominal").ok_or("decision.nominal: missing")?;
+    let limits = d.get("limits").ok_or("decision.limits: missing")?;
+    let popups = d
+        .get("popups")
+        .and_then(Value::as_array)
+        .ok_or("decision.popups: missing or not an array")?
+        .iter()
+        .enumerate()
+        .map(|(i, p)| decision_popup(p, &format!("decision.popups[{i}]")))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Some(DecisionMark {
+        nominal: primitives_of(nominal).map_err(|e| format!("decision.nominal.{e}"))?,
+        popups,
+        limits: (
+            num(limits, "time").map_err(|e| format!("decision.limits.{e}"))?,
+            num(limits, "fuel").map_err(|e| format!("decision.limits.{e}"))?,
+        ),
+        total_risk: num(d, "total_risk").map_err(at)?,
+        mean_time: num(d, "mean_time_factor").map_err(at)?,
+        mean_fuel: num(d, "mean_fuel_factor").map_err(at)?,
+    }))
+}
+
 /// A route from the JSON text of a route file.
 pub fn parse_route(text: &str) -> Result<Route, String> {
     let v: Value = serde_json::from_str(text).map_err(|e| format!("invalid JSON: {e}"))?;
@@ -210,6 +288,7 @@ pub fn route_from_json(v: &Value) -> Result<Route, String> {
         threat_weight: v.get("threat_weight").and_then(Value::as_f64),
         exposure_flown: v.get("exposure_flown").and_then(Value::as_f64),
         scenario_popups_applied: v.get("scenario_popups_applied").and_then(Value::as_bool),
+        decision: decision_from_json(v)?,
     })
 }
 

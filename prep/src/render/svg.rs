@@ -3,7 +3,9 @@
 use super::draw::{is_voronoi, xml, BBox, View, FONT, MARGIN_PX, PANEL_PX};
 use super::picture::Picture;
 use super::route_layer::{route_colour, route_width, Colouring};
-use super::{mark_layer, network_layer, obstacle_layer, panel, route_layer, threat_layer};
+use super::{
+    decision_layer, mark_layer, network_layer, obstacle_layer, panel, route_layer, threat_layer,
+};
 use std::fmt::Write as _;
 
 /// Draws the picture as an SVG document.
@@ -60,8 +62,13 @@ pub fn render_svg(pic: &Picture) -> String {
     mark_layer::popups(&mut svg, &pic.popups, &view, clearance);
     threat_layer::sites(&mut svg, &pic.threats, &view);
     let n = pic.routes.len();
+    for d in pic.routes.iter().filter_map(|r| r.decision.as_ref()) {
+        decision_layer::map(&mut svg, d, &view);
+    }
     let colouring = |i: usize| {
-        if n == 1 {
+        if n == 1 && pic.routes[0].decision.is_some() {
+            Colouring::Whole(decision_layer::FLOWN_COLOUR, decision_layer::FLOWN_WIDTH)
+        } else if n == 1 {
             Colouring::PerLeg
         } else {
             Colouring::Whole(route_colour(i), route_width(i, n))
@@ -116,7 +123,20 @@ fn extent(pic: &Picture) -> BBox {
         }
     }
     for route in &pic.routes {
-        for p in route.legs.iter().flat_map(|l| l.primitives.iter()) {
+        let decided = route.decision.iter().flat_map(|d| {
+            d.nominal.iter().chain(
+                d.popups
+                    .iter()
+                    .flat_map(|p| p.alternatives.iter())
+                    .flat_map(|a| a.primitives.iter()),
+            )
+        });
+        for p in route
+            .legs
+            .iter()
+            .flat_map(|l| l.primitives.iter())
+            .chain(decided)
+        {
             let (lo, hi) = p.bounding_box();
             bb.add_box(lo, hi);
         }

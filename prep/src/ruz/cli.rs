@@ -147,7 +147,16 @@ pub fn fly(planning: &Planning, study: &Study, choice: &[usize]) -> Result<Flown
     })
 }
 
-/// The route file's record of the alternatives, the choice and the route flown.
+/// A route's lines and arcs in the local frame, as the route file's legs hold them.
+fn primitives_json(route: &[skyroute::Primitive]) -> Vec<Value> {
+    route
+        .iter()
+        .map(crate::route_json::primitive_json)
+        .collect()
+}
+
+/// The route file's record of the alternatives (each with its lines and arcs), the choice and
+/// the route flown.
 fn decision_json(
     study: &Study,
     inputs: &[Vec<Alternative>],
@@ -174,6 +183,7 @@ fn decision_json(
                         "risk": f.risk,
                         "time_factor": f.time,
                         "fuel_factor": f.fuel,
+                        "primitives": primitives_json(&a.route),
                         "discs": a.discs.iter().map(|c| json!({
                             "name": c.name, "centre": [c.centre.x, c.centre.y], "radius_m": c.radius,
                         })).collect::<Vec<_>>(),
@@ -195,7 +205,8 @@ fn decision_json(
         "limits": {"time": limits.time_max, "fuel": limits.fuel_max},
         "nominal": {"length_m": study.nominal.length_m, "steps": study.nominal.figures.steps,
                     "survival_known": study.nominal.figures.survival_known,
-                    "fuel_factor": study.nominal.figures.fuel},
+                    "fuel_factor": study.nominal.figures.fuel,
+                    "primitives": primitives_json(&study.nominal.route)},
         "popups": popups,
         "total_risk": d.risk,
         "mean_time_factor": d.mean_time,

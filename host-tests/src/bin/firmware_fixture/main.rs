@@ -30,8 +30,17 @@
 //! firmware_fixture VORONOI-NETWORK.bin OUT_DIR (--scenario FILE | --start x,y,h --goal x,y[,h])
 //!     [--threat x,y,r | --threat-on-route r] [--replan-after m]
 //! ```
+//!
+//! `--ruz --scenario FILE` on a roadmap network built from that scenario (`ruz-popups`) writes
+//! only `OUT_DIR/query.rs`: every pop-up's bypass alternatives' figures, a sequence of
+//! announcements with the host's decisions, and a worst-case instance (see [`ruz`]).
+//!
+//! ```text
+//! firmware_fixture RUZ-NETWORK.bin OUT_DIR --ruz --scenario FILE
+//! ```
 
 mod landmark;
+mod ruz;
 mod voronoi;
 
 use skyroute::geometry::predicates::{
@@ -63,7 +72,8 @@ type HostPlanner<'n> = Planner<'n, HOST_V, HOST_E, P_CAP, R_CAP>;
 
 const USAGE: &str = "usage: firmware_fixture (NETWORK.bin | --synthetic) OUT_DIR \
 [--start x,y,heading_rad] [--goal x,y[,heading_rad]] [--popup x,y,radius | --popup-on-route radius] \
-[--scenario FILE] [--threat x,y,radius | --threat-on-route radius] [--replan-after m] (Voronoi)";
+[--scenario FILE] [--threat x,y,radius | --threat-on-route radius] [--replan-after m] (Voronoi) \
+| --ruz --scenario FILE (the Ruz decision)";
 
 #[derive(Debug, Default)]
 struct Args {
@@ -83,6 +93,8 @@ struct Args {
     threat_on_route: Option<f32>,
     /// Voronoi: metres flown along the first route before the re-plan.
     replan_after: Option<f32>,
+    /// The Ruz decision's fixture (with `scenario`) instead of a route's.
+    ruz: bool,
 }
 
 fn floats(s: &str, what: &str, counts: &[usize]) -> Result<Vec<f32>, String> {
@@ -108,6 +120,7 @@ fn parse_args() -> Result<Args, String> {
         let mut value = |name: &str| it.next().ok_or(format!("{name} needs a value"));
         match a.as_str() {
             "--synthetic" => synthetic = true,
+            "--ruz" => args.ruz = true,
             "--start" => {
                 let v = floats(&value("--start")?, "--start", &[3])?;
                 args.start = Some(Pose::new(v[0], v[1], v[2]));
@@ -420,6 +433,9 @@ fn run(args: Args) -> Result<(), String> {
     let (nv, ne) = (network.vertex_count(), network.edge_count());
     if nv == 0 {
         return Err(format!("{source}: the network has no vertices"));
+    }
+    if args.ruz {
+        return ruz::run_ruz(&args, &bytes, &source, &network);
     }
     // Search states: the vertices of a roadmap; a terrain search runs over directed edges and
     // start links.
