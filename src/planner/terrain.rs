@@ -52,6 +52,29 @@ use core::f32::consts::{PI, TAU};
 /// `via` of a start-link state: no previous state.
 const NO_PREVIOUS: u32 = u32::MAX;
 
+/// A start or goal within this many metres of a node is on it: the start leaves the node along
+/// its own heading (a link of length 0, whose first turn may cut at most this far), and a
+/// free-heading goal is reached by arriving at the node (no turn).
+const ON_NODE_M: f32 = 1e-3;
+
+/// Whether `p` is on node position `node` ([`ON_NODE_M`], plus the f32 rounding of their
+/// coordinates).
+fn on_node(p: Vec2, node: Vec2) -> bool {
+    p.distance(node) <= ON_NODE_M + 1e-6 * (libm::fabsf(node.x) + libm::fabsf(node.y))
+}
+
+/// The direction a goal link leaves its node in: its own, or — for a free-heading goal on the
+/// node (a straight of length 0) — the direction the route arrives in, so that arriving at the
+/// node is arriving at the goal, with no turn.
+fn goal_direction(at: &Arrived, link: &DubinsPath) -> Vec2 {
+    let on_node = link.lengths[0] == 0.0 && link.lengths[2] == 0.0 && link.lengths[1] <= ON_NODE_M;
+    if on_node {
+        at.direction
+    } else {
+        Vec2::from_angle(link.start.heading)
+    }
+}
+
 /// The rounding of one corner.
 #[derive(Clone, Copy, Debug)]
 struct Fillet {
@@ -295,6 +318,21 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let r = self.network.turn_radius();
         for &(_, v) in &candidates {
             let target = self.network.vertex(v).ok_or(PlanError::Internal)?.position;
+            if on_node(start.position, target) && self.start_links.len() < wanted {
+                // On the node: leave it along the start heading, without a loop.
+                let path = DubinsPath {
+                    start: *start,
+                    radius: r,
+                    word: DubinsWord::Lsl,
+                    lengths: [0.0; 3],
+                };
+                let _ = self.start_links.push(Link {
+                    vertex: v,
+                    path,
+                    cost: 0.0,
+                });
+                continue;
+            }
             for turn in [Turn::Left, Turn::Right] {
                 if self.start_links.len() >= wanted {
                     return Ok(());
@@ -554,9 +592,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             if link.vertex != at.node {
                 continue;
             }
-            let out = Vec2::from_angle(link.path.start.heading);
+            let out = goal_direction(&at, &link.path);
             let fillet = Fillet::new(at.direction, out, r);
-            if fillet.cut > at.share || fillet.cut > 0.5 * link.path.lengths[1] {
+            let on_goal = out == at.direction;
+            if fillet.cut > at.share.max(ON_NODE_M)
+                || (!on_goal && fillet.cut > 0.5 * link.path.lengths[1])
+            {
                 continue;
             }
             let total = ds + link.path.length() + fillet.saving(r);
@@ -584,7 +625,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
             let out = (to - at.position) * (1.0 / length);
             let fillet = Fillet::new(at.direction, out, r);
-            if fillet.cut > at.share || fillet.cut > 0.5 * length {
+            // A start link of length 0 (a start on the node) allows only a turn of no cut.
+            if fillet.cut > at.share.max(ON_NODE_M) || fillet.cut > 0.5 * length {
                 continue;
             }
             let candidate = ds + length + fillet.saving(r);
@@ -650,7 +692,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         };
 
         let mut at = self.arrived(state)?;
-        let goal_out = Vec2::from_angle(link.path.start.heading);
+        let goal_out = goal_direction(&at, &link.path);
         let fillet = Fillet::new(at.direction, goal_out, r);
         let last = (link.path.lengths[2] > 0.0)
             .then(|| (link.path.word.letters().2, link.path.lengths[2]));
