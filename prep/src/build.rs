@@ -336,6 +336,18 @@ fn build_terrain(
     })
 }
 
+/// The pop-up grid's cell of the landmark and Voronoi modes (`--grid-cell`, default 2 km), and
+/// the field an error about its size names.
+fn grid_cell_2km(options: &BuildOptions) -> (f32, &'static str) {
+    match options.grid_cell_m {
+        Some(cell) => (cell, "--grid-cell"),
+        None => (
+            2000.0,
+            "geometry.coordinates (their extent, in the default grid cell of 2000 m)",
+        ),
+    }
+}
+
 /// Voronoi mode: the Voronoi graph of the scenario's threats over the mission box
 /// ([`crate::voronoi`]), with the no-fly polygons and the spline corner table. Default grid
 /// cell: 2 km.
@@ -346,12 +358,7 @@ fn build_voronoi(
 ) -> Result<Built, BuildError> {
     let file = s.path.display().to_string();
     let frame = s.local_frame();
-    let cell = options.grid_cell_m.unwrap_or(2000.0);
-    let grid_field = if options.grid_cell_m.is_some() {
-        "--grid-cell"
-    } else {
-        "geometry.coordinates (their extent, in the default grid cell of 2000 m)"
-    };
+    let (cell, grid_field) = grid_cell_2km(options);
     let bounds =
         crate::voronoi::mission_box(s.positions().map(|(lon, lat)| local(&frame, lon, lat)));
     check_area(&file, bounds.min, bounds.max)?;
@@ -383,12 +390,7 @@ fn build_landmark(
     provenance: Vec<ProvenanceRecord>,
 ) -> Result<Built, BuildError> {
     let file = s.path.display().to_string();
-    let cell = options.grid_cell_m.unwrap_or(2000.0);
-    let grid_field = if options.grid_cell_m.is_some() {
-        "--grid-cell"
-    } else {
-        "geometry.coordinates (their extent, in the default grid cell of 2000 m)"
-    };
+    let (cell, grid_field) = grid_cell_2km(options);
     let (lo, hi) = landmark_box(s);
     check_area(&file, lo, hi)?;
     // The grid covers about the landmarks and endpoints grown by a cell, and more: refused

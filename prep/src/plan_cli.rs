@@ -171,6 +171,21 @@ pub fn write_route(
     Ok(())
 }
 
+/// A planning failure as `plan` reports it, prefixed with the scenario: bad input (exit 1) or,
+/// when no route exists, [`NoRoute`] (exit 3).
+fn planning_error(
+    scenario: &Path,
+    e: &dyn std::fmt::Display,
+    bad_input: bool,
+) -> Box<dyn std::error::Error> {
+    let message = format!("{}: {e}", scenario.display());
+    if bad_input {
+        message.into()
+    } else {
+        Box::new(NoRoute(message))
+    }
+}
+
 /// `skyroute plan` on a landmark network: the route file's JSON.
 fn plan_landmark_route(
     req: &PlanRequest,
@@ -241,16 +256,8 @@ fn plan_mission_route(
     let options = MissionOptions {
         connect_radius_m: req.connect_radius_m,
     };
-    let m = plan_mission_with(bytes, s, frame, popups, &options).map_err(
-        |e| -> Box<dyn std::error::Error> {
-            let message = format!("{}: {e}", req.scenario.display());
-            if e.is_bad_input() {
-                message.into()
-            } else {
-                Box::new(NoRoute(message))
-            }
-        },
-    )?;
+    let m = plan_mission_with(bytes, s, frame, popups, &options)
+        .map_err(|e| planning_error(req.scenario, &e, e.is_bad_input()))?;
     for l in &m.legs {
         println!(
             "  {} -> {}: {:.1} m ({:.1} m before post-processing), {} network edges, work {}{}",
@@ -354,16 +361,8 @@ fn plan_voronoi_route(
             radius: r as f32,
         })
         .collect();
-    let m = plan_voronoi_mission(bytes, s, frame, popups, &threats, req.threat_weight).map_err(
-        |e| -> Box<dyn std::error::Error> {
-            let message = format!("{}: {e}", req.scenario.display());
-            if e.is_bad_input() {
-                message.into()
-            } else {
-                Box::new(NoRoute(message))
-            }
-        },
-    )?;
+    let m = plan_voronoi_mission(bytes, s, frame, popups, &threats, req.threat_weight)
+        .map_err(|e| planning_error(req.scenario, &e, e.is_bad_input()))?;
     for l in &m.legs {
         println!(
             "  {} -> {}: {:.1} m, {} graph edges, {} pieces, exposure {:.1} (coarse, three-point \
