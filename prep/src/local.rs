@@ -4,7 +4,22 @@
 use crate::frame::LocalFrame;
 use crate::scenario::Scenario;
 use skyroute::network::write::ObstacleSpec;
+use skyroute::planner::{Threat, ThreatOrigin};
 use skyroute::{Pose, Vec2};
+
+/// The scenario's threats in the local frame, as the core's soft threats (each `radius_m` the
+/// exposure's reference distance), in file order.
+pub fn local_threats(s: &Scenario, frame: &LocalFrame) -> Vec<Threat> {
+    s.threats
+        .iter()
+        .enumerate()
+        .map(|(i, t)| Threat {
+            position: local(frame, t.lon, t.lat),
+            radius: t.radius_m as f32,
+            origin: ThreatOrigin::Network(i as u32),
+        })
+        .collect()
+}
 
 /// The scenario's obstacles in the local frame: no-fly polygons and threat discs.
 pub fn local_obstacles(s: &Scenario, frame: &LocalFrame) -> Vec<ObstacleSpec> {

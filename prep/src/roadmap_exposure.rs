@@ -24,7 +24,7 @@ use crate::route_json::{primitive_json, sampled_lon_lat};
 use crate::scenario::Scenario;
 use serde_json::{json, Value};
 use skyroute::geometry::predicates::primitive_point_distance;
-use skyroute::planner::{PlannerConfig, Threat, ThreatOrigin};
+use skyroute::planner::{PlannerConfig, Threat};
 use skyroute::{DubinsPath, Network, Pose, Primitive, Turn, Vec2};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -212,19 +212,6 @@ impl std::fmt::Display for GroundPlanError {
 
 impl std::error::Error for GroundPlanError {}
 
-/// The scenario's threats in the local frame (their `radius_m` the reference distance).
-pub fn scenario_threats(s: &Scenario, frame: &LocalFrame) -> Vec<Threat> {
-    s.threats
-        .iter()
-        .enumerate()
-        .map(|(i, t)| Threat {
-            position: local(frame, t.lon, t.lat),
-            radius: t.radius_m as f32,
-            origin: ThreatOrigin::Network(i as u32),
-        })
-        .collect()
-}
-
 /// The network, its clearance, the pop-ups: what a path must keep away from.
 struct Keepout<'a, 'n> {
     net: &'a Network<'n>,
@@ -306,7 +293,7 @@ pub fn plan_roadmap_exposure(
             "--threat-weight {k}: expected a weight in [0, 1]"
         )));
     }
-    let threats = scenario_threats(scenario, frame);
+    let threats = crate::local::local_threats(scenario, frame);
     let keep = Keepout {
         net,
         popups,
@@ -456,6 +443,7 @@ pub fn ground_route_json(m: &GroundPlan, frame: &LocalFrame, scenario_name: &str
 #[cfg(test)]
 mod tests {
     use super::*;
+    use skyroute::planner::ThreatOrigin;
 
     /// Bellman–Ford: the cheapest cost from `source` to every node.
     fn bellman_ford(n: usize, arcs: &[GraphArc], source: usize) -> Vec<f64> {

@@ -4,14 +4,13 @@
 //! no-fly zones as hard polygons, and the spline corner table, encoded as a network image.
 
 use crate::frame::LocalFrame;
-use crate::local::{local, local_obstacles};
+use crate::local::{local, local_obstacles, local_threats};
 use crate::scenario::Scenario;
 use skyroute::geometry::spline::table::build_corner_table;
 use skyroute::geometry::voronoi::{Bounds, Delaunay, VoronoiGraph};
 use skyroute::network::write::{EdgeSpec, NetworkSpec, ObstacleSpec, VoronoiSpec};
 use skyroute::planner::{
-    segment_exposure, Threat, ThreatOrigin, MAX_THREATS, VORONOI_GRAPH_EDGES,
-    VORONOI_GRAPH_VERTICES,
+    segment_exposure, Threat, MAX_THREATS, VORONOI_GRAPH_EDGES, VORONOI_GRAPH_VERTICES,
 };
 use skyroute::{Pose, Vec2};
 
@@ -52,19 +51,6 @@ pub fn mission_box(points: impl Iterator<Item = Vec2>) -> Bounds {
         min: Vec2::new(lo.x - m, lo.y - m),
         max: Vec2::new(hi.x + m, hi.y + m),
     }
-}
-
-/// The scenario's threats in the local frame.
-fn local_threats(s: &Scenario, frame: &crate::frame::LocalFrame) -> Vec<Threat> {
-    s.threats
-        .iter()
-        .enumerate()
-        .map(|(i, t)| Threat {
-            position: local(frame, t.lon, t.lat),
-            radius: t.radius_m as f32,
-            origin: ThreatOrigin::Network(i as u32),
-        })
-        .collect()
 }
 
 /// The scenario's Voronoi network: its threats' diagram clipped to the mission box (`Err`
