@@ -38,15 +38,7 @@ pub(super) fn read_section(
     layout: Layout,
     edge_count: u32,
 ) -> Result<(ModeSection, Layout), LoadError> {
-    let end = layout.end.saturating_add(LandmarkRecord::SIZE);
-    let record = bytes.get(layout.end..end).ok_or(LoadError::Truncated {
-        needed: end,
-        available: bytes.len(),
-    })?;
-    let l: LandmarkRecord = postcard::from_bytes(record).map_err(|_| LoadError::Malformed {
-        section: Section::Landmark,
-        index: 0,
-    })?;
+    let l: LandmarkRecord = layout.mode_record(bytes, LandmarkRecord::SIZE, Section::Landmark)?;
     let layout = layout
         .with_landmark(&l, edge_count)
         .ok_or(LoadError::CountsTooLarge)?;

@@ -106,6 +106,24 @@ impl Layout {
     }
 
     /// Adds the provenance records after every other section, or `None` on overflow.
+    /// Reads a mode's record of `size` bytes right after the common sections. The record sizes
+    /// the mode's tables after it, so it is read before the lengths are compared (the checksum
+    /// comes after them): a short image is `Truncated`, an undecodable record `Malformed` in
+    /// `section`.
+    fn mode_record<T: DeserializeOwned>(
+        &self,
+        bytes: &[u8],
+        size: usize,
+        section: Section,
+    ) -> Result<T, LoadError> {
+        let end = self.end.saturating_add(size);
+        let record = bytes.get(self.end..end).ok_or(LoadError::Truncated {
+            needed: end,
+            available: bytes.len(),
+        })?;
+        postcard::from_bytes(record).map_err(|_| LoadError::Malformed { section, index: 0 })
+    }
+
     fn with_provenance(mut self, count: u32) -> Option<Self> {
         self.provenance = self.end;
         self.end = self

@@ -25,15 +25,7 @@ pub(super) fn read_section(
     bytes: &[u8],
     layout: Layout,
 ) -> Result<(ModeSection, Layout), LoadError> {
-    let end = layout.end.saturating_add(TerrainRecord::SIZE);
-    let record = bytes.get(layout.end..end).ok_or(LoadError::Truncated {
-        needed: end,
-        available: bytes.len(),
-    })?;
-    let t: TerrainRecord = postcard::from_bytes(record).map_err(|_| LoadError::Malformed {
-        section: Section::Terrain,
-        index: 0,
-    })?;
+    let t: TerrainRecord = layout.mode_record(bytes, TerrainRecord::SIZE, Section::Terrain)?;
     let layout = layout.with_terrain(&t).ok_or(LoadError::CountsTooLarge)?;
     Ok((ModeSection::Terrain(t), layout))
 }

@@ -36,15 +36,7 @@ pub(super) fn read_section(
     bytes: &[u8],
     layout: Layout,
 ) -> Result<(ModeSection, Layout), LoadError> {
-    let end = layout.end.saturating_add(VoronoiRecord::SIZE);
-    let record = bytes.get(layout.end..end).ok_or(LoadError::Truncated {
-        needed: end,
-        available: bytes.len(),
-    })?;
-    let v: VoronoiRecord = postcard::from_bytes(record).map_err(|_| LoadError::Malformed {
-        section: Section::Voronoi,
-        index: 0,
-    })?;
+    let v: VoronoiRecord = layout.mode_record(bytes, VoronoiRecord::SIZE, Section::Voronoi)?;
     let layout = layout.with_voronoi(&v).ok_or(LoadError::CountsTooLarge)?;
     Ok((ModeSection::Voronoi(v), layout))
 }
