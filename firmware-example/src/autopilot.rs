@@ -105,6 +105,19 @@ impl<
         self.planner
     }
 
+    /// One cycle planning `query`: the outcome and the ticks `plan` took.
+    pub fn plan_once(&mut self, query: Query) -> (Result<RouteSummary, PlanError>, u64) {
+        let mut result = (Err(PlanError::Internal), 0);
+        self.run(
+            |_| query,
+            |cycle: &Cycle<'_>| {
+                result = (cycle.outcome, cycle.plan_ticks);
+                Next::Stop
+            },
+        );
+        result
+    }
+
     /// Runs cycles until `on_route` says [`Next::Stop`]; returns the number of cycles run.
     /// Each cycle asks `query` for the current query, plans, hands the result to `on_route`,
     /// then waits for the rest of the period (no wait when planning overran it).

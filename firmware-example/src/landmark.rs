@@ -13,7 +13,7 @@
 //!    edges, pieces, work; or the re-plan fails on both), and the new route avoids the lost
 //!    landmark.
 
-use crate::autopilot::{Cycle, Next, RouteTask};
+use crate::autopilot::RouteTask;
 use crate::clock::{self, Clock};
 use crate::{log_stack, PERIOD_MS};
 use skyroute::planner::{RouteSummary, MAX_ROSETTE_DIRECTIONS};
@@ -109,7 +109,7 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
         RouteTask::new(planner, clock, clock, PERIOD_MS, budget);
 
     // 1. The planned route.
-    let (first, plan_ticks) = plan_once(&mut task, query);
+    let (first, plan_ticks) = task.plan_once(query);
     let route = task.planner().route_edges();
     let mut verdict = check_plan(&net, first, plan_ticks, route, fixture);
     let lost_landmark = fixture.lost_landmark;
@@ -150,7 +150,7 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
     );
 
     // 3. The re-plan.
-    let (second, replan_ticks) = plan_once(&mut task, query);
+    let (second, replan_ticks) = task.plan_once(query);
     let route = task.planner().route_edges();
     verdict &= check_replan(&net, second, replan_ticks, route, fixture);
 
@@ -263,22 +263,6 @@ fn check_replan(
             false
         }
     }
-}
-
-/// One [`RouteTask`] cycle: plans `query`, returns the outcome and the ticks `plan` took.
-fn plan_once<const V: usize, const E: usize, const P: usize, const R: usize>(
-    task: &mut Task<'_, '_, V, E, P, R>,
-    query: Query,
-) -> (Result<RouteSummary, PlanError>, u64) {
-    let mut result = (Err(PlanError::Internal), 0);
-    task.run(
-        |_| query,
-        |cycle: &Cycle<'_>| {
-            result = (cycle.outcome, cycle.plan_ticks);
-            Next::Stop
-        },
-    );
-    result
 }
 
 /// Logs a route: summary, ticks, and each edge (the start leg, then one line per overflight:

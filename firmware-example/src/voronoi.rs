@@ -14,7 +14,7 @@
 //! 5. the verdict: every answer equals the host's exactly (length, pieces, chords, network
 //!    edges, work; the `add_threat` summary), and each counted work is within its bound.
 
-use crate::autopilot::{Cycle, Next, RouteTask};
+use crate::autopilot::RouteTask;
 use crate::clock::{self, Clock};
 use crate::{boot, log_stack, PERIOD_MS};
 use skyroute::planner::{
@@ -131,7 +131,7 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
         search: Search::Dijkstra,
     };
     defmt::info!("query: {}", query);
-    let (first, ticks) = plan_once(&mut task, query);
+    let (first, ticks) = task.plan_once(query);
     verdict &= check("plan", &mut task, first, ticks, &fixture.first, budget);
 
     verdict &= pop_up(&mut task, clock, fixture);
@@ -141,7 +141,7 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
         ..query
     };
     defmt::info!("re-plan query: {}", requery);
-    let (second, ticks) = plan_once(&mut task, requery);
+    let (second, ticks) = task.plan_once(requery);
     verdict &= check("re-plan", &mut task, second, ticks, &fixture.replan, budget);
 
     log_stack();
@@ -267,20 +267,4 @@ fn check<const V: usize, const E: usize, const P: usize, const R: usize>(
         );
     }
     same && s.work.total() <= budget
-}
-
-/// One [`RouteTask`] cycle: plans `query`, returns the outcome and the ticks `plan` took.
-fn plan_once<const V: usize, const E: usize, const P: usize, const R: usize>(
-    task: &mut Task<'_, '_, V, E, P, R>,
-    query: Query,
-) -> (Result<RouteSummary, PlanError>, u64) {
-    let mut result = (Err(PlanError::Internal), 0);
-    task.run(
-        |_| query,
-        |cycle: &Cycle<'_>| {
-            result = (cycle.outcome, cycle.plan_ticks);
-            Next::Stop
-        },
-    );
-    result
 }
