@@ -4,8 +4,8 @@
 //! both answers.
 
 use super::{
-    capacity, lit, planner_bytes, write, Args, HostPlanner, FLASH_BYTES, HOST_E, HOST_V, P_CAP,
-    RAM_BYTES, R_CAP,
+    capacity, lit, planner_bytes, write_fixture, Args, HostPlanner, FLASH_BYTES, HOST_E, HOST_V,
+    P_CAP, RAM_BYTES, R_CAP,
 };
 use skyroute::planner::{PlanError, RouteSummary};
 use skyroute::{Goal, Network, Query, Search};
@@ -220,15 +220,7 @@ pub(super) fn run_landmark(
         &replan,
     );
 
-    let out = &args.out_dir;
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    write(&out.join("network.bin"), bytes)?;
-    write(&out.join("query.rs"), q.as_bytes())?;
-    eprintln!(
-        "firmware_fixture: wrote {}/{{network.bin,query.rs}}",
-        out.display()
-    );
-    Ok(())
+    write_fixture(&args.out_dir, Some(bytes), &q)
 }
 
 /// `query.rs` of a landmark network: capacities, weather, the host's answer, the budget, the

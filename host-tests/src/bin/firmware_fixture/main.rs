@@ -522,15 +522,7 @@ fn run(args: Args) -> Result<(), String> {
 
     let q = query_rs(&source, &network, (v_cap, e_cap), &chosen);
 
-    let out = &args.out_dir;
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    write(&out.join("network.bin"), &bytes)?;
-    write(&out.join("query.rs"), q.as_bytes())?;
-    eprintln!(
-        "firmware_fixture: wrote {}/{{network.bin,query.rs}}",
-        out.display()
-    );
-    Ok(())
+    write_fixture(&args.out_dir, Some(&bytes), &q)
 }
 
 /// `query.rs` of a roadmap or terrain network: capacities, connection settings, query, pop-up,
@@ -635,6 +627,23 @@ fn query_rs(
     let _ = writeln!(w, "pub const BUDGET: u64 = {budget};");
 
     q
+}
+
+/// Writes the fixture into `out`: `network.bin` (when the firmware embeds a network) and
+/// `query.rs`.
+fn write_fixture(out: &Path, network: Option<&[u8]>, query_rs: &str) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    if let Some(bytes) = network {
+        write(&out.join("network.bin"), bytes)?;
+    }
+    write(&out.join("query.rs"), query_rs.as_bytes())?;
+    let files = if network.is_some() {
+        "{network.bin,query.rs}"
+    } else {
+        "query.rs"
+    };
+    eprintln!("firmware_fixture: wrote {}/{files}", out.display());
+    Ok(())
 }
 
 /// Writes a file only when its contents change (keeps the firmware build from redoing work).

@@ -17,7 +17,7 @@
 //!
 //! The alternatives are `const` data in the firmware, not stored in the network image.
 
-use super::{lit, write, Args};
+use super::{lit, write_fixture, Args};
 use skyroute::network::Network;
 use skyroute::planner::decision::{
     decide, decision_work_bound, Alternative, Decision, DecisionError, DecisionLimits, Limit,
@@ -199,11 +199,7 @@ pub(super) fn run_ruz(
         decision_work_bound(&counts)
     );
     let q = query_rs(source, &f, &list, &worst, &worst_answer);
-    let out = &args.out_dir;
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    write(&out.join("query.rs"), q.as_bytes())?;
-    eprintln!("firmware_fixture: wrote {}/query.rs", out.display());
-    Ok(())
+    write_fixture(&args.out_dir, None, &q)
 }
 
 /// An f32 literal, infinities included.

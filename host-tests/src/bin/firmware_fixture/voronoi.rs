@@ -12,7 +12,7 @@
 //! flying `--replan-after m` ([`DEFAULT_REPLAN_AFTER_M`]) along the first route's pieces
 //! ([`pose_along`]).
 
-use super::{lit, write, Args, FLASH_BYTES, P_CAP, RAM_BYTES};
+use super::{lit, write_fixture, Args, FLASH_BYTES, P_CAP, RAM_BYTES};
 use skyroute::geometry::spline::Piece;
 use skyroute::network::Network;
 use skyroute::planner::{
@@ -223,15 +223,7 @@ pub(super) fn run_voronoi(
     let plan = plan_voronoi(bytes, args, start, goal).map_err(|e| format!("{source}: {e}"))?;
     report(source, network, bytes.len(), start, goal, &plan);
     let q = query_rs(source, start, goal, &plan);
-    let out = &args.out_dir;
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    write(&out.join("network.bin"), bytes)?;
-    write(&out.join("query.rs"), q.as_bytes())?;
-    eprintln!(
-        "firmware_fixture: wrote {}/{{network.bin,query.rs}}",
-        out.display()
-    );
-    Ok(())
+    write_fixture(&args.out_dir, Some(bytes), &q)
 }
 
 /// The host's answers on stderr.
