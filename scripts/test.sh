@@ -49,10 +49,7 @@ terrain_src=target/fixture/terrain-src.bin
 terrain_fixture_dir=firmware-example/fixture-terrain
 # P and Q of the scenario in its local frame (heading: compass 45° with the meridian convergence).
 terrain_query="--start -3547.7197,-9893.968,0.78498753 --goal 3539.5775,9895.5724 --popup-on-route 100"
-# The landmark firmware's network: babel-II-N as built, except for a 16 km pop-up grid cell (with
-# the default 2 km index the image, ~926-972 KB, overflows the 1 MiB flash beside the ~155 KB of
-# firmware; the coarser index only shrinks the index: same edges and chains, so the same routes;
-# 16 km rather than 8 km leaves 10 KB more flash for the core's code, which every mode links).
+# The landmark firmware's network: babel-II-N as `skyroute build` writes it (289 KB in format v4).
 landmark_scenario=scenarios/babel-II-N.geojson
 landmark_src=target/fixture/landmark-src.bin
 landmark_fixture_dir=firmware-example/fixture-landmark
@@ -232,7 +229,7 @@ terrain_fixture() {
 landmark_fixture() {
     mkdir -p "$(dirname "$landmark_src")"
     cargo run --release -q -p skyroute-prep --bin skyroute -- build "$landmark_scenario" \
-        -o "$landmark_src" --grid-cell 16000
+        -o "$landmark_src"
     cargo run --release -q -p host-tests --bin firmware_fixture -- \
         "$landmark_src" "$landmark_fixture_dir"
 }

@@ -5,7 +5,7 @@
 //!    the stored goal vertex's position with a free heading, Dijkstra, budget
 //!    `Planner::worst_case_work()`; one [`RouteTask`] cycle plans it (timed with SysTick) and
 //!    the route's overflights are logged (landmark, compass direction, the leg's cost from
-//!    `route_edges` + `edge_record`);
+//!    `route_edges` + `edge_link`);
 //! 2. `update_rosette(lost_landmark, &[0.0; D])` — the fixture's landmark (the first one the
 //!    route overflies) is lost — through [`RouteTask::planner`] between cycles, as a navigation
 //!    monitor would, then one more cycle re-plans;
@@ -114,7 +114,7 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
     let mut verdict = check_plan(&net, first, plan_ticks, route, fixture);
     let lost_landmark = fixture.lost_landmark;
     let overflown = route.iter().any(|&e| {
-        net.edge_record(e).is_some_and(|r| {
+        net.edge_link(e).is_some_and(|r| {
             r.target < l.landmark_count * l.directions && r.target / l.directions == lost_landmark
         })
     });
@@ -220,7 +220,7 @@ fn check_replan(
         (Ok(s), Some((length, route_edges, work))) => {
             log_route(net, "re-plan", &s, ticks, edges);
             let avoids = edges.iter().all(|&e| {
-                net.edge_record(e).is_some_and(|r| {
+                net.edge_link(e).is_some_and(|r| {
                     r.source >= l.landmark_count * l.directions
                         || r.source / l.directions != lost_landmark
                 })
@@ -289,7 +289,7 @@ fn log_route(net: &Network<'_>, what: &str, s: &RouteSummary, ticks: u64, edges:
     };
     let overflights = l.landmark_count * l.directions;
     for &e in edges {
-        let Some(r) = net.edge_record(e) else {
+        let Some(r) = net.edge_link(e) else {
             continue;
         };
         let pieces = net.chain_piece_count(e);

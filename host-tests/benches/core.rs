@@ -264,7 +264,7 @@ fn babel(c: &mut Criterion) {
     });
     // A landmark found lost in flight: its rosette zeroed, then the re-plan.
     let lost = planner.route_edges()[1];
-    let lost = net.edge_record(lost).expect("edge").source / l.directions;
+    let lost = net.edge_link(lost).expect("edge").source / l.directions;
     c.bench_function("update_rosette_and_replan_babel_ii_n", |b| {
         b.iter(|| {
             planner.update_rosette(lost, &[0.0; 12]).expect("update");

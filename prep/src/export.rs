@@ -134,7 +134,7 @@ fn edge_json(net: &Network, i: u32) -> Option<Value> {
         .collect();
     Some(json!({
         "id": i,
-        "from": r.source,
+        "from": net.edge_source(i)?,
         "to": r.target,
         "cost": r.cost,
         "word": "hermite_chain",

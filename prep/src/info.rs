@@ -41,11 +41,12 @@ pub fn describe(path: &Path, bytes: &[u8]) -> Result<String, String> {
     );
     let _ = writeln!(
         w,
-        "  pop-up grid index: {} x {} cells of {} m, {} entries (at most {} in a cell)",
+        "  pop-up grid index: {} x {} cells of {} m, {} entries in {} bytes (at most {} in a cell)",
         h.grid_nx,
         h.grid_ny,
         h.grid_cell_m,
-        h.grid_entry_count,
+        net.grid_entry_count(),
+        h.grid_list_bytes,
         net.max_cell_entries()
     );
     mode_section(w, &net);
@@ -94,11 +95,12 @@ fn mode_section(w: &mut String, net: &Network) {
                 let _ = writeln!(
                     w,
                     "  landmarks: {} x {} overflight directions, {} weather{}, {} line elements \
-                     (at most {} Hermite pieces an edge), nominal speed {} m/s",
+                     ({} distinct; at most {} Hermite pieces an edge), nominal speed {} m/s",
                     l.landmark_count,
                     l.directions,
                     l.weather_count,
                     if l.weather_count == 1 { "" } else { "s" },
+                    l.chain_index_count,
                     l.element_count,
                     net.max_chain_pieces(),
                     l.v_nominal

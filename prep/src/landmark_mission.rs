@@ -118,8 +118,8 @@ pub fn plan_landmark(
     let overflight_count = l.landmark_count * l.directions;
     let between: Vec<u32> = (0..net.edge_count())
         .filter(|&e| {
-            net.edge_record(e)
-                .is_some_and(|r| r.source < overflight_count)
+            net.edge_source(e)
+                .is_some_and(|source| source < overflight_count)
         })
         .collect();
     let pruned = between.iter().filter(|&&e| !p.is_navigable(e)).count() as u32;
@@ -143,16 +143,16 @@ pub fn plan_landmark(
     let edges = p.route_edges().to_vec();
     let mut overflights = Vec::new();
     for &e in &edges {
-        let Some(r) = net.edge_record(e) else {
+        let (Some(r), Some(source)) = (net.edge_record(e), net.edge_source(e)) else {
             continue;
         };
-        if r.source >= overflight_count {
+        if source >= overflight_count {
             continue;
         }
-        let (lm, k) = (r.source / l.directions, r.source % l.directions);
+        let (lm, k) = (source / l.directions, source % l.directions);
         let quality = p.quality(lm, k).unwrap_or(0.0);
         let d_max = net.landmark_site(lm).map_or(0.0, |x| x.1);
-        let heading = net.vertex(r.source).map_or(0.0, |v| v.heading);
+        let heading = net.vertex(source).map_or(0.0, |v| v.heading);
         overflights.push(Overflight {
             landmark: s.landmarks[lm as usize].name.clone(),
             heading_deg: compass_deg_from_heading(heading),

@@ -27,7 +27,7 @@ fn build_plan_export_render_end_to_end() {
     );
     let o = ok(skyroute(&["info", &net]), "info");
     for part in [
-        "roadmap network, format v3",
+        "roadmap network, format v4",
         "1445 vertices, 18342 edges, 60 obstacles",
         "V >= 1445 (search states), E >= 18342",
         "provenance: 63 digests",

@@ -20,7 +20,7 @@ pub enum Section {
     ObstaclePoints,
     /// The grid index's per-cell offsets.
     CellOffsets,
-    /// The grid index's edge lists.
+    /// The grid index's edge lists (delta-coded varints per cell).
     CellEntries,
     /// Terrain mode: the elevation table's grid and coding.
     Terrain,
@@ -32,7 +32,9 @@ pub enum Section {
     Rosettes,
     /// Landmark mode: the CSR offsets of the chains' line elements by edge.
     ChainOffsets,
-    /// Landmark mode: the chains' line elements.
+    /// Landmark mode: the chains' element index lists.
+    ChainIndices,
+    /// Landmark mode: the distinct line elements the chains index.
     ChainElements,
     /// Voronoi mode: the Voronoi record.
     Voronoi,
@@ -178,16 +180,20 @@ pub enum LoadError {
         /// The number of items it may point into.
         limit: u32,
     },
-    /// An edge's stored source disagrees with the CSR offsets.
-    EdgeSourceMismatch {
+    /// A grid cell's edge list does not decode: a varint runs past the cell's bytes or is
+    /// longer than five bytes.
+    BadCellList {
+        /// Cell index, `y · nx + x`.
+        cell: u32,
+    },
+    /// A roadmap edge's Dubins word cannot join its source's pose to its target's.
+    WordCannotJoin {
         /// Edge index.
         edge: u32,
-        /// Stored source.
-        stored: u32,
-        /// Source the offsets imply.
-        expected: u32,
+        /// The word's code.
+        word: u8,
     },
-    /// An edge has a negative cost or piece length.
+    /// An edge has a negative cost.
     NegativeValue {
         /// Edge index.
         edge: u32,
@@ -431,17 +437,14 @@ impl fmt::Display for LoadError {
                     "{section:?} record {index} points at {value}, past the limit {limit}"
                 )
             }
-            EdgeSourceMismatch {
-                edge,
-                stored,
-                expected,
-            } => {
+            BadCellList { cell } => write!(f, "grid cell {cell}'s edge list does not decode"),
+            WordCannotJoin { edge, word } => {
                 write!(
                     f,
-                    "edge {edge} says source {stored}, the offsets say {expected}"
+                    "edge {edge}'s Dubins word {word} cannot join its two poses"
                 )
             }
-            NegativeValue { edge } => write!(f, "edge {edge} has a negative cost or length"),
+            NegativeValue { edge } => write!(f, "edge {edge} has a negative cost"),
             UnknownGeometry { edge, code } => write!(f, "edge {edge} has unknown geometry {code}"),
             EdgeMissesTarget { edge, miss_mm } => {
                 write!(

@@ -1,4 +1,4 @@
-//! The records of network format v3 (specified in `docs/FORMAT.md`).
+//! The records of network format v4 (specified in `docs/FORMAT.md`).
 //!
 //! Every record is serialized with postcard using fixed-width little-endian integers
 //! (`postcard::fixint::le`), `f32`/`f64` as their IEEE-754 bits and `u8` as one byte, so each
@@ -11,10 +11,17 @@ use serde::{Deserialize, Serialize};
 /// The four bytes every network starts with.
 pub const MAGIC: [u8; 4] = *b"SKYR";
 
-/// The format version this crate reads and writes. Version 2 images (whose checksum left the
-/// header uncovered, and which record nothing of their scenario) are refused by
-/// [`LoadError::UnsupportedVersion`](crate::LoadError::UnsupportedVersion).
-pub const FORMAT_VERSION: u16 = 3;
+/// The format version this crate reads and writes. Older images are refused by
+/// [`LoadError::UnsupportedVersion`](crate::LoadError::UnsupportedVersion): version 3 (which
+/// stored every edge's geometry, its source, a 32-bit grid entry per (cell, edge) and every
+/// chain's line elements in full) and version 2 (whose checksum left the header uncovered).
+pub const FORMAT_VERSION: u16 = 4;
+
+/// The most vertices a network may have: edge targets are 16-bit indices.
+pub const MAX_VERTICES: u32 = 1 << 16;
+
+/// The most distinct line elements a landmark network may have: chains index them in 16 bits.
+pub const MAX_LINE_ELEMENTS: u32 = 1 << 16;
 
 /// Network mode: a multi-query Dubins roadmap (Niendorf et al.).
 pub const MODE_ROADMAP: u8 = 0;
@@ -30,15 +37,6 @@ pub const MODE_TERRAIN: u8 = 2;
 /// and the spline corner table. Its vertices and edges are the ground tool's Voronoi graph of
 /// the sites, which the planner rebuilds onboard and checks against them.
 pub const MODE_VORONOI: u8 = 3;
-
-/// Edge geometry code: a straight line from the source's position to the target's
-/// (terrain mode). Its params are `[length, highest elevation code along it, 0]`.
-pub const GEOMETRY_LINE: u8 = 6;
-
-/// Edge geometry code: a chain of quintic Hermite pieces between stored line elements
-/// (landmark mode). Its params are `[length, 0, 0]`, the length being the sum of the pieces'
-/// lengths; the elements are `chain_offsets[e] .. chain_offsets[e + 1]`.
-pub const GEOMETRY_HERMITE_CHAIN: u8 = 7;
 
 /// Obstacle kind code: a simple polygon.
 pub const OBSTACLE_POLYGON: u8 = 0;
@@ -89,9 +87,9 @@ pub struct Header {
     /// Grid cells along y.
     #[serde(with = "postcard::fixint::le")]
     pub grid_ny: u32,
-    /// Number of (cell, edge) entries in the grid index.
+    /// Bytes of the grid index's cell lists (each cell's edges delta-coded as varints).
     #[serde(with = "postcard::fixint::le")]
-    pub grid_entry_count: u32,
+    pub grid_list_bytes: u32,
     /// Number of [`ProvenanceRecord`]s at the end of the body.
     #[serde(with = "postcard::fixint::le")]
     pub provenance_count: u32,
@@ -156,28 +154,28 @@ impl U32Record {
     pub const SIZE: usize = 4;
 }
 
-/// A directed edge.
+/// A directed edge. Its source is implied by the edge offsets (the edges of vertex `v` are
+/// `offset[v] .. offset[v + 1]`), and its geometry by the network's mode and its end vertices:
+/// a roadmap edge is the Dubins path of word `aux` between its ends' poses
+/// ([`crate::DubinsPath::with_word`], the f32 code the ground tool built and checked it with),
+/// a terrain or Voronoi edge the segment between its ends, a landmark edge its chain.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct EdgeRecord {
-    /// Source vertex (must agree with the CSR offsets).
-    #[serde(with = "postcard::fixint::le")]
-    pub source: u32,
     /// Target vertex.
     #[serde(with = "postcard::fixint::le")]
-    pub target: u32,
-    /// Cost of traversal (≥ 0), metres of flight for a roadmap.
+    pub target: u16,
+    /// Per mode: roadmap, the Dubins word's code ([`crate::DubinsWord::code`]); terrain, the
+    /// highest elevation code of the cells within [`TerrainRecord::widen_m`] of the segment;
+    /// landmark and Voronoi, 0.
+    pub aux: u8,
+    /// Cost of traversal (≥ 0): metres of flight for a roadmap, terrain or landmark edge (a
+    /// landmark chain's length is its cost), the length-and-exposure cost of a Voronoi edge.
     pub cost: f32,
-    /// Geometry kind: 0–5 a Dubins word ([`crate::DubinsWord::code`]), or [`GEOMETRY_LINE`].
-    pub geometry: u8,
-    /// Geometry parameters: for a Dubins word, the lengths of its three pieces, metres; for a
-    /// line, its length, the highest elevation code of the cells within
-    /// [`TerrainRecord::widen_m`] of it, and 0.
-    pub params: [f32; 3],
 }
 
 impl EdgeRecord {
     /// Encoded size.
-    pub const SIZE: usize = 25;
+    pub const SIZE: usize = 7;
 }
 
 /// A static obstacle.
@@ -254,8 +252,9 @@ impl TerrainRecord {
 /// Landmark mode: the counts and vehicle numbers of the landmark tables, after the cell
 /// entries. The tables follow: `landmark_count` [`LandmarkSiteRecord`]s; the rosettes,
 /// `landmark_count · weather_count · directions` [`F32Record`] qualities (landmark-major, then
-/// weather, then direction); `edge_count + 1` [`U32Record`] chain offsets; `element_count`
-/// [`ElementRecord`]s.
+/// weather, then direction); `edge_count + 1` [`U32Record`] chain offsets into the chain
+/// index list; `chain_index_count` [`U16Record`] element indices; `element_count`
+/// [`ElementRecord`]s, each distinct line element once.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LandmarkRecord {
     /// Landmarks, L.
@@ -288,14 +287,17 @@ pub struct LandmarkRecord {
     pub goal_vertex: u32,
     /// The longest start edge that may be flown (the start's `dist_m`), metres.
     pub start_range_m: f32,
-    /// Line elements over all chains.
+    /// Distinct line elements (at most [`MAX_LINE_ELEMENTS`]).
     #[serde(with = "postcard::fixint::le")]
     pub element_count: u32,
+    /// Entries of the chain index list: the chains' lengths in elements, summed.
+    #[serde(with = "postcard::fixint::le")]
+    pub chain_index_count: u32,
 }
 
 impl LandmarkRecord {
     /// Encoded size.
-    pub const SIZE: usize = 52;
+    pub const SIZE: usize = 56;
     /// The value of `start_vertex` or `goal_vertex` when there is none.
     pub const ABSENT: u32 = u32::MAX;
 }
@@ -361,6 +363,15 @@ impl LandmarkSiteRecord {
     pub const SIZE: usize = 12;
 }
 
+/// A `u16` (a line element's index in a chain) as a fixed-width record.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct U16Record(#[serde(with = "postcard::fixint::le")] pub u16);
+
+impl U16Record {
+    /// Encoded size.
+    pub const SIZE: usize = 2;
+}
+
 /// An `f32` (a rosette quality) as a fixed-width record.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct F32Record(pub f32);
@@ -412,7 +423,7 @@ mod tests {
             grid_cell_m: 1.0,
             grid_nx: u32::MAX,
             grid_ny: 1,
-            grid_entry_count: 0,
+            grid_list_bytes: 0,
             provenance_count: 3,
             body_len: 0,
             image_crc: 0,
@@ -437,11 +448,9 @@ mod tests {
             U32Record::SIZE
         );
         let e = EdgeRecord {
-            source: u32::MAX,
-            target: 7,
+            target: u16::MAX,
+            aux: 3,
             cost: 1.0,
-            geometry: 3,
-            params: [1.0; 3],
         };
         assert_eq!(postcard::to_stdvec(&e).unwrap().len(), EdgeRecord::SIZE);
         let o = ObstacleRecord {
@@ -479,6 +488,7 @@ mod tests {
             goal_vertex: u32::MAX,
             start_range_m: 1.0,
             element_count: u32::MAX,
+            chain_index_count: u32::MAX,
         };
         assert_eq!(postcard::to_stdvec(&l).unwrap().len(), LandmarkRecord::SIZE);
         let vr = VoronoiRecord {
@@ -507,6 +517,10 @@ mod tests {
         assert_eq!(
             postcard::to_stdvec(&site).unwrap().len(),
             LandmarkSiteRecord::SIZE
+        );
+        assert_eq!(
+            postcard::to_stdvec(&U16Record(u16::MAX)).unwrap().len(),
+            U16Record::SIZE
         );
         assert_eq!(
             postcard::to_stdvec(&F32Record(1.0)).unwrap().len(),

@@ -1,5 +1,6 @@
 //! Landmark mode's section of a network image (Babel 2014): the landmark record and tables
-//! (landmarks, rosettes, chain offsets, line elements) after the common sections, their
+//! (landmarks, rosettes, chain offsets, chain index lists, distinct line elements) after the
+//! common sections, their
 //! validation, and the accessors of landmarks, rosettes and Hermite chains. The layout is
 //! specified in `docs/FORMAT.md` (landmark mode).
 
@@ -25,6 +26,7 @@ impl Layout {
         self.landmarks = next(lm, LandmarkSiteRecord::SIZE)?;
         self.rosettes = next(qualities, F32Record::SIZE)?;
         self.chain_offsets = next((edge_count as usize).checked_add(1)?, U32Record::SIZE)?;
+        self.chain_indices = next(l.chain_index_count as usize, U16Record::SIZE)?;
         self.elements = next(l.element_count as usize, ElementRecord::SIZE)?;
         self.end = at;
         Some(self)
@@ -139,7 +141,7 @@ impl<'a> Network<'a> {
             Section::ChainOffsets,
             self.layout.chain_offsets,
             self.header.edge_count,
-            l.element_count,
+            l.chain_index_count,
         )?;
         let mut most = 0u32;
         for e in 0..self.header.edge_count {
@@ -151,6 +153,22 @@ impl<'a> Network<'a> {
                 });
             }
             most = most.max(n - 1);
+        }
+        for k in 0..l.chain_index_count {
+            let U16Record(i) = self.checked_record(
+                Section::ChainIndices,
+                self.layout.chain_indices,
+                U16Record::SIZE,
+                k,
+            )?;
+            if i as u32 >= l.element_count {
+                return Err(LoadError::IndexOutOfRange {
+                    section: Section::ChainIndices,
+                    index: k,
+                    value: i as u32,
+                    limit: l.element_count,
+                });
+            }
         }
         for i in 0..l.element_count {
             let r: ElementRecord = self.checked_record(
@@ -176,22 +194,24 @@ impl<'a> Network<'a> {
         Ok(most)
     }
 
-    /// Landmark mode: a chain edge's params are `[length, 0, 0]` with the cost not below the
-    /// length and the length not below the polyline through its elements; its first element
-    /// is its source vertex's line element and its last its target's; consecutive elements are
-    /// distinct; and the grid covers its reach. Work: its elements.
-    pub(super) fn validate_chain_edge(&self, i: u32, r: &EdgeRecord) -> Result<(), LoadError> {
+    /// Landmark mode: chain edge `i` from `ends.0` to `ends.1` has `aux` 0 and a cost (its
+    /// length) not below the polyline through its elements; its first element is its source
+    /// vertex's line element and its last its target's; consecutive elements are distinct; and
+    /// the grid covers its reach. Work: its elements.
+    pub(super) fn validate_chain_edge(
+        &self,
+        i: u32,
+        ends: (u32, u32),
+        r: &EdgeRecord,
+    ) -> Result<(), LoadError> {
         let malformed = LoadError::Malformed {
             section: Section::Edges,
             index: i,
         };
-        if r.params[1] != 0.0 || r.params[2] != 0.0 {
+        if r.aux != 0 {
             return Err(malformed);
         }
-        let length = r.params[0];
-        if !(r.cost >= length * (1.0 - 1e-5)) {
-            return Err(LoadError::CostBelowLength { edge: i });
-        }
+        let length = r.cost;
         let range = self.chain_elements(i);
         let mut chords = 0.0f32;
         let mut previous: Option<LineElement> = None;
@@ -218,7 +238,7 @@ impl<'a> Network<'a> {
         ) else {
             return Err(malformed);
         };
-        for (el, vertex) in [(first, r.source), (last, r.target)] {
+        for (el, vertex) in [(first, ends.0), (last, ends.1)] {
             let pose = self.vertex(vertex).ok_or(malformed)?;
             let miss = el.position.distance(pose.position);
             let turn = libm::fabsf(crate::geometry::wrap_to_pi(
@@ -316,7 +336,8 @@ impl<'a> Network<'a> {
             .map(|r| r.0)
     }
 
-    /// Landmark mode: the indices of edge `e`'s line elements (empty for other modes).
+    /// Landmark mode: the positions of edge `e`'s line elements in the chain index list (empty
+    /// for other modes); read them with [`Network::chain_element`].
     pub fn chain_elements(&self, e: u32) -> core::ops::Range<u32> {
         let ModeSection::Landmark { .. } = self.section else {
             return 0..0;
@@ -327,13 +348,19 @@ impl<'a> Network<'a> {
         self.offset(self.layout.chain_offsets, e)..self.offset(self.layout.chain_offsets, e + 1)
     }
 
-    /// Landmark mode: line element `k` (an index into all chains' elements).
+    /// Landmark mode: the line element at position `k` of the chain index list (the chains'
+    /// elements end to end, as [`Network::chain_elements`] ranges them).
     pub fn chain_element(&self, k: u32) -> Option<LineElement> {
-        if k >= self.landmark()?.element_count {
+        let l = self.landmark()?;
+        if k >= l.chain_index_count {
+            return None;
+        }
+        let U16Record(i) = self.record(self.layout.chain_indices, U16Record::SIZE, k as usize)?;
+        if i as u32 >= l.element_count {
             return None;
         }
         let r: ElementRecord =
-            self.record(self.layout.elements, ElementRecord::SIZE, k as usize)?;
+            self.record(self.layout.elements, ElementRecord::SIZE, i as usize)?;
         Some(LineElement::new(Vec2::new(r.x, r.y), Vec2::new(r.vx, r.vy)))
     }
 

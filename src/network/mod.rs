@@ -1,4 +1,4 @@
-//! The preprocessed network: format v3, its validating loader and read-only accessors.
+//! The preprocessed network: format v4, its validating loader and read-only accessors.
 //!
 //! [`Network::from_bytes`] checks an image once (magic, version, length, checksum, counts,
 //! every index and every float) and then reads it where it lies: the network is never copied
@@ -51,7 +51,7 @@ struct Layout {
     obstacles: usize,
     points: usize,
     cell_offsets: usize,
-    cell_entries: usize,
+    cell_lists: usize,
     /// Terrain mode: the [`TerrainRecord`], then the elevation table (0 otherwise).
     terrain: usize,
     elevations: usize,
@@ -60,6 +60,7 @@ struct Layout {
     landmarks: usize,
     rosettes: usize,
     chain_offsets: usize,
+    chain_indices: usize,
     elements: usize,
     /// Voronoi mode: the [`VoronoiRecord`], the threat sites and the corner table (0
     /// otherwise).
@@ -89,13 +90,14 @@ impl Layout {
             obstacles: next(h.obstacle_count as usize, ObstacleRecord::SIZE)?,
             points: next(h.obstacle_point_count as usize, PointRecord::SIZE)?,
             cell_offsets: next(cells.checked_add(1)?, U32Record::SIZE)?,
-            cell_entries: next(h.grid_entry_count as usize, U32Record::SIZE)?,
+            cell_lists: next(h.grid_list_bytes as usize, 1)?,
             terrain: 0,
             elevations: 0,
             landmark: 0,
             landmarks: 0,
             rosettes: 0,
             chain_offsets: 0,
+            chain_indices: 0,
             elements: 0,
             voronoi: 0,
             threats: 0,
@@ -156,6 +158,18 @@ pub struct Edge {
     pub word: DubinsWord,
     /// Lengths of the word's three pieces, metres.
     pub lengths: [f32; 3],
+}
+
+/// An edge's ends and cost, whatever its geometry ([`Network::edge_link`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct EdgeLink {
+    /// Source vertex.
+    pub source: u32,
+    /// Target vertex.
+    pub target: u32,
+    /// Cost of traversal.
+    pub cost: f32,
 }
 
 /// A static obstacle of the network.
@@ -234,7 +248,7 @@ impl<'a> Network<'a> {
                 grid_cell_m: 0.0,
                 grid_nx: 0,
                 grid_ny: 0,
-                grid_entry_count: 0,
+                grid_list_bytes: 0,
                 provenance_count: 0,
                 body_len: 0,
                 image_crc: 0,
@@ -246,13 +260,14 @@ impl<'a> Network<'a> {
                 obstacles: 0,
                 points: 0,
                 cell_offsets: 0,
-                cell_entries: 0,
+                cell_lists: 0,
                 terrain: 0,
                 elevations: 0,
                 landmark: 0,
                 landmarks: 0,
                 rosettes: 0,
                 chain_offsets: 0,
+                chain_indices: 0,
                 elements: 0,
                 voronoi: 0,
                 threats: 0,
@@ -394,20 +409,16 @@ impl<'a> Network<'a> {
             .map_or(0, |r| r.0)
     }
 
-    /// The length of edge `e` (its first geometry parameter for lines and Hermite chains; the
-    /// sum of the piece lengths for Dubins words).
+    /// The length of edge `e`: its Dubins path's, its segment's, or (landmark mode, where the
+    /// cost is the chain's length) its cost.
     pub fn edge_length(&self, e: u32) -> Option<f32> {
-        if e >= self.header.edge_count {
-            return None;
+        match self.section {
+            ModeSection::Landmark { .. } => self.edge_record(e).map(|r| r.cost),
+            _ => self.edge(e).map(|edge| edge.lengths.iter().sum()),
         }
-        let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, e as usize)?;
-        Some(match r.geometry {
-            GEOMETRY_LINE | GEOMETRY_HERMITE_CHAIN => r.params[0],
-            _ => r.params.iter().sum(),
-        })
     }
 
-    /// Edge `i`'s record as stored (any geometry).
+    /// Edge `i`'s record as stored (any mode).
     pub fn edge_record(&self, i: u32) -> Option<EdgeRecord> {
         if i >= self.header.edge_count {
             return None;
@@ -415,13 +426,35 @@ impl<'a> Network<'a> {
         self.record(self.layout.edges, EdgeRecord::SIZE, i as usize)
     }
 
-    /// The source of edge `e`.
+    /// Edge `i`'s source, target and cost (any mode). Work: [`Network::edge_source`]'s binary
+    /// search and one record.
+    pub fn edge_link(&self, i: u32) -> Option<EdgeLink> {
+        let r = self.edge_record(i)?;
+        Some(EdgeLink {
+            source: self.edge_source(i)?,
+            target: r.target as u32,
+            cost: r.cost,
+        })
+    }
+
+    /// The source of edge `e`: the vertex whose range of the edge offsets holds it, found by
+    /// binary search. Work: ⌈log₂(V + 1)⌉ offset reads.
     pub fn edge_source(&self, e: u32) -> Option<u32> {
         if e >= self.header.edge_count {
             return None;
         }
-        let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, e as usize)?;
-        Some(r.source)
+        // The last vertex v with offset[v] ≤ e; offsets run from 0 and never decrease
+        // (validated), so the range of that v holds e.
+        let (mut lo, mut hi) = (0u32, self.header.vertex_count);
+        while hi - lo > 1 {
+            let mid = lo + (hi - lo) / 2;
+            if self.offset(self.layout.edge_offsets, mid) <= e {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        Some(lo)
     }
 
     /// The header.
@@ -513,26 +546,33 @@ impl<'a> Network<'a> {
         self.offset(self.layout.edge_offsets, v)..self.offset(self.layout.edge_offsets, v + 1)
     }
 
-    /// Edge `i` with its Dubins geometry (a line is the word whose arcs are empty). `None`
-    /// for a Hermite chain (landmark mode), which has no Dubins form: read it with
+    /// Edge `i` with its Dubins geometry (a line is the word whose arcs are empty), rebuilt
+    /// from its end vertices: a roadmap edge's word is solved between their poses with
+    /// [`DubinsPath::with_word`], bit for bit the path the ground tool checked. `None` for a
+    /// Hermite chain (landmark mode), which has no Dubins form: read it with
     /// [`Network::edge_cost_target`], [`Network::edge_source`] and [`Network::chain_piece`].
+    /// Work: a binary search for the source and, for a roadmap edge, one Dubins word solve.
     pub fn edge(&self, i: u32) -> Option<Edge> {
-        if i >= self.header.edge_count {
-            return None;
-        }
-        let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, i as usize)?;
-        if r.geometry == GEOMETRY_HERMITE_CHAIN {
-            return None;
-        }
-        let (word, lengths) = if r.geometry == GEOMETRY_LINE {
-            // A straight line is the Dubins word whose two arcs are empty.
-            (DubinsWord::Lsl, [0.0, r.params[0], 0.0])
-        } else {
-            (DubinsWord::from_code(r.geometry)?, r.params)
+        let r = self.edge_record(i)?;
+        let source = self.edge_source(i)?;
+        let target = r.target as u32;
+        let (word, lengths) = match self.section {
+            ModeSection::Landmark { .. } => return None,
+            ModeSection::Roadmap => {
+                let word = DubinsWord::from_code(r.aux)?;
+                let (a, b) = (self.vertex(source)?, self.vertex(target)?);
+                let path = DubinsPath::with_word(&a, &b, self.header.turn_radius_m, word)?;
+                (word, path.lengths)
+            }
+            ModeSection::Terrain(_) | ModeSection::Voronoi(_) => {
+                // A straight line is the Dubins word whose two arcs are empty.
+                let (a, b) = (self.vertex(source)?, self.vertex(target)?);
+                (DubinsWord::Lsl, [0.0, a.position.distance(b.position), 0.0])
+            }
         };
         Some(Edge {
-            source: r.source,
-            target: r.target,
+            source,
+            target,
             cost: r.cost,
             word,
             lengths,
@@ -541,11 +581,7 @@ impl<'a> Network<'a> {
 
     /// The cost and target of edge `i`, the two fields the search reads.
     pub fn edge_cost_target(&self, i: u32) -> Option<(f32, u32)> {
-        if i >= self.header.edge_count {
-            return None;
-        }
-        let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, i as usize)?;
-        Some((r.cost, r.target))
+        self.edge_record(i).map(|r| (r.cost, r.target as u32))
     }
 
     /// Edge `i`'s geometry as a Dubins path from its source's pose.
@@ -640,36 +676,86 @@ impl<'a> Network<'a> {
         })
     }
 
-    /// The range of grid entries for cell `(x, y)`; read them with [`Network::cell_entry`].
-    pub fn cell_entries(&self, x: u32, y: u32) -> core::ops::Range<u32> {
+    /// The edges listed in grid cell `(x, y)`, in increasing order (none outside the grid).
+    /// Work: the cell's list bytes.
+    pub fn cell_edges(&self, x: u32, y: u32) -> CellEdges<'a> {
         let h = &self.header;
         if x >= h.grid_nx || y >= h.grid_ny {
-            return 0..0;
+            return CellEdges::default();
         }
         let c = y * h.grid_nx + x;
-        self.offset(self.layout.cell_offsets, c)..self.offset(self.layout.cell_offsets, c + 1)
-    }
-
-    /// Grid entry `k`: an edge index.
-    pub fn cell_entry(&self, k: u32) -> Option<u32> {
-        if k >= self.header.grid_entry_count {
-            return None;
+        let (start, end) = (
+            self.offset(self.layout.cell_offsets, c) as usize,
+            self.offset(self.layout.cell_offsets, c + 1) as usize,
+        );
+        let list = self.bytes.and_then(|b| {
+            b.get(
+                self.layout.cell_lists.checked_add(start)?
+                    ..self.layout.cell_lists.checked_add(end)?,
+            )
+        });
+        CellEdges {
+            rest: list.unwrap_or(&[]),
+            previous: None,
         }
-        self.record::<U32Record>(self.layout.cell_entries, U32Record::SIZE, k as usize)
-            .map(|r| r.0)
     }
 
-    /// The largest number of grid entries in any one cell.
+    /// The largest number of grid entries in any one cell. Work: the whole grid index.
     pub fn max_cell_entries(&self) -> u32 {
         let h = &self.header;
         let mut most = 0;
         for y in 0..h.grid_ny {
             for x in 0..h.grid_nx {
-                let r = self.cell_entries(x, y);
-                most = most.max(r.end.saturating_sub(r.start));
+                most = most.max(self.cell_edges(x, y).count() as u32);
             }
         }
         most
+    }
+
+    /// The number of (cell, edge) entries of the grid index. Work: the whole grid index.
+    pub fn grid_entry_count(&self) -> u64 {
+        let h = &self.header;
+        let mut total = 0u64;
+        for y in 0..h.grid_ny {
+            for x in 0..h.grid_nx {
+                total += self.cell_edges(x, y).count() as u64;
+            }
+        }
+        total
+    }
+}
+
+/// The edges of one grid cell, decoded from its list: the first edge index as a varint, then
+/// each next one as the varint of its difference from the previous minus one (so the list is
+/// strictly increasing). Varints are postcard's (LEB128, at most five bytes for a `u32`). A
+/// list the loader validated decodes to the end; any other stops at its first bad byte.
+#[derive(Clone, Debug, Default)]
+pub struct CellEdges<'a> {
+    rest: &'a [u8],
+    previous: Option<u32>,
+}
+
+impl Iterator for CellEdges<'_> {
+    type Item = u32;
+
+    fn next(&mut self) -> Option<u32> {
+        if self.rest.is_empty() {
+            return None;
+        }
+        let Ok((value, rest)) = postcard::take_from_bytes::<u32>(self.rest) else {
+            self.rest = &[];
+            return None;
+        };
+        self.rest = rest;
+        let edge = match self.previous {
+            None => Some(value),
+            Some(p) => p.checked_add(value).and_then(|e| e.checked_add(1)),
+        };
+        if edge.is_none() {
+            self.rest = &[];
+        }
+        self.previous = edge;
+        edge
     }
 }
 

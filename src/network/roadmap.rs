@@ -1,5 +1,5 @@
 //! Roadmap mode's part of a network image (Niendorf et al.): Dubins edges, whose validation
-//! flies each word from its source's pose. Roadmap networks have no section of their own
+//! solves each edge's word between its ends and flies it from its source's pose. Roadmap networks have no section of their own
 //! beyond the common ones (`docs/FORMAT.md`).
 
 use super::format::*;
@@ -7,13 +7,18 @@ use super::{LoadError, Network, Section};
 use crate::geometry::{DubinsPath, DubinsWord};
 
 impl<'a> Network<'a> {
-    /// Flying edge `i` from its source must end at its target's pose, and its cost must not
-    /// undercut its length (the A* heuristic and the grid's 4r reach rely on both). Tolerances
-    /// cover f32 rounding: 10⁻⁴ of (turn radius + coordinate size + length) plus 1 cm, and
-    /// 10⁻³ rad; measured Dubins end errors are below 5·10⁻⁶ of that scale.
+    /// Edge `i` joins `ends = (source, target)` by a Dubins word: the word must be solvable
+    /// between their poses, flying the solved path from the source must end at the target's
+    /// pose, and its cost must not undercut its length (the A* heuristic and the grid's 4r
+    /// reach rely on both). The path is [`DubinsPath::with_word`] of the stored poses, the f32
+    /// code the ground tool built and collision-checked the edge with, so the onboard geometry
+    /// is bit for bit the checked one; the end check guards the solve. Tolerances cover f32
+    /// rounding: 10⁻⁴ of (turn radius + coordinate size + length) plus 1 cm, and 10⁻³ rad;
+    /// measured Dubins end errors are below 5·10⁻⁶ of that scale.
     pub(super) fn validate_edge_geometry(
         &self,
         i: u32,
+        ends: (u32, u32),
         r: &EdgeRecord,
         word: DubinsWord,
     ) -> Result<(), LoadError> {
@@ -21,15 +26,15 @@ impl<'a> Network<'a> {
             section: Section::Edges,
             index: i,
         };
-        let (Some(start), Some(target)) = (self.vertex(r.source), self.vertex(r.target)) else {
+        let (Some(start), Some(target)) = (self.vertex(ends.0), self.vertex(ends.1)) else {
             return Err(malformed);
         };
-        let path = DubinsPath {
-            start,
-            radius: self.header.turn_radius_m,
-            word,
-            lengths: r.params,
-        };
+        let path = DubinsPath::with_word(&start, &target, self.header.turn_radius_m, word).ok_or(
+            LoadError::WordCannotJoin {
+                edge: i,
+                word: r.aux,
+            },
+        )?;
         let end = path.end();
         let length = path.length();
         let scale = self.header.turn_radius_m

@@ -53,46 +53,37 @@ impl<'a> Network<'a> {
         Ok(())
     }
 
-    /// A terrain edge: its stored length is the distance between its ends (tolerance as for
-    /// Dubins edges), its cost does not undercut it, its elevation code is a whole number no
-    /// lower than the highest code of the cells within the widening of the segment (recomputed
-    /// here with the exact traversal, so altitude pruning can trust it), and that band lies
-    /// inside the elevation grid. Work: the cells of the band.
-    pub(super) fn validate_line_edge(&self, i: u32, r: &EdgeRecord) -> Result<(), LoadError> {
+    /// A terrain edge `ends = (source, target)`: its ends at least 10⁻³ turn radii apart, its
+    /// cost not below the distance between them, its elevation code (`aux`) no lower than the
+    /// highest code of the cells within the widening of the segment (recomputed here with the
+    /// exact traversal, so altitude pruning can trust it), and that band inside the elevation
+    /// grid. Work: the cells of the band.
+    pub(super) fn validate_line_edge(
+        &self,
+        i: u32,
+        ends: (u32, u32),
+        r: &EdgeRecord,
+    ) -> Result<(), LoadError> {
         let malformed = LoadError::Malformed {
             section: Section::Edges,
             index: i,
         };
         let (Some(a), Some(b), Some(grid), Some(t)) = (
-            self.vertex(r.source),
-            self.vertex(r.target),
+            self.vertex(ends.0),
+            self.vertex(ends.1),
             self.terrain_grid(),
             self.terrain().copied(),
         ) else {
             return Err(malformed);
         };
         let (a, b) = (a.position, b.position);
-        let length = r.params[0];
-        let chord = a.distance(b);
+        let length = a.distance(b);
         // A line between (nearly) coincident nodes has no direction to turn from.
-        if !(chord >= 1e-3 * self.header.turn_radius_m && chord > 0.0) {
+        if !(length >= 1e-3 * self.header.turn_radius_m && length > 0.0) {
             return Err(malformed);
-        }
-        let scale = libm::fabsf(b.x).max(libm::fabsf(b.y)) + length;
-        if !(libm::fabsf(chord - length) <= 1e-4 * scale + 0.01) {
-            return Err(LoadError::EdgeMissesTarget {
-                edge: i,
-                miss_mm: (libm::fabsf(chord - length) * 1000.0).min(u32::MAX as f32) as u32,
-            });
         }
         if !(r.cost >= length * (1.0 - 1e-5)) {
             return Err(LoadError::CostBelowLength { edge: i });
-        }
-        let stored = r.params[1];
-        if !(stored <= ELEVATION_BLOCKED as f32 && stored == libm::floorf(stored))
-            || r.params[2] != 0.0
-        {
-            return Err(malformed);
         }
         let w = Vec2::new(t.widen_m, t.widen_m);
         let lo = Vec2::new(a.x.min(b.x), a.y.min(b.y)) - w;
@@ -106,10 +97,10 @@ impl<'a> Network<'a> {
             true
         })
         .map_err(|_| LoadError::EdgeOutsideTerrain { edge: i })?;
-        if (stored as u8) < highest {
+        if r.aux < highest {
             return Err(LoadError::EdgeElevationUnderstated {
                 edge: i,
-                stored: stored as u8,
+                stored: r.aux,
                 computed: highest,
             });
         }
@@ -157,10 +148,6 @@ impl<'a> Network<'a> {
     /// Terrain mode: the highest elevation code within the widening of line edge `i`.
     pub fn edge_highest_code(&self, i: u32) -> Option<u8> {
         self.terrain()?;
-        if i >= self.header.edge_count {
-            return None;
-        }
-        let r: EdgeRecord = self.record(self.layout.edges, EdgeRecord::SIZE, i as usize)?;
-        Some(r.params[1] as u8)
+        self.edge_record(i).map(|r| r.aux)
     }
 }

@@ -68,52 +68,36 @@ impl<'a> Network<'a> {
             }
             let r: EdgeRecord =
                 self.checked_record(Section::Edges, self.layout.edges, EdgeRecord::SIZE, i)?;
-            if r.source != source {
-                return Err(LoadError::EdgeSourceMismatch {
-                    edge: i,
-                    stored: r.source,
-                    expected: source,
-                });
-            }
-            if r.target >= v {
+            if r.target as u32 >= v {
                 return Err(LoadError::IndexOutOfRange {
                     section: Section::Edges,
                     index: i,
-                    value: r.target,
+                    value: r.target as u32,
                     limit: v,
                 });
             }
-            if !r.cost.is_finite() || r.params.iter().any(|x| !x.is_finite()) {
+            if !r.cost.is_finite() {
                 return Err(LoadError::NonFinite {
                     section: Section::Edges,
                     index: i,
                 });
             }
-            if r.cost < 0.0 || r.params.iter().any(|&x| x < 0.0) {
+            if r.cost < 0.0 {
                 return Err(LoadError::NegativeValue { edge: i });
             }
-            let unknown = LoadError::UnknownGeometry {
-                edge: i,
-                code: r.geometry,
-            };
+            let ends = (source, r.target as u32);
             // Each mode has its own edge geometry.
             match &self.section {
                 ModeSection::Roadmap => {
-                    let word = DubinsWord::from_code(r.geometry).ok_or(unknown)?;
-                    self.validate_edge_geometry(i, &r, word)?;
+                    let word = DubinsWord::from_code(r.aux).ok_or(LoadError::UnknownGeometry {
+                        edge: i,
+                        code: r.aux,
+                    })?;
+                    self.validate_edge_geometry(i, ends, &r, word)?;
                 }
-                ModeSection::Terrain(_) if r.geometry == GEOMETRY_LINE => {
-                    self.validate_line_edge(i, &r)?
-                }
-                ModeSection::Landmark { .. } if r.geometry == GEOMETRY_HERMITE_CHAIN => {
-                    self.validate_chain_edge(i, &r)?
-                }
-                ModeSection::Voronoi(v) if r.geometry == GEOMETRY_LINE => {
-                    self.validate_voronoi_edge(i, &r, v)?
-                }
-                ModeSection::Terrain(_)
-                | ModeSection::Landmark { .. }
-                | ModeSection::Voronoi(_) => return Err(unknown),
+                ModeSection::Terrain(_) => self.validate_line_edge(i, ends, &r)?,
+                ModeSection::Landmark { .. } => self.validate_chain_edge(i, ends, &r)?,
+                ModeSection::Voronoi(v) => self.validate_voronoi_edge(i, ends, &r, v)?,
             }
         }
         Ok(())
@@ -220,23 +204,10 @@ impl<'a> Network<'a> {
             Section::CellOffsets,
             self.layout.cell_offsets,
             cells,
-            h.grid_entry_count,
+            h.grid_list_bytes,
         )?;
-        for i in 0..h.grid_entry_count {
-            let U32Record(e) = self.checked_record(
-                Section::CellEntries,
-                self.layout.cell_entries,
-                U32Record::SIZE,
-                i,
-            )?;
-            if e >= h.edge_count {
-                return Err(LoadError::IndexOutOfRange {
-                    section: Section::CellEntries,
-                    index: i,
-                    value: e,
-                    limit: h.edge_count,
-                });
-            }
+        for c in 0..cells {
+            self.validate_cell_list(c)?;
         }
         // Every Dubins path stays within 4r of its start (CSC within 2r; the middle circle of a
         // CCC word is 2r from the first circle's centre, so its points are within 4r).
@@ -259,6 +230,42 @@ impl<'a> Network<'a> {
                 || p.y + reach > y1
             {
                 return Err(LoadError::GridTooSmall { vertex: i });
+            }
+        }
+        Ok(())
+    }
+
+    /// Cell `c`'s list decodes to its last byte as strictly increasing edge indices below E
+    /// (each varint whole, within the cell's bytes, and at most five bytes long).
+    fn validate_cell_list(&self, c: u32) -> Result<(), LoadError> {
+        let h = &self.header;
+        let bad = LoadError::BadCellList { cell: c };
+        let (start, end) = (
+            self.offset(self.layout.cell_offsets, c) as usize,
+            self.offset(self.layout.cell_offsets, c + 1) as usize,
+        );
+        let mut rest = self
+            .bytes
+            .and_then(|b| b.get(self.layout.cell_lists + start..self.layout.cell_lists + end))
+            .ok_or(bad)?;
+        let mut previous: Option<u32> = None;
+        while !rest.is_empty() {
+            let (value, tail) = postcard::take_from_bytes::<u32>(rest).map_err(|_| bad)?;
+            rest = tail;
+            let edge = match previous {
+                None => Some(value),
+                Some(p) => p.checked_add(value).and_then(|e| e.checked_add(1)),
+            };
+            match edge {
+                Some(e) if e < h.edge_count => previous = Some(e),
+                _ => {
+                    return Err(LoadError::IndexOutOfRange {
+                        section: Section::CellEntries,
+                        index: c,
+                        value: edge.unwrap_or(u32::MAX),
+                        limit: h.edge_count,
+                    })
+                }
             }
         }
         Ok(())

@@ -122,12 +122,13 @@ impl<'a> Network<'a> {
         Ok(())
     }
 
-    /// A Voronoi edge: a straight line whose stored length is the distance between its ends
-    /// (tolerance as for Dubins edges), whose cost is not below `k` times its length (the
-    /// exposure term is never negative) and whose other parameters are zero.
+    /// A Voronoi edge `ends = (source, target)`: a straight line between distinct points
+    /// whose cost is not below `k` times its length (the exposure term is never negative) and
+    /// whose `aux` is zero.
     pub(super) fn validate_voronoi_edge(
         &self,
         i: u32,
+        ends: (u32, u32),
         r: &EdgeRecord,
         v: &VoronoiRecord,
     ) -> Result<(), LoadError> {
@@ -135,21 +136,12 @@ impl<'a> Network<'a> {
             section: Section::Edges,
             index: i,
         };
-        let (Some(a), Some(b)) = (self.vertex(r.source), self.vertex(r.target)) else {
+        let (Some(a), Some(b)) = (self.vertex(ends.0), self.vertex(ends.1)) else {
             return Err(malformed);
         };
-        let (a, b) = (a.position, b.position);
-        let length = r.params[0];
-        let chord = a.distance(b);
-        if !(chord > 0.0) || r.params[1] != 0.0 || r.params[2] != 0.0 {
+        let length = a.position.distance(b.position);
+        if !(length > 0.0) || r.aux != 0 {
             return Err(malformed);
-        }
-        let scale = libm::fabsf(b.x).max(libm::fabsf(b.y)) + length;
-        if !(libm::fabsf(chord - length) <= 1e-4 * scale + 0.01) {
-            return Err(LoadError::EdgeMissesTarget {
-                edge: i,
-                miss_mm: (libm::fabsf(chord - length) * 1000.0).min(u32::MAX as f32) as u32,
-            });
         }
         if !(r.cost >= v.threat_weight * length * (1.0 - 1e-5)) {
             return Err(LoadError::CostBelowLength { edge: i });

@@ -160,13 +160,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let Some(l) = self.network.landmark() else {
             return true;
         };
-        let Some(r) = self.network.edge_record(e) else {
+        let (Some(r), Some(source)) = (self.network.edge_record(e), self.network.edge_source(e))
+        else {
             return false;
         };
-        if r.source == l.start_vertex {
+        if source == l.start_vertex {
             return r.cost <= l.start_range_m;
         }
-        let (landmark, direction) = (r.source / l.directions, r.source % l.directions);
+        let (landmark, direction) = (source / l.directions, source % l.directions);
         if landmark >= l.landmark_count {
             return true; // the goal's (if any)
         }

@@ -367,13 +367,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     pub fn worst_case_popup_work(&self) -> u64 {
         let h = self.network.header();
         let cells = h.grid_nx as u64 * h.grid_ny as u64;
+        // Every grid entry takes at least one byte of the cell lists.
+        let entries = h.grid_list_bytes as u64;
         match self.state {
             ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Voronoi(_) => {
-                popup_work_bound(cells, h.grid_entry_count as u64, MAX_POPUP_VERTICES as u64)
+                popup_work_bound(cells, entries, MAX_POPUP_VERTICES as u64)
             }
             ModeState::Landmark(_) => landmark_popup_work_bound(
                 cells,
-                h.grid_entry_count as u64,
+                entries,
                 self.network.max_chain_pieces() as u64,
                 MAX_POPUP_VERTICES as u64,
             ),

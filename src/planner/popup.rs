@@ -136,11 +136,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             for y in cells.y0..=cells.y1 {
                 for x in cells.x0..=cells.x1 {
                     summary.cells_visited = summary.cells_visited.saturating_add(1);
-                    for k in self.network.cell_entries(x, y) {
+                    for e in self.network.cell_edges(x, y) {
                         summary.entries_visited += 1;
-                        let Some(e) = self.network.cell_entry(k) else {
-                            continue;
-                        };
                         let Some(mask) = self.blocked_by.get(e as usize).copied() else {
                             continue;
                         };

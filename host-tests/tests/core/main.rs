@@ -3,6 +3,8 @@
 //! f64 reference geometry, synthetic worlds, tiers) are in `host_tests` (`host-tests/src`).
 //! Random counts come from `host_tests::cases` (`SKYROUTE_TIER`, see `docs/TESTING.md`).
 
+/// Format v4's compact records: damaged cell lists and Dubins words each refused by name.
+mod compact_records;
 /// The pop-up decision (Ruz et al.) against a brute force over every combination.
 mod decision;
 /// Dubins paths against OMPL's CSV and an f64 brute force.

@@ -204,8 +204,8 @@ fn each_damage_has_its_own_error() {
 
     // An edge target out of range.
     let mut b = good.clone();
-    let e2 = edges_at(n_v) + 2 * EdgeRecord::SIZE + 4;
-    b[e2..e2 + 4].copy_from_slice(&(n_v as u32 + 9).to_le_bytes());
+    let e2 = edges_at(n_v) + 2 * EdgeRecord::SIZE;
+    b[e2..e2 + 2].copy_from_slice(&(n_v as u16 + 9).to_le_bytes());
     fix_crc(&mut b);
     assert_eq!(
         Network::from_bytes(&b).unwrap_err(),
@@ -219,7 +219,7 @@ fn each_damage_has_its_own_error() {
 
     // A NaN edge cost.
     let mut b = good.clone();
-    let c4 = edges_at(n_v) + 4 * EdgeRecord::SIZE + 8;
+    let c4 = edges_at(n_v) + 4 * EdgeRecord::SIZE + 3;
     b[c4..c4 + 4].copy_from_slice(&f32::NAN.to_le_bytes());
     fix_crc(&mut b);
     assert_eq!(
@@ -230,9 +230,9 @@ fn each_damage_has_its_own_error() {
         }
     );
 
-    // An unknown geometry kind.
+    // An unknown Dubins word.
     let mut b = good.clone();
-    let g1 = edges_at(n_v) + EdgeRecord::SIZE + 12;
+    let g1 = edges_at(n_v) + EdgeRecord::SIZE + 2;
     b[g1] = 42;
     fix_crc(&mut b);
     assert_eq!(

@@ -39,7 +39,7 @@ fn edge_offsets_must_start_at_zero_never_decrease_and_end_at_the_edge_count() {
 }
 
 #[test]
-fn cell_offsets_must_start_at_zero_never_decrease_and_end_at_the_entry_count() {
+fn cell_offsets_must_start_at_zero_never_decrease_and_end_at_the_list_bytes() {
     let w = world(2, 600.0, 60.0, 40.0, 3);
     let net = Network::from_bytes(&w.bytes).unwrap();
     let h = *net.header();
@@ -54,15 +54,35 @@ fn cell_offsets_must_start_at_zero_never_decrease_and_end_at_the_entry_count() {
             + h.obstacle_count as usize * ObstacleRecord::SIZE
             + h.obstacle_point_count as usize * PointRecord::SIZE,
         count: cells,
-        total: h.grid_entry_count,
+        total: h.grid_list_bytes,
     };
+    // Each cell's list is as long as its offsets say: the edges it decodes to take those bytes.
+    let lists = table.at + (cells as usize + 1) * U32Record::SIZE;
     for c in 0..cells {
         let (x, y) = (c % h.grid_nx, c / h.grid_nx);
+        let (start, end) = (table.offset(&w.bytes, c), table.offset(&w.bytes, c + 1));
+        let mut bytes = Vec::new();
+        let mut previous: Option<u32> = None;
+        for e in net.cell_edges(x, y) {
+            let delta = previous.map_or(e, |p| e - p - 1);
+            leb128(delta, &mut bytes);
+            previous = Some(e);
+        }
         assert_eq!(
-            table.offset(&w.bytes, c),
-            net.cell_entries(x, y).start,
+            &w.bytes[lists + start as usize..lists + end as usize],
+            &bytes[..],
             "the table is where we think"
         );
     }
     check_offset_rules_refused(&w.bytes, &table);
+}
+
+/// Unsigned LEB128 (7 bits a byte, least significant first, the high bit set on every byte but
+/// the last), written out here as the format's reference for the cell lists.
+fn leb128(mut x: u32, out: &mut Vec<u8>) {
+    while x >= 0x80 {
+        out.push((x as u8 & 0x7f) | 0x80);
+        x >>= 7;
+    }
+    out.push(x as u8);
 }

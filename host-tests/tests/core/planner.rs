@@ -270,7 +270,7 @@ fn popup_pruning_matches_a_scan_of_every_edge() {
         let expected = scan_blocked(&p, &popup);
         let summary = p.add_popup(popup).unwrap();
         assert_eq!(summary.edges_blocked as usize, expected.len(), "pop-up {k}");
-        assert!((summary.entries_visited as u64) < p.network().header().grid_entry_count as u64);
+        assert!((summary.entries_visited as u64) < p.network().grid_entry_count());
         union.extend(expected.iter().copied());
         ids.push(summary.id);
         let disabled: Vec<u32> = (0..total).filter(|&e| !p.is_edge_enabled(e)).collect();

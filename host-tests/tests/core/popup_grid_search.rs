@@ -72,9 +72,7 @@ fn listed_under_popup_box(net: &Network<'_>, popup: &Popup, e: u32) -> bool {
     let Some(r) = net.cells_overlapping(lo, hi) else {
         return false;
     };
-    (r.y0..=r.y1).any(|y| {
-        (r.x0..=r.x1).any(|x| net.cell_entries(x, y).any(|k| net.cell_entry(k) == Some(e)))
-    })
+    (r.y0..=r.y1).any(|y| (r.x0..=r.x1).any(|x| net.cell_edges(x, y).any(|listed| listed == e)))
 }
 
 /// One edge from (82, 45) to (88, 45): its cells are column [80, 90) and row [40, 50), 2 m
@@ -95,7 +93,7 @@ fn popups_in_each_neighbouring_cell_within_the_clearance_block_the_edge() {
     // Where the edge is listed: exactly one cell, the one holding (85, 45).
     let listed: Vec<(u32, u32)> = (0..net.header().grid_ny)
         .flat_map(|y| (0..net.header().grid_nx).map(move |x| (x, y)))
-        .filter(|&(x, y)| !net.cell_entries(x, y).is_empty())
+        .filter(|&(x, y)| net.cell_edges(x, y).next().is_some())
         .collect();
     let home = net
         .cells_overlapping(Vec2::new(85.0, 45.0), Vec2::new(85.0, 45.0))

@@ -361,14 +361,18 @@ fn zero_and_one_capacities_never_panic() {
         provenance: Vec::new(),
     };
     let empty = encode(&empty).unwrap();
+    // A self-loop: the image keeps a word, and LRL between a pose and itself is a loop of
+    // (nearly) zero length at the vertex.
+    let at = Pose::new(0.0, 0.0, 0.0);
+    let loop_path = DubinsPath::with_word(&at, &at, 30.0, skyroute::DubinsWord::Lrl).unwrap();
     let one = NetworkSpec {
-        vertices: vec![Pose::new(0.0, 0.0, 0.0)],
+        vertices: vec![at],
         edges: vec![EdgeSpec {
             source: 0,
             target: 0,
-            cost: 2.0 * PI * 30.0,
-            word: skyroute::DubinsWord::Lsl,
-            lengths: [2.0 * PI * 30.0, 0.0, 0.0],
+            cost: loop_path.length(),
+            word: loop_path.word,
+            lengths: loop_path.lengths,
         }],
         obstacles: Vec::new(),
         ..lattice_spec(1, 100.0, 0.0, 30.0)
@@ -440,7 +444,7 @@ fn zero_and_one_capacities_never_panic() {
     }
     let id = p1
         .add_popup(Popup::Circle {
-            centre: Vec2::new(0.0, 60.0),
+            centre: Vec2::new(0.0, 0.0),
             radius: 1.0,
         })
         .unwrap()

@@ -211,9 +211,9 @@ fn popups_count_every_cell_entry_and_edge_of_their_widened_box() {
             );
             for y in r.y0..=r.y1 {
                 for x in r.x0..=r.x1 {
-                    for k in net.cell_entries(x, y) {
+                    for e in net.cell_edges(x, y) {
                         entries += 1;
-                        edges.insert(net.cell_entry(k).unwrap());
+                        edges.insert(e);
                     }
                 }
             }

@@ -286,7 +286,7 @@ fn check_route(
     let mut overflights = Vec::new();
     let mut previous_end: Option<(P, P)> = None;
     for (i, &e) in edges.iter().enumerate() {
-        let r = net.edge_record(e).unwrap();
+        let r = net.edge_link(e).unwrap();
         let mut leg = 0.0f64;
         for k in 0..net.chain_piece_count(e) {
             let seg = net.chain_piece(e, k).expect("piece rebuilds");

@@ -1,4 +1,4 @@
-//! Landmark networks (format v3, mode 1) as bad input: each targeted damage of the landmark
+//! Landmark networks (format v4, mode 1) as bad input: each targeted damage of the landmark
 //! sections gets its own `LoadError` (with a valid CRC, so the field checks decide); random
 //! mutations never panic the loader or a planner using what it accepted; bad onboard calls
 //! (unknown weather or landmark, NaN or out-of-range qualities, a full override table) are
@@ -51,9 +51,10 @@ fn each_landmark_damage_has_its_own_error() {
     let net = Network::from_bytes(&good).expect("the undamaged image loads");
     let l = *net.landmark().unwrap();
     let rec = landmark_record_at(&good);
-    let landmarks = rec + 52;
+    let landmarks = rec + 56;
     let rosettes = landmarks + 12 * l.landmark_count as usize;
-    // The elements come last but for the provenance records that close every body.
+    // The distinct elements come last but for the provenance records that close every body,
+    // in the order the chains first use them: element 0 and 1 start edge 0's chain.
     let provenance = ProvenanceRecord::SIZE * net.provenance_count() as usize;
     let elements = good.len() - provenance - 16 * l.element_count as usize;
     let damaged = |f: &dyn Fn(&mut Vec<u8>)| {
@@ -183,21 +184,21 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
     Ok(())
 }
 
-/// The chain offsets (edge `e` owns elements `offsets[e] .. offsets[e + 1]`) must start at 0,
-/// never decrease and end at the element count: each rule broken on its own is refused as
+/// The chain offsets (edge `e` owns the chain index list's entries `offsets[e] .. offsets[e +
+/// 1]`) must start at 0, never decrease and end at the list's length: each rule broken on its own is refused as
 /// `BadOffsets` at the offending index (the same damages as the edge and cell offsets get in
 /// `core::offset_tables`).
 #[test]
-fn chain_offsets_must_start_at_zero_never_decrease_and_end_at_the_element_count() {
+fn chain_offsets_must_start_at_zero_never_decrease_and_end_at_the_index_count() {
     let good = network();
     let net = Network::from_bytes(&good).expect("the undamaged image loads");
     let l = *net.landmark().unwrap();
-    let rosettes = landmark_record_at(&good) + 52 + 12 * l.landmark_count as usize;
+    let rosettes = landmark_record_at(&good) + 56 + 12 * l.landmark_count as usize;
     let table = OffsetTable {
         section: Section::ChainOffsets,
         at: rosettes + 4 * (l.landmark_count * l.weather_count * l.directions) as usize,
         count: net.edge_count(),
-        total: l.element_count,
+        total: l.chain_index_count,
     };
     for e in 0..net.edge_count() {
         assert_eq!(

@@ -94,7 +94,7 @@ fn check_route(
     };
     let mut previous_end: Option<(P, P)> = None;
     for &e in edges {
-        let r = net.edge_record(e).unwrap();
+        let r = net.edge_link(e).unwrap();
         let mut leg = 0.0f64;
         for k in 0..net.chain_piece_count(e) {
             let seg = net.chain_piece(e, k).expect("piece rebuilds");
@@ -173,7 +173,7 @@ fn headings(net: &Network, edges: &[u32]) -> String {
     let l = net.landmark().unwrap();
     let mut out = Vec::new();
     for &e in edges {
-        let r = net.edge_record(e).unwrap();
+        let r = net.edge_link(e).unwrap();
         if r.source < l.landmark_count * l.directions {
             let (lm, k) = (r.source / l.directions, r.source % l.directions);
             out.push(format!(
@@ -202,7 +202,7 @@ fn plan_all_weathers(name: &str, s: &Scenario, built: &Built) -> Vec<Outcome> {
     planner.load(&built.bytes).expect("planner loads");
     let overflights = l.landmark_count * l.directions;
     let landmark_edges = (0..net.edge_count())
-        .filter(|&e| net.edge_record(e).unwrap().source < overflights)
+        .filter(|&e| net.edge_link(e).unwrap().source < overflights)
         .count();
     println!(
         "{name}: {} vertices ({} overflights; paper II: 240), {} edges ({} between overflights; \
@@ -241,9 +241,7 @@ fn plan_all_weathers(name: &str, s: &Scenario, built: &Built) -> Vec<Outcome> {
     for w in 0..l.weather_count {
         planner.set_weather(w).unwrap();
         let pruned = (0..net.edge_count())
-            .filter(|&e| {
-                net.edge_record(e).unwrap().source < overflights && !planner.is_navigable(e)
-            })
+            .filter(|&e| net.edge_link(e).unwrap().source < overflights && !planner.is_navigable(e))
             .count();
         let start_edges = net.out_edges(l.start_vertex);
         let start_ok = start_edges
@@ -317,7 +315,7 @@ fn route_overflights(net: &Network, edges: &[u32]) -> Vec<(f64, f64)> {
     let l = net.landmark().unwrap();
     edges
         .iter()
-        .map(|&e| net.edge_record(e).unwrap())
+        .map(|&e| net.edge_link(e).unwrap())
         .filter(|r| r.source < l.landmark_count * l.directions)
         .map(|r| {
             let k = r.source % l.directions;
@@ -490,7 +488,7 @@ fn rosette_update_and_popup_on_babel_ii_s() {
     let route = planner.route_edges().to_vec();
 
     // Rosette update: the first landmark overflown is lost (quality 0 everywhere).
-    let first = net.edge_record(route[0]).unwrap().target;
+    let first = net.edge_link(route[0]).unwrap().target;
     let lost = first / l.directions;
     let before: Vec<bool> = (0..net.edge_count())
         .map(|e| planner.is_navigable(e))
@@ -500,7 +498,7 @@ fn rosette_update_and_popup_on_babel_ii_s() {
         .unwrap();
     let mut removed = 0;
     for e in 0..net.edge_count() {
-        let r = net.edge_record(e).unwrap();
+        let r = net.edge_link(e).unwrap();
         let from_lost =
             r.source / l.directions == lost && r.source < l.landmark_count * l.directions;
         let after = planner.is_navigable(e);
@@ -518,7 +516,7 @@ fn rosette_update_and_popup_on_babel_ii_s() {
         Ok(s) => {
             let edges = planner.route_edges();
             assert!(edges.iter().all(|&e| {
-                let src = net.edge_record(e).unwrap().source;
+                let src = net.edge_link(e).unwrap().source;
                 src >= l.landmark_count * l.directions || src / l.directions != lost
             }));
             println!(

@@ -5,6 +5,8 @@
 //! tests that build whole Babel networks or full-size networks repeatedly run only in the full
 //! tier (`SKYROUTE_TIER=full`, see `docs/TESTING.md`).
 
+/// Format v4 on the papers' scenarios: the flash goals, and edges read back bit for bit.
+mod compact_format;
 /// The ESRI ASCII reader on the real Jacksboro DEM.
 mod dem;
 /// Landmark networks (Babel): counts, every edge in f64, thread independence.

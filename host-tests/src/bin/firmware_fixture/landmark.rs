@@ -66,7 +66,7 @@ fn plan_landmark(bytes: &[u8]) -> Result<LandmarkPlan, String> {
     let overflights = l.landmark_count * l.directions;
     let lost = first_edges
         .iter()
-        .filter_map(|&e| network.edge_record(e))
+        .filter_map(|&e| network.edge_link(e))
         .find(|r| r.target < overflights)
         .map(|r| r.target / l.directions)
         .ok_or("the route overflies no landmark")?;
@@ -96,7 +96,7 @@ fn describe_landmark_route(network: &Network<'_>, edges: &[u32]) -> String {
     };
     let mut out = Vec::new();
     for &e in edges {
-        let Some(r) = network.edge_record(e) else {
+        let Some(r) = network.edge_link(e) else {
             continue;
         };
         if r.source == l.start_vertex {

@@ -1,13 +1,17 @@
-//! The network writer (host only, feature `std`): the ground tool's half of format v3.
+//! The network writer (host only, feature `std`): the ground tool's half of format v4.
 
 use super::elevation::ElevationCoding;
 use super::format::*;
 use super::{image_checksum, Network};
 use crate::geometry::grid::{segment_cells, CellGrid};
-use crate::geometry::hermite::{FlyLimits, HermiteSegment, LineElement};
+use crate::geometry::hermite::{FlyLimits, LineElement};
 use crate::geometry::{points_bounding_box, DubinsPath, DubinsWord, Pose, Segment, Vec2};
-use std::vec;
 use std::vec::Vec;
+
+mod grid;
+mod landmark;
+use grid::GridIndex;
+use landmark::{check_landmark, write_landmark_section};
 
 /// A directed edge to write.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -185,6 +189,12 @@ pub enum WriteError {
     BadTerrain(&'static str),
     /// Voronoi mode: an edge is not a straight line.
     BadVoronoi(&'static str),
+    /// Roadmap mode: an edge's lengths are not those of its word's path between its end
+    /// poses ([`DubinsPath::with_word`]), which is what the image keeps and the aircraft flies.
+    EdgeGeometry {
+        /// Edge index in the spec.
+        edge: usize,
+    },
     /// Landmark mode: the tables do not match the vertices and edges, or a piece cannot be
     /// built.
     BadLandmark(&'static str),
@@ -225,6 +235,10 @@ impl core::fmt::Display for WriteError {
             WriteError::BadTerrain(what) => write!(f, "terrain network: {what}"),
             WriteError::BadLandmark(what) => write!(f, "landmark network: {what}"),
             WriteError::BadVoronoi(what) => write!(f, "Voronoi network: {what}"),
+            WriteError::EdgeGeometry { edge } => write!(
+                f,
+                "edge {edge}'s lengths are not its Dubins word's between its two poses"
+            ),
             WriteError::BadGridCell(cell) => {
                 write!(f, "grid cell {cell} m is not a positive finite size")
             }
@@ -273,12 +287,20 @@ fn push<T: serde::Serialize>(out: &mut Vec<u8>, record: &T) {
 
 /// Encodes a network and validates the result with [`Network::from_bytes`].
 pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
+    if spec.vertices.len() as u64 > MAX_VERTICES as u64 {
+        return Err(WriteError::TooLarge(
+            "vertices (edge targets are 16-bit: at most 65536)",
+        ));
+    }
     let vertex_count = count(spec.vertices.len(), "vertices")?;
     let edge_count = count(spec.edges.len(), "edges")?;
     for (i, e) in spec.edges.iter().enumerate() {
         if e.source >= vertex_count || e.target >= vertex_count {
             return Err(WriteError::BadEdge { edge: i });
         }
+    }
+    if spec.terrain.is_none() && spec.landmark.is_none() && spec.voronoi.is_none() {
+        check_dubins_edges(spec)?;
     }
     // Stable: keeps each source's order; chains follow their edges.
     let mut order: Vec<usize> = (0..spec.edges.len()).collect();
@@ -327,29 +349,26 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
         push(&mut body, &U32Record(offset));
     }
     for e in &edges {
-        let (geometry, params) = match &spec.terrain {
+        let aux = match &spec.terrain {
             Some(t) => {
                 let (a, b) = (
                     spec.vertices[e.source as usize].position,
                     spec.vertices[e.target as usize].position,
                 );
-                let code = highest_code(t, a, b).ok_or(WriteError::BadTerrain(
+                highest_code(t, a, b).ok_or(WriteError::BadTerrain(
                     "an edge's band leaves the elevation grid",
-                ))?;
-                (GEOMETRY_LINE, [e.lengths[1], code as f32, 0.0])
+                ))?
             }
-            None if spec.landmark.is_some() => (GEOMETRY_HERMITE_CHAIN, [e.lengths[0], 0.0, 0.0]),
-            None if spec.voronoi.is_some() => (GEOMETRY_LINE, [e.lengths[1], 0.0, 0.0]),
-            None => (e.word.code(), e.lengths),
+            None if spec.landmark.is_some() || spec.voronoi.is_some() => 0,
+            None => e.word.code(),
         };
         push(
             &mut body,
             &EdgeRecord {
-                source: e.source,
-                target: e.target,
+                // Below MAX_VERTICES, checked above.
+                target: e.target as u16,
+                aux,
                 cost: e.cost,
-                geometry,
-                params,
             },
         );
     }
@@ -358,9 +377,7 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     for o in &grid.offsets {
         push(&mut body, &U32Record(*o));
     }
-    for e in &grid.entries {
-        push(&mut body, &U32Record(*e));
-    }
+    body.extend_from_slice(&grid.lists);
     if let Some(t) = &spec.terrain {
         write_terrain_section(&mut body, t);
     }
@@ -392,7 +409,7 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
         grid_cell_m: spec.grid_cell_m,
         grid_nx: grid.nx,
         grid_ny: grid.ny,
-        grid_entry_count: count(grid.entries.len(), "grid entries")?,
+        grid_list_bytes: count(grid.lists.len(), "grid list bytes")?,
         provenance_count: count(spec.provenance.len(), "provenance records")?,
         body_len: count(body.len(), "body bytes")?,
         image_crc: 0,
@@ -514,93 +531,23 @@ fn write_voronoi_section(body: &mut Vec<u8>, v: &VoronoiSpec) {
     }
 }
 
-/// Landmark mode: writes the landmark record, the landmarks, the rosettes, the chain offsets
-/// and the chains' line elements.
-fn write_landmark_section(
-    body: &mut Vec<u8>,
-    l: &LandmarkSpec,
-    chains: &[&[LineElement]],
-) -> Result<(), WriteError> {
-    let element_count = count(chains.iter().map(|c| c.len()).sum(), "line elements")?;
-    push(
-        body,
-        &LandmarkRecord {
-            landmark_count: count(l.landmarks.len(), "landmarks")?,
-            directions: l.directions,
-            weather_count: l.weather_count,
-            v_nominal: l.v_nominal,
-            v_min: l.limits.v_min,
-            v_max: l.limits.v_max,
-            a_long_min: l.limits.a_long_min,
-            a_long_max: l.limits.a_long_max,
-            a_lat_max: l.limits.a_lat_max,
-            start_vertex: l.start_vertex.unwrap_or(LandmarkRecord::ABSENT),
-            goal_vertex: l.goal_vertex.unwrap_or(LandmarkRecord::ABSENT),
-            start_range_m: l.start_range_m,
-            element_count,
-        },
-    );
-    for site in &l.landmarks {
-        push(
-            body,
-            &LandmarkSiteRecord {
-                x: site.position.x,
-                y: site.position.y,
-                d_max: site.d_max_m,
-            },
+/// Roadmap mode: every edge's lengths are bit for bit its word's path between its end poses,
+/// the geometry the image keeps (it stores the word, and the aircraft solves it again).
+fn check_dubins_edges(spec: &NetworkSpec) -> Result<(), WriteError> {
+    for (i, e) in spec.edges.iter().enumerate() {
+        let (a, b) = (
+            &spec.vertices[e.source as usize],
+            &spec.vertices[e.target as usize],
         );
-    }
-    for q in &l.qualities {
-        push(body, &F32Record(*q));
-    }
-    let mut at = 0u32;
-    push(body, &U32Record(0));
-    for c in chains {
-        at += c.len() as u32;
-        push(body, &U32Record(at));
-    }
-    for c in chains {
-        for el in c.iter() {
-            push(
-                body,
-                &ElementRecord {
-                    x: el.position.x,
-                    y: el.position.y,
-                    vx: el.velocity.x,
-                    vy: el.velocity.y,
-                },
-            );
+        let same = DubinsPath::with_word(a, b, spec.turn_radius_m, e.word).is_some_and(|p| {
+            p.lengths
+                .iter()
+                .zip(&e.lengths)
+                .all(|(x, y)| x.to_bits() == y.to_bits())
+        });
+        if !same {
+            return Err(WriteError::EdgeGeometry { edge: i });
         }
-    }
-    Ok(())
-}
-
-/// Landmark mode: the tables agree with the vertices and edges.
-fn check_landmark(
-    spec: &NetworkSpec,
-    l: &LandmarkSpec,
-    edges: &[EdgeSpec],
-) -> Result<(), WriteError> {
-    let bad = |what| Err(WriteError::BadLandmark(what));
-    let overflights = l.landmarks.len() as u64 * l.directions as u64;
-    let endpoints = l.start_vertex.is_some() as u64 + l.goal_vertex.is_some() as u64;
-    if overflights + endpoints != spec.vertices.len() as u64 {
-        return bad("vertex count is not landmarks x directions plus the endpoints");
-    }
-    if l.qualities.len() as u64 != overflights * l.weather_count as u64 {
-        return bad("quality count is not landmarks x weathers x directions");
-    }
-    if l.chains.len() != spec.edges.len() {
-        return bad("one chain per edge needed");
-    }
-    if edges
-        .iter()
-        .any(|e| e.lengths[1] != 0.0 || e.lengths[2] != 0.0)
-    {
-        return bad("an edge is not a Hermite chain (EdgeSpec::chain)");
-    }
-    if l.chains.iter().any(|c| c.len() < 2) {
-        return bad("a chain has fewer than 2 line elements");
     }
     Ok(())
 }
@@ -634,122 +581,5 @@ impl ObstacleSpec {
                 Vec2::new(centre.x + radius, centre.y + radius),
             ),
         }
-    }
-}
-
-/// The uniform grid index: for each cell, the edges with a primitive whose bounding box
-/// (widened by a small margin against rounding) overlaps the cell. A superset of the edges
-/// whose geometry passes through the cell, which is what pop-up pruning needs.
-struct GridIndex {
-    origin: Vec2,
-    nx: u32,
-    ny: u32,
-    offsets: Vec<u32>,
-    entries: Vec<u32>,
-}
-
-impl GridIndex {
-    fn build(
-        spec: &NetworkSpec,
-        edges: &[EdgeSpec],
-        chains: &[&[LineElement]],
-    ) -> Result<Self, WriteError> {
-        let cell = spec.grid_cell_m;
-        let reach = 4.0 * spec.turn_radius_m + cell;
-        let (mut lo, mut hi) = if spec.vertices.is_empty() {
-            (Vec2::default(), Vec2::default())
-        } else {
-            points_bounding_box(spec.vertices.iter().map(|v| v.position))
-        };
-        // Landmark mode: the pieces, and every edge's reach (the box the loader checks).
-        let mut pieces: Vec<Vec<(Vec2, Vec2)>> = Vec::new();
-        if let Some(l) = &spec.landmark {
-            for (e, chain) in edges.iter().zip(chains) {
-                let mut boxes = Vec::with_capacity(chain.len().saturating_sub(1));
-                for w in chain.windows(2) {
-                    let seg = HermiteSegment::new(&w[0], &w[1], l.v_nominal)
-                        .map_err(|_| WriteError::BadLandmark("a piece cannot be built"))?;
-                    boxes.push(seg.bounding_box());
-                }
-                pieces.push(boxes);
-                if let (Some(a), Some(b)) = (chain.first(), chain.last()) {
-                    let mid = (a.position + b.position) * 0.5;
-                    let r =
-                        0.5 * e.lengths[0] * (1.0 + 1e-4) + 0.01 + reach - 4.0 * spec.turn_radius_m;
-                    lo = Vec2::new(lo.x.min(mid.x - r), lo.y.min(mid.y - r));
-                    hi = Vec2::new(hi.x.max(mid.x + r), hi.y.max(mid.y + r));
-                }
-            }
-        }
-        let origin = Vec2::new(lo.x - reach, lo.y - reach);
-        let (nx, ny) = grid_cells(cell, hi.x - lo.x + 2.0 * reach, hi.y - lo.y + 2.0 * reach)?;
-        // At most MAX_GRID_CELLS: the product fits.
-        let mut cells: Vec<Vec<u32>> = vec![Vec::new(); nx as usize * ny as usize];
-        let margin = 1e-3 * cell + 0.01;
-        let cx = |v: f32| (((v - origin.x) / cell).floor().max(0.0) as u32).min(nx - 1);
-        let cy = |v: f32| (((v - origin.y) / cell).floor().max(0.0) as u32).min(ny - 1);
-        if spec.landmark.is_some() {
-            // Each piece's Bernstein box, widened by the clearance and the margin.
-            let w = spec.clearance_m + margin;
-            for (i, boxes) in pieces.iter().enumerate() {
-                let mut touched: Vec<u32> = Vec::new();
-                for (a, b) in boxes {
-                    for y in cy(a.y - w)..=cy(b.y + w) {
-                        for x in cx(a.x - w)..=cx(b.x + w) {
-                            touched.push(y * nx + x);
-                        }
-                    }
-                }
-                touched.sort_unstable();
-                touched.dedup();
-                for c in touched {
-                    cells[c as usize].push(i as u32);
-                }
-            }
-        }
-        for (i, e) in edges.iter().enumerate() {
-            if spec.landmark.is_some() {
-                break;
-            }
-            let mut start = spec.vertices[e.source as usize];
-            if spec.terrain.is_some() || spec.voronoi.is_some() {
-                let d = spec.vertices[e.target as usize].position - start.position;
-                start.heading = d.y.atan2(d.x);
-            }
-            let path = DubinsPath {
-                start,
-                radius: spec.turn_radius_m,
-                word: e.word,
-                lengths: e.lengths,
-            };
-            let mut touched: Vec<u32> = Vec::new();
-            for prim in path.primitives().into_iter().flatten() {
-                let (a, b) = prim.bounding_box();
-                for y in cy(a.y - margin)..=cy(b.y + margin) {
-                    for x in cx(a.x - margin)..=cx(b.x + margin) {
-                        touched.push(y * nx + x);
-                    }
-                }
-            }
-            touched.sort_unstable();
-            touched.dedup();
-            for c in touched {
-                cells[c as usize].push(i as u32);
-            }
-        }
-        let mut offsets = Vec::with_capacity(cells.len() + 1);
-        let mut entries = Vec::new();
-        offsets.push(0);
-        for c in &cells {
-            entries.extend_from_slice(c);
-            offsets.push(entries.len() as u32);
-        }
-        Ok(GridIndex {
-            origin,
-            nx,
-            ny,
-            offsets,
-            entries,
-        })
     }
 }

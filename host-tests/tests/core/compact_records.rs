@@ -1,0 +1,153 @@
+//! Format v4's compact records as bad input: a grid cell's varint list that runs past its
+//! cell, is over-long or names an edge past the count, and a roadmap edge whose Dubins word
+//! cannot join its ends, each refused with its own error (checksum re-fixed so the field
+//! checks decide); and the edge source the loader derives from the offsets, against a scan.
+
+use host_tests::damage::fix_crc;
+use host_tests::world::world;
+use skyroute::network::format::{
+    EdgeRecord, Header, ObstacleRecord, PointRecord, U32Record, VertexRecord,
+};
+use skyroute::network::{LoadError, Section};
+use skyroute::{DubinsPath, DubinsWord, Network};
+
+/// Byte offsets of the cell offsets and of the cell lists of a roadmap image.
+fn grid_at(net: &Network) -> (usize, usize) {
+    let h = net.header();
+    let (v, e) = (h.vertex_count as usize, h.edge_count as usize);
+    let offsets = Header::SIZE
+        + v * VertexRecord::SIZE
+        + (v + 1) * U32Record::SIZE
+        + e * EdgeRecord::SIZE
+        + h.obstacle_count as usize * ObstacleRecord::SIZE
+        + h.obstacle_point_count as usize * PointRecord::SIZE;
+    let cells = (h.grid_nx * h.grid_ny) as usize;
+    (offsets, offsets + (cells + 1) * U32Record::SIZE)
+}
+
+fn get_u32(b: &[u8], at: usize) -> u32 {
+    u32::from_le_bytes(b[at..at + 4].try_into().unwrap())
+}
+
+/// The first cell whose list holds at least two edges: its index and its list's byte range.
+fn busy_cell(b: &[u8], net: &Network) -> (u32, usize, usize) {
+    let (offsets, lists) = grid_at(net);
+    let h = net.header();
+    (0..h.grid_nx * h.grid_ny)
+        .find_map(|c| {
+            let (x, y) = (c % h.grid_nx, c / h.grid_nx);
+            (net.cell_edges(x, y).count() >= 2).then(|| {
+                let start = get_u32(b, offsets + 4 * c as usize) as usize;
+                let end = get_u32(b, offsets + 4 * (c as usize + 1)) as usize;
+                (c, lists + start, lists + end)
+            })
+        })
+        .expect("a cell lists two edges")
+}
+
+#[test]
+fn each_cell_list_damage_has_its_own_error() {
+    let w = world(2, 600.0, 60.0, 40.0, 3);
+    let good = w.bytes.clone();
+    let net = Network::from_bytes(&good).unwrap();
+    let (cell, start, end) = busy_cell(&good, &net);
+    let refused = |b: &mut Vec<u8>| {
+        fix_crc(b);
+        Network::from_bytes(b).unwrap_err()
+    };
+
+    // The cell's last byte gets its continuation bit: the varint runs into the next cell.
+    let mut b = good.clone();
+    b[end - 1] |= 0x80;
+    assert_eq!(refused(&mut b), LoadError::BadCellList { cell });
+
+    // The first edge index past the edge count.
+    let e_count = net.edge_count();
+    let mut b = good.clone();
+    let first_len = good[start..end].iter().position(|x| x & 0x80 == 0).unwrap() + 1;
+    // Replace the first varint by the largest value of the same length, 128^len − 1.
+    assert!(
+        (1u64 << (7 * first_len)) > e_count as u64,
+        "the largest {first_len}-byte varint reaches the edge count {e_count}"
+    );
+    for k in 0..first_len {
+        b[start + k] = if k + 1 < first_len { 0xff } else { 0x7f };
+    }
+    let e = refused(&mut b);
+    assert!(
+        matches!(
+            e,
+            LoadError::IndexOutOfRange {
+                section: Section::CellEntries,
+                index,
+                limit,
+                ..
+            } if index == cell && limit == e_count
+        ),
+        "{e:?}"
+    );
+
+    // Six continuation bytes in a cell of at least six bytes: longer than any u32 varint.
+    let (offsets, lists) = grid_at(&net);
+    let h = net.header();
+    let long = (0..h.grid_nx * h.grid_ny).find(|&c| {
+        let s = get_u32(&good, offsets + 4 * c as usize) as usize;
+        let t = get_u32(&good, offsets + 4 * (c as usize + 1)) as usize;
+        t - s >= 6
+    });
+    let long = long.expect("a cell of six list bytes");
+    let s = lists + get_u32(&good, offsets + 4 * long as usize) as usize;
+    let mut b = good.clone();
+    b[s..s + 6].fill(0x80);
+    assert_eq!(refused(&mut b), LoadError::BadCellList { cell: long });
+}
+
+#[test]
+fn a_dubins_word_that_cannot_join_its_ends_is_refused() {
+    // Turn radius 10 m, vertices 60 m apart: most edges are longer than four radii.
+    let w = world(2, 600.0, 60.0, 10.0, 3);
+    let net = Network::from_bytes(&w.bytes).unwrap();
+    let r = net.turn_radius();
+    // An edge whose ends are more than 4r apart: no CCC word joins them.
+    let far = (0..net.edge_count())
+        .find(|&e| {
+            let link = net.edge_link(e).unwrap();
+            let (a, b) = (
+                net.vertex(link.source).unwrap(),
+                net.vertex(link.target).unwrap(),
+            );
+            a.position.distance(b.position) > 4.0 * r + 1.0
+                && DubinsPath::with_word(&a, &b, r, DubinsWord::Lrl).is_none()
+        })
+        .expect("an edge longer than four turn radii");
+    let at = Header::SIZE
+        + net.vertex_count() as usize * (VertexRecord::SIZE + U32Record::SIZE)
+        + U32Record::SIZE
+        + far as usize * EdgeRecord::SIZE
+        + 2;
+    let mut b = w.bytes.clone();
+    b[at] = DubinsWord::Lrl.code();
+    fix_crc(&mut b);
+    assert_eq!(
+        Network::from_bytes(&b).unwrap_err(),
+        LoadError::WordCannotJoin {
+            edge: far,
+            word: DubinsWord::Lrl.code()
+        }
+    );
+}
+
+#[test]
+fn edge_sources_found_by_binary_search_match_a_scan_of_the_offsets() {
+    let w = world(3, 700.0, 60.0, 40.0, 2);
+    let net = Network::from_bytes(&w.bytes).unwrap();
+    let mut checked = 0;
+    for v in 0..net.vertex_count() {
+        for e in net.out_edges(v) {
+            assert_eq!(net.edge_source(e), Some(v), "edge {e}");
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, net.edge_count());
+    assert_eq!(net.edge_source(net.edge_count()), None);
+}
