@@ -13,6 +13,7 @@ pub mod format;
 mod landmark;
 mod mode;
 mod roadmap;
+pub use roadmap::dubins_hull;
 mod terrain;
 mod validate;
 mod voronoi;
@@ -403,10 +404,17 @@ impl<'a> Network<'a> {
         postcard::from_bytes(self.bytes?.get(start..start.checked_add(size)?)?).ok()
     }
 
-    /// Offset `i` of an offset table (0 if unreadable, which validation rules out).
+    /// Offset `i` of an offset table (0 if unreadable, which validation rules out): a
+    /// little-endian `u32` read in place, the [`U32Record`] encoding without a decoder (the
+    /// edge-source binary search and every vertex expansion read offsets).
     fn offset(&self, base: usize, i: u32) -> u32 {
-        self.record::<U32Record>(base, U32Record::SIZE, i as usize)
-            .map_or(0, |r| r.0)
+        let start = (i as usize)
+            .checked_mul(U32Record::SIZE)
+            .and_then(|at| at.checked_add(base));
+        start
+            .and_then(|at| self.bytes?.get(at..at.checked_add(U32Record::SIZE)?))
+            .and_then(|b| b.try_into().ok())
+            .map_or(0, u32::from_le_bytes)
     }
 
     /// The length of edge `e`: its Dubins path's, its segment's, or (landmark mode, where the

@@ -3,8 +3,8 @@
 //! beyond the common ones (`docs/FORMAT.md`).
 
 use super::format::*;
-use super::{LoadError, Network, Section};
-use crate::geometry::{DubinsPath, DubinsWord};
+use super::{LoadError, ModeSection, Network, Section};
+use crate::geometry::{DubinsPath, DubinsWord, Pose, Segment};
 
 impl<'a> Network<'a> {
     /// Edge `i` joins `ends = (source, target)` by a Dubins word: the word must be solvable
@@ -53,4 +53,34 @@ impl<'a> Network<'a> {
         }
         Ok(())
     }
+
+    /// Roadmap mode: edge `e`'s end poses and word, what its path is solved from.
+    pub fn dubins_edge_ends(&self, e: u32) -> Option<(Pose, Pose, DubinsWord)> {
+        let ModeSection::Roadmap = self.section else {
+            return None;
+        };
+        let r = self.edge_record(e)?;
+        let word = DubinsWord::from_code(r.aux)?;
+        Some((
+            self.vertex(self.edge_source(e)?)?,
+            self.vertex(r.target as u32)?,
+            word,
+        ))
+    }
+}
+
+/// A region holding the whole Dubins path of `word` with turn radius `radius` from pose `a` to
+/// pose `b`, from the poses alone (no word solve): the path lies within the returned distance
+/// of the returned segment, which joins the centres of its first and last turning circles. A
+/// CSC path is an arc of the first circle, a tangent between the two and an arc of the last,
+/// so it lies within `radius` of the segment (a convex set holding all three); a CCC path's
+/// middle circle is tangent to both (its centre 2·radius from each), so its points are within
+/// 3·radius of either end.
+pub fn dubins_hull(a: &Pose, b: &Pose, radius: f32, word: DubinsWord) -> (Segment, f32) {
+    let (first, middle, last) = word.letters();
+    let reach = if middle.is_some() { 3.0 } else { 1.0 } * radius;
+    (
+        Segment::new(first.centre(a, radius), last.centre(b, radius)),
+        reach,
+    )
 }

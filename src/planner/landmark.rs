@@ -148,20 +148,22 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// ≤ the start's range; other edges (and non-landmark networks) always. O(1).
     pub fn is_navigable(&self, e: u32) -> bool {
         match &self.state {
-            ModeState::Landmark(state) => self.navigable_in(state, e),
+            ModeState::Landmark(state) => self
+                .network
+                .edge_source(e)
+                .is_some_and(|source| self.navigable_from(state, source, e)),
             ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Voronoi(_) => true,
         }
     }
 
-    /// [`Planner::is_navigable`] with the landmark state at hand: the landmark record is read
-    /// once for the edge's site and quality.
+    /// [`Planner::is_navigable`] with the landmark state and edge `e`'s source at hand: the
+    /// landmark record is read once for the edge's site and quality.
     #[inline(always)]
-    pub(super) fn navigable_in(&self, state: &LandmarkState<R>, e: u32) -> bool {
+    pub(super) fn navigable_from(&self, state: &LandmarkState<R>, source: u32, e: u32) -> bool {
         let Some(l) = self.network.landmark() else {
             return true;
         };
-        let (Some(r), Some(source)) = (self.network.edge_record(e), self.network.edge_source(e))
-        else {
+        let Some(r) = self.network.edge_record(e) else {
             return false;
         };
         if source == l.start_vertex {

@@ -295,9 +295,25 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Whether the search may use edge `e`: no pop-up blocks it and, in terrain mode, its band
     /// is clear of the terrain at the altitude in force; in landmark mode, it is navigable in
-    /// the weather and rosettes in force ([`Planner::is_navigable`]). O(1).
-    #[inline(always)]
+    /// the weather and rosettes in force ([`Planner::is_navigable`]). Work: O(1), and in
+    /// landmark mode a binary search for the edge's source.
     pub fn is_edge_usable(&self, e: u32) -> bool {
+        match &self.state {
+            ModeState::Landmark(_) => self
+                .network
+                .edge_source(e)
+                .is_some_and(|source| self.is_edge_usable_from(source, e)),
+            // Only the landmark rule reads the source.
+            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Voronoi(_) => {
+                self.is_edge_usable_from(u32::MAX, e)
+            }
+        }
+    }
+
+    /// [`Planner::is_edge_usable`] for an edge whose source the caller knows (the search,
+    /// expanding that vertex; only landmark mode reads it). O(1).
+    #[inline(always)]
+    pub(crate) fn is_edge_usable_from(&self, source: u32, e: u32) -> bool {
         match &self.state {
             ModeState::Roadmap => self.is_edge_enabled(e),
             ModeState::Terrain(t) => {
@@ -307,7 +323,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         .edge_highest_code(e)
                         .is_some_and(|c| c < t.blocking)
             }
-            ModeState::Landmark(state) => self.is_edge_enabled(e) && self.navigable_in(state, e),
+            ModeState::Landmark(state) => {
+                self.is_edge_enabled(e) && self.navigable_from(state, source, e)
+            }
             // The search's edges are the onboard graph's half-edges, priced and checked
             // against zones and pop-ups before each search.
             ModeState::Voronoi(state) => state

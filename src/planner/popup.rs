@@ -5,9 +5,13 @@
 use super::state::ModeState;
 use super::{Planner, PopupError};
 use crate::geometry::predicates::{
-    conflicts_with_circle, conflicts_with_polygon, point_in_polygon, polygon_is_simple,
+    conflicts_with_circle, conflicts_with_polygon, point_in_polygon, point_segment_distance,
+    polygon_is_simple,
 };
-use crate::geometry::{points_bounding_box, Primitive, Vec2, MAX_COORDINATE_M};
+use crate::geometry::{
+    points_bounding_box, DubinsPath, Primitive, Segment, Vec2, MAX_COORDINATE_M,
+};
+use crate::network::dubins_hull;
 use heapless::Vec;
 
 /// The most vertices a pop-up polygon may have.
@@ -174,7 +178,19 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             // Voronoi mode: the stored graph's lines (the search checks its onboard graph's
             // edges against the pop-ups before each search).
             ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Voronoi(_) => {
-                let Some(path) = self.network.edge_path(e) else {
+                let path = match self.network.dubins_edge_ends(e) {
+                    // A roadmap edge: first the cheap test on its hull, then the word solved.
+                    Some((a, b, word)) => {
+                        let radius = self.network.turn_radius();
+                        if hull_is_far(&dubins_hull(&a, &b, radius, word), popup, clearance) {
+                            summary.predicate_tests = summary.predicate_tests.saturating_add(1);
+                            return false;
+                        }
+                        DubinsPath::with_word(&a, &b, radius, word)
+                    }
+                    None => self.network.edge_path(e),
+                };
+                let Some(path) = path else {
                     return true;
                 };
                 for prim in path.primitives().into_iter().flatten() {
@@ -208,4 +224,20 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     pub fn popups(&self) -> impl Iterator<Item = (u8, &Popup)> {
         self.popups.iter().map(|(id, p)| (*id, p))
     }
+}
+
+/// Whether everything within `hull.1` of segment `hull.0` stays farther than `clearance` from
+/// `popup`: the pop-up's bounding circle (its box's centre and half-diagonal) lies beyond
+/// `hull.1 + clearance` from the segment, with a margin of 10⁻⁴ of the coordinates' size plus
+/// 1 cm against f32 rounding.
+fn hull_is_far(hull: &(Segment, f32), popup: &Popup, clearance: f32) -> bool {
+    let (segment, reach) = hull;
+    let (lo, hi) = popup.bounding_box();
+    let centre = (lo + hi) * 0.5;
+    let radius = (hi - lo).norm() * 0.5;
+    let size = [segment.start, segment.end, centre]
+        .iter()
+        .fold(0.0f32, |m, p| m.max(libm::fabsf(p.x)).max(libm::fabsf(p.y)));
+    let margin = 1e-4 * (size + reach + radius) + 0.01;
+    point_segment_distance(centre, segment) > radius + clearance + reach + margin
 }

@@ -302,7 +302,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         for e in self.search_out_edges(u) {
             meter.work.relaxations += 1;
-            if !self.is_edge_usable(e) {
+            if !self.is_edge_usable_from(u, e) {
                 continue;
             }
             let Some((cost, t)) = self.search_edge_cost_target(e) else {

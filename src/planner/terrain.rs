@@ -607,7 +607,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         for e in self.network.out_edges(at.node) {
             meter.work.relaxations += 1;
-            if !self.is_edge_usable(e) {
+            if !self.is_edge_usable_from(at.node, e) {
                 continue;
             }
             let edge = self.network.edge(e).ok_or(PlanError::Internal)?;
