@@ -190,8 +190,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let mut max_out = 0u64;
         // indeg(v)·outdeg(v) summed = Σ over edges of outdeg(target).
         for i in 0..e {
-            if let Some(edge) = net.edge(i) {
-                transitions += net.out_edges(edge.target).len() as u64;
+            if let Some((_, target)) = net.edge_cost_target(i) {
+                transitions += net.out_edges(target).len() as u64;
             }
         }
         for i in 0..v {
@@ -605,21 +605,30 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 *best = Some((total, Arrival::FromState { state: s, link: k }));
             }
         }
+        let node = self
+            .network
+            .vertex(at.node)
+            .ok_or(PlanError::Internal)?
+            .position;
         for e in self.network.out_edges(at.node) {
             meter.work.relaxations += 1;
             if !self.is_edge_usable_from(at.node, e) {
                 continue;
             }
-            let edge = self.network.edge(e).ok_or(PlanError::Internal)?;
-            if Some(edge.target) == at.from {
+            // The line from this node to the edge's target, as `Network::edge` measures it.
+            let (_, target) = self
+                .network
+                .edge_cost_target(e)
+                .ok_or(PlanError::Internal)?;
+            if Some(target) == at.from {
                 continue;
             }
-            let length = edge.lengths[1];
             let to = self
                 .network
-                .vertex(edge.target)
+                .vertex(target)
                 .ok_or(PlanError::Internal)?
                 .position;
+            let length = node.distance(to);
             if !(length > 0.0) {
                 continue;
             }
