@@ -1,5 +1,7 @@
-//! Puts `../memory.x` (the STM32F405's flash and RAM) on the linker's search path for
-//! cortex-m-rt's `link.x`.
+//! Puts the target's memory map on the linker's search path as `memory.x` for cortex-m-rt's
+//! `link.x`: `../memory.x` (the STM32F405's flash and RAM), or with the `mps2-an500` feature
+//! `memory-mps2-an500.x` (the larger target). Tells the `terrain` binary which fixture to embed
+//! (`TERRAIN_FIXTURE`: `fixture-terrain`, or `fixture-terrain-full` on the larger target).
 //!
 //! The fixtures are not this script's business: each binary `include!`s its own
 //! (`src/bin/roadmap.rs` ← `fixture/`, `terrain.rs` ← `fixture-terrain/`, `landmark.rs` ←
@@ -12,7 +14,18 @@ use std::path::PathBuf;
 fn main() {
     let manifest = PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("cargo sets it"));
     let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets it"));
-    let memory = manifest.join("../memory.x");
+    let large = std::env::var_os("CARGO_FEATURE_MPS2_AN500").is_some();
+    let memory = manifest.join(if large {
+        "memory-mps2-an500.x"
+    } else {
+        "../memory.x"
+    });
+    let terrain_fixture = if large {
+        "fixture-terrain-full"
+    } else {
+        "fixture-terrain"
+    };
+    println!("cargo:rustc-env=TERRAIN_FIXTURE={terrain_fixture}");
     std::fs::copy(&memory, out.join("memory.x"))
         .unwrap_or_else(|e| panic!("copying {}: {e}", memory.display()));
     println!("cargo:rustc-link-search={}", out.display());

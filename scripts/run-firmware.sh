@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Boots a firmware ELF in QEMU (netduinoplus2: STM32F405, Cortex-M4F) and decodes its defmt
+# Boots a firmware ELF in QEMU (netduinoplus2: STM32F405, Cortex-M4F; or QEMU_MACHINE=mps2-an500,
+# a Cortex-M7, for ELFs built with firmware-example's `mps2-an500` feature) and decodes its defmt
 # output (semihosting → QEMU's stdout → defmt-print). Exits with the firmware's own verdict
 # (semihosting exit status); 124 when it does not finish within FIRMWARE_TIMEOUT seconds.
 #
@@ -14,6 +15,12 @@ if [[ $# -lt 1 ]]; then
 fi
 elf=$1
 timeout_s=${FIRMWARE_TIMEOUT:-300}
+machine=${QEMU_MACHINE:-netduinoplus2}
+case $machine in
+    netduinoplus2) cpu=cortex-m4 ;;
+    mps2-an500) cpu=cortex-m7 ;;
+    *) echo "run-firmware: unknown QEMU_MACHINE $machine (netduinoplus2 or mps2-an500)" >&2; exit 2 ;;
+esac
 for tool in qemu-system-arm defmt-print; do
     if ! command -v "$tool" >/dev/null; then
         echo "run-firmware: $tool is missing (scripts/test.sh installs it)" >&2
@@ -25,7 +32,7 @@ done
 # counts are repeatable run to run (but they are not Cortex-M4 cycle counts).
 set +e
 timeout --foreground "$timeout_s" \
-    qemu-system-arm -cpu cortex-m4 -machine netduinoplus2 -nographic \
+    qemu-system-arm -cpu "$cpu" -machine "$machine" -nographic \
     -monitor none -serial null \
     -semihosting-config enable=on,target=native -icount shift=0 \
     -kernel "$elf" </dev/null |

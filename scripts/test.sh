@@ -3,7 +3,8 @@
 #   format → structure check → clippy (host, thumbv7em, thumbv7em+defmt) → core docs → OMPL and SciPy references → tests →
 #   firmware fixture → firmware build → firmware clippy → firmware under QEMU → sizes, for the
 #   roadmap (niendorf-urban, binary `roadmap`), again for terrain (medeiros-jacksboro, binary
-#   `terrain`) and for landmarks (babel-II-N, binary `landmark`: plan, lose a landmark in
+#   `terrain`; thinned for the STM32F405, and whole on the larger target: QEMU's mps2-an500,
+#   a Cortex-M7 with an STM32H743's 2 MiB flash and 1 MiB RAM) and for landmarks (babel-II-N, binary `landmark`: plan, lose a landmark in
 #   flight, re-plan) and for radar threats (ruz-popups as a Voronoi network, binary `voronoi`:
 #   plan, a radar pops up in flight, re-plan) and for the pop-up decision (ruz-popups' bypass
 #   alternatives as constants, binary `ruz`: decide a sequence of announcements and a worst
@@ -46,6 +47,8 @@ fixture_dir=firmware-example/fixture
 # farther out from their corners to leave room for turns among the fewer nodes.
 terrain_scenario=scenarios/medeiros-jacksboro.geojson
 terrain_src=target/fixture/terrain-src.bin
+terrain_full_src=target/fixture/terrain-full-src.bin
+terrain_full_fixture_dir=firmware-example/fixture-terrain-full
 terrain_fixture_dir=firmware-example/fixture-terrain
 # P and Q of the scenario in its local frame (heading: compass 45° with the meridian convergence).
 terrain_query="--start -3547.7197,-9893.968,0.78498753 --goal 3539.5775,9895.5724 --popup-on-route 100"
@@ -224,6 +227,24 @@ terrain_fixture() {
         "$terrain_src" "$terrain_fixture_dir" $terrain_query
 }
 
+# The larger target (firmware-example's `mps2-an500` feature: QEMU's Cortex-M7 board with an
+# STM32H743's 2 MiB flash and 1 MiB RAM): the whole medeiros-jacksboro network, which the
+# STM32F405's RAM cannot hold, with the terrain firmware's query.
+terrain_full_fixture() {
+    mkdir -p "$(dirname "$terrain_full_src")"
+    cargo run --release -q -p skyroute-prep --bin skyroute -- build "$terrain_scenario" \
+        -o "$terrain_full_src"
+    # shellcheck disable=SC2086 # the query's options are meant to split
+    cargo run --release -q -p host-tests --bin firmware_fixture -- \
+        "$terrain_full_src" "$terrain_full_fixture_dir" $terrain_query
+}
+
+# large_target_build BIN: builds BIN for the larger target into its own target directory.
+large_target_build() {
+    (cd firmware-example && CARGO_TARGET_DIR=target/mps2-an500 \
+        cargo build --release --features mps2-an500 --bin "$1")
+}
+
 # The babel-II-N landmark network and the fixture: the host plans stored start → stored goal in
 # weather 0, loses the first landmark overflown and plans again, as the firmware will.
 landmark_fixture() {
@@ -256,19 +277,23 @@ ruz_fixture() {
         "$ruz_src" "$ruz_fixture_dir" --ruz --scenario "$ruz_scenario"
 }
 
-# firmware_run ELF: boots the firmware ELF under QEMU; its exit code is the verdict.
+# firmware_run ELF [MACHINE]: boots the firmware ELF under QEMU (netduinoplus2 unless MACHINE
+# says otherwise); its exit code is the verdict.
 firmware_run() {
-    FIRMWARE_TIMEOUT=${FIRMWARE_TIMEOUT:-300} bash scripts/run-firmware.sh "$1"
+    QEMU_MACHINE=${2:-netduinoplus2} FIRMWARE_TIMEOUT=${FIRMWARE_TIMEOUT:-300} \
+        bash scripts/run-firmware.sh "$1"
 }
 
 # firmware_size ELF: the firmware's flash and RAM. Flash: everything loaded into flash (vector
 # table, code, read-only data with the network, and the initial image of .data); RAM: .data +
-# .bss + .uninit (the stack takes the rest of the 128 KiB from the top down). Read from the
-# ELF's section headers.
+# .bss + .uninit (the stack takes the rest of the RAM from the top down). Read from the ELF's
+# section headers. FLASH and RAM: the target's sizes in bytes (default the STM32F405's 1 MiB and
+# 128 KiB; RAM at 0x20000000 on both targets).
 firmware_size() {
-    python3 - "$1" <<'EOF'
+    python3 - "$1" "${2:-1048576}" "${3:-131072}" <<'EOF'
 import struct, sys
 data = open(sys.argv[1], "rb").read()
+flash_size, ram_size = int(sys.argv[2]), int(sys.argv[3])
 assert data[:4] == b"\x7fELF" and data[4] == 1, "expected a 32-bit ELF"
 shoff, = struct.unpack_from("<I", data, 0x20)
 shentsize, shnum, shstrndx = struct.unpack_from("<HHH", data, 0x2E)
@@ -284,7 +309,7 @@ for i in range(shnum):
     n, typ, flags, addr, off, size = sh(i)[:6]
     if not flags & SHF_ALLOC or size == 0:
         continue
-    in_ram = 0x20000000 <= addr < 0x20020000
+    in_ram = 0x20000000 <= addr < 0x20000000 + ram_size
     if in_ram:
         ram += size
     if typ != SHT_NOBITS:
@@ -292,8 +317,8 @@ for i in range(shnum):
     rows.append((name(n), addr, size))
 for n, a, s in rows:
     print(f"  {n:<16} 0x{a:08x} {s:>9} B")
-print(f"flash: {flash} B of 1048576 ({100 * flash / 1048576:.1f} %)")
-print(f"RAM:   {ram} B of 131072 ({100 * ram / 131072:.1f} %) static; the stack has the rest")
+print(f"flash: {flash} B of {flash_size} ({100 * flash / flash_size:.1f} %)")
+print(f"RAM:   {ram} B of {ram_size} ({100 * ram / ram_size:.1f} %) static; the stack has the rest")
 EOF
 }
 
@@ -321,6 +346,12 @@ step "terrain firmware build (release, bin terrain)" firmware_build terrain
 step "terrain firmware clippy (bin terrain)" firmware_clippy terrain
 step "terrain firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/terrain"
 step "terrain firmware size" firmware_size "$firmware_release/terrain"
+step "large target: terrain firmware fixture (full medeiros-jacksboro)" terrain_full_fixture
+step "large target: terrain firmware build (release, mps2-an500)" large_target_build terrain
+step "large target: terrain firmware under QEMU (mps2-an500, Cortex-M7)" \
+    firmware_run firmware-example/target/mps2-an500/thumbv7em-none-eabihf/release/terrain mps2-an500
+step "large target: terrain firmware size" firmware_size \
+    firmware-example/target/mps2-an500/thumbv7em-none-eabihf/release/terrain 2097152 1048576
 step "landmark firmware fixture (babel-II-N)" landmark_fixture
 step "landmark firmware build (release, bin landmark)" firmware_build landmark
 step "landmark firmware clippy (bin landmark)" firmware_clippy landmark

@@ -17,7 +17,12 @@ use embedded_hal::delay::DelayNs;
 /// The core clock SysTick counts at. QEMU's netduinoplus2 models the STM32F405 at 168 MHz
 /// (SYSCLK); with `-icount shift=0` one instruction takes 1 ns of virtual time, so a tick is
 /// about six instructions there, not a cycle-accurate Cortex-M4 cycle.
+#[cfg(not(feature = "mps2-an500"))]
 pub const CORE_HZ: u32 = 168_000_000;
+/// The core clock SysTick counts at. QEMU's mps2-an500 clocks its Cortex-M7 at 25 MHz: with
+/// `-icount shift=0` a tick is 40 instructions.
+#[cfg(feature = "mps2-an500")]
+pub const CORE_HZ: u32 = 25_000_000;
 
 const RELOAD: u32 = 0x00FF_FFFF;
 
