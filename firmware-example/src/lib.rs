@@ -48,9 +48,11 @@ use skyroute::Planner;
 pub const PERIOD_MS: u32 = 20;
 
 /// Start-up, shared by every binary: starts SysTick, logs the planner's capacities and size,
-/// loads `network` into `planner` (validating it once, timed), applies `config` when given, and
-/// logs the network (and for a terrain network its grid, altitude and safety height). `None`
-/// (after logging the error) when the core peripherals are taken or `load` fails.
+/// loads `network` into `planner` (validating it once, timed), re-checks the image's checksum
+/// as a flight loop would (`Network::verify`, timed), applies `config` when given, and logs the
+/// network (and for a terrain network its grid, altitude and safety height). `None` (after
+/// logging the error) when the core peripherals are taken, `load` fails or the image is
+/// found corrupted.
 pub fn start<const V: usize, const E: usize, const P: usize, const R: usize>(
     planner: &mut Planner<'static, V, E, P, R>,
     network: &'static [u8],
@@ -81,6 +83,18 @@ pub fn start<const V: usize, const E: usize, const P: usize, const R: usize>(
         load_ticks,
         Clock::ticks_to_us(load_ticks)
     );
+    // The in-flight re-check of the image in flash: one whole checksum pass, timed.
+    let t0 = clock.now();
+    let intact = net.verify().is_ok();
+    let verify_ticks = clock.now() - t0;
+    defmt::info!(
+        "verify (checksum of the image in flash): {=bool} in {=u64} ticks",
+        intact,
+        verify_ticks
+    );
+    if !intact {
+        return None;
+    }
     if let (Some(t), Some((altitude, safety))) = (net.terrain(), planner.altitude()) {
         defmt::info!(
             "terrain: {=u32} x {=u32} cells of {=f32} m, altitude {=f32} m, safety height {=f32} m, band +-{=f32} m, blocking code {=u8}",

@@ -26,15 +26,24 @@ pub fn crc32(bytes: &[u8]) -> u32 {
     crc32_parts(&[bytes])
 }
 
+/// The CRC register's initial value, and the final XOR.
+pub(super) const CRC32_INIT: u32 = 0xFFFF_FFFF;
+
 /// The CRC-32 of the concatenation of `parts`, without copying them together.
 pub fn crc32_parts(parts: &[&[u8]]) -> u32 {
-    let mut c = 0xFFFF_FFFFu32;
-    for part in parts {
-        for &b in *part {
-            c = TABLE[((c ^ b as u32) & 0xFF) as usize] ^ (c >> 8);
-        }
+    parts
+        .iter()
+        .fold(CRC32_INIT, |c, part| crc32_update(c, part))
+        ^ CRC32_INIT
+}
+
+/// The CRC register `c` after `bytes` (no initial value or final XOR applied: start from
+/// [`CRC32_INIT`] and XOR the result with it).
+pub(super) fn crc32_update(mut c: u32, bytes: &[u8]) -> u32 {
+    for &b in bytes {
+        c = TABLE[((c ^ b as u32) & 0xFF) as usize] ^ (c >> 8);
     }
-    c ^ 0xFFFF_FFFF
+    c
 }
 
 #[cfg(test)]

@@ -16,7 +16,9 @@ mod roadmap;
 pub use roadmap::dubins_hull;
 mod terrain;
 mod validate;
+mod verify;
 mod voronoi;
+pub use verify::{ImageVerifier, VerifyStep};
 #[cfg(feature = "std")]
 pub mod write;
 

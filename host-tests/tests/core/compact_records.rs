@@ -1,7 +1,8 @@
 //! Format v4's compact records as bad input: a grid cell's varint list that runs past its
 //! cell, is over-long or names an edge past the count, and a roadmap edge whose Dubins word
 //! cannot join its ends, each refused with its own error (checksum re-fixed so the field
-//! checks decide); and the edge source the loader derives from the offsets, against a scan.
+//! checks decide); the edge source the loader derives from the offsets, against a scan; and
+//! the on-demand checksum pass that finds a byte corrupted after load.
 
 use host_tests::damage::fix_crc;
 use host_tests::world::world;
@@ -150,4 +151,62 @@ fn edge_sources_found_by_binary_search_match_a_scan_of_the_offsets() {
     }
     assert_eq!(checked, net.edge_count());
     assert_eq!(net.edge_source(net.edge_count()), None);
+}
+
+#[test]
+fn an_image_corrupted_after_load_is_found_by_verify_in_bounded_steps() {
+    use skyroute::network::{image_checksum, ImageVerifier, VerifyStep};
+    let w = world(4, 600.0, 60.0, 40.0, 3);
+    let net = Network::from_bytes(&w.bytes).unwrap();
+    let crc = net.header().image_crc;
+    assert_eq!(net.verify(), Ok(()));
+    // A pass in 1000-byte steps: in progress until the last, then intact, and again.
+    let covered = w.bytes.len() - 4;
+    let steps = covered.div_ceil(1000);
+    let mut v = ImageVerifier::new();
+    for pass in 0..2 {
+        for k in 1..steps {
+            assert_eq!(
+                net.verify_step(&mut v, 1000),
+                VerifyStep::InProgress {
+                    done: 1000 * k,
+                    total: covered
+                },
+                "pass {pass}, step {k}"
+            );
+        }
+        assert_eq!(net.verify_step(&mut v, 1000), VerifyStep::Intact);
+    }
+    // The same pass over copies with one bit flipped (header, body, last byte): each found,
+    // with the CRC it has now.
+    for at in [5, 40, Header::SIZE, w.bytes.len() / 2, w.bytes.len() - 1] {
+        let mut bad = w.bytes.clone();
+        bad[at] ^= 0x10;
+        let mut v = ImageVerifier::new();
+        let verdict = loop {
+            match v.step(&bad, crc, 777) {
+                VerifyStep::InProgress { .. } => continue,
+                other => break other,
+            }
+        };
+        assert_eq!(
+            verdict,
+            VerifyStep::Corrupted(skyroute::LoadError::ChecksumMismatch {
+                stored: crc,
+                computed: image_checksum(&bad)
+            }),
+            "byte {at}"
+        );
+    }
+    // A step of 0 bytes still moves; an image cut inside its header is corrupted at once.
+    let mut v = ImageVerifier::new();
+    assert!(matches!(
+        v.step(&w.bytes, crc, 0),
+        VerifyStep::InProgress { done: 1, .. }
+    ));
+    let mut v = ImageVerifier::new();
+    assert!(matches!(
+        v.step(&w.bytes[..10], crc, usize::MAX),
+        VerifyStep::Corrupted(_)
+    ));
 }

@@ -3,7 +3,8 @@
 //! f64 reference geometry, synthetic worlds, tiers) are in `host_tests` (`host-tests/src`).
 //! Random counts come from `host_tests::cases` (`SKYROUTE_TIER`, see `docs/TESTING.md`).
 
-/// Format v4's compact records: damaged cell lists and Dubins words each refused by name.
+/// Format v4's compact records: damaged cell lists and Dubins words each refused by name; the
+/// in-flight checksum pass.
 mod compact_records;
 /// The pop-up decision (Ruz et al.) against a brute force over every combination.
 mod decision;
