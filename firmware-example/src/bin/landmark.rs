@@ -14,9 +14,9 @@ use static_cell::ConstStaticCell;
 // `landmark_fixture`): capacities, weather, the landmark to lose and the host's answers
 // (`query.rs`), and the network image, in flash (`.rodata`), where the planner reads it.
 mod fixture {
-    include!("../../fixture-landmark/query.rs");
+    include!(concat!(env!("LANDMARK_FIXTURE"), "/query.rs"));
 }
-static NETWORK: &[u8] = include_bytes!("../../fixture-landmark/network.bin");
+static NETWORK: &[u8] = include_bytes!(concat!(env!("LANDMARK_FIXTURE"), "/network.bin"));
 use fixture::*;
 
 /// The planner's state, all of it (≈ 20·V + 2·E + 140·P + 56·R + 1.5 KiB), in `.bss` (see

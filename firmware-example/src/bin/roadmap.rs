@@ -14,9 +14,9 @@ use static_cell::ConstStaticCell;
 // `--synthetic` for a small grid network; see the README): capacities, query and the host's
 // answer (`query.rs`), and the network image, in flash (`.rodata`), where the planner reads it.
 mod fixture {
-    include!("../../fixture/query.rs");
+    include!(concat!(env!("ROADMAP_FIXTURE"), "/query.rs"));
 }
-static NETWORK: &[u8] = include_bytes!("../../fixture/network.bin");
+static NETWORK: &[u8] = include_bytes!(concat!(env!("ROADMAP_FIXTURE"), "/network.bin"));
 use fixture::*;
 
 /// The planner's state, all of it (≈ 20·V + 2·E + 140·P + 56·R + 1.5 KiB). A network too large

@@ -16,19 +16,9 @@ use static_cell::ConstStaticCell;
 // image, in flash (`.rodata`), where the planner reads it.
 // `TERRAIN_FIXTURE` is set by build.rs.
 mod fixture {
-    include!(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/",
-        env!("TERRAIN_FIXTURE"),
-        "/query.rs"
-    ));
+    include!(concat!(env!("TERRAIN_FIXTURE"), "/query.rs"));
 }
-static NETWORK: &[u8] = include_bytes!(concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/",
-    env!("TERRAIN_FIXTURE"),
-    "/network.bin"
-));
+static NETWORK: &[u8] = include_bytes!(concat!(env!("TERRAIN_FIXTURE"), "/network.bin"));
 use fixture::*;
 
 /// The planner's state, all of it (≈ 20·V + 2·E + 140·P + 56·R + 1.5 KiB). A network too large

@@ -16,9 +16,9 @@ use static_cell::ConstStaticCell;
 // `voronoi_fixture`): capacities, query, the pop-up radar, the re-plan's start and the host's
 // answers (`query.rs`), and the network image, in flash (`.rodata`), where the planner reads it.
 mod fixture {
-    include!("../../fixture-voronoi/query.rs");
+    include!(concat!(env!("VORONOI_FIXTURE"), "/query.rs"));
 }
-static NETWORK: &[u8] = include_bytes!("../../fixture-voronoi/network.bin");
+static NETWORK: &[u8] = include_bytes!(concat!(env!("VORONOI_FIXTURE"), "/network.bin"));
 use fixture::*;
 
 /// The planner's state (≈ 20·V + 2·E + 140·P + 56·R + 1.5 KiB), in `.bss` (see
