@@ -13,6 +13,7 @@
 #include <ompl/geometric/planners/prm/PRMstar.h>
 
 #include <atomic>
+#include <utility>
 #include <iostream>
 #include <memory>
 
@@ -107,12 +108,18 @@ static void write_route(std::ostringstream &out, const ob::DubinsStateSpace &spa
     }
 }
 
-/// Motions of `path` that OMPL's own motion validator rejects in the direction of flight.
-static std::size_t rejected_motions(const ob::SpaceInformationPtr &si, const og::PathGeometric &path) {
-    std::size_t bad = 0;
+/// Motions of `path` that OMPL's own motion validator rejects in the direction of flight, and
+/// how many of those it accepts the other way round (the Dubins path from the later state to
+/// the earlier one, a different path in a forward-only space).
+static std::pair<std::size_t, std::size_t> rejected_motions(const ob::SpaceInformationPtr &si,
+                                                            const og::PathGeometric &path) {
+    std::size_t bad = 0, valid_reversed = 0;
     for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i)
-        if (!si->checkMotion(path.getState(i), path.getState(i + 1))) ++bad;
-    return bad;
+        if (!si->checkMotion(path.getState(i), path.getState(i + 1))) {
+            ++bad;
+            if (si->checkMotion(path.getState(i + 1), path.getState(i))) ++valid_reversed;
+        }
+    return {bad, valid_reversed};
 }
 
 /// `prm MAP QUERIES PLANNER VERTICES RESOLUTION_M SEED OUT.json ROUTES.txt SIMPLIFY_S [VALIDATOR]`
@@ -230,8 +237,11 @@ int run_prm(const std::vector<std::string> &args) {
                 const Dense draw = dense_check(si, map, raw, 0.1), dsim = dense_check(si, map, simple, 0.1);
                 row.add("raw_length_m", raw.length()).add("raw_states", double(raw.getStateCount()));
                 row.add("simplified_length_m", simple.length()).add("simplify_s", simplify_time);
-                row.add("raw_rejected_motions", double(rejected_motions(si, raw)));
-                row.add("simplified_rejected_motions", double(rejected_motions(si, simple)));
+                const auto rraw = rejected_motions(si, raw), rsim = rejected_motions(si, simple);
+                row.add("raw_rejected_motions", double(rraw.first));
+                row.add("raw_rejected_motions_valid_reversed", double(rraw.second));
+                row.add("simplified_rejected_motions", double(rsim.first));
+                row.add("simplified_rejected_motions_valid_reversed", double(rsim.second));
                 row.add("raw_dense_blocked_points", double(draw.blocked));
                 row.add("raw_dense_min_distance_m", draw.min_distance);
                 row.add("simplified_dense_blocked_points", double(dsim.blocked));
