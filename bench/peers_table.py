@@ -95,7 +95,10 @@ def query_rows(work, key, title, verdicts, notes):
             dense = sum(1 for q in solved[pkey] if q[f"{kind}_dense_blocked_points"] > 0)
             own = sum(1 for q in solved[pkey] if q[f"{kind}_rejected_motions"] > 0)
             counts.append(f"{exact}" if exact == dense == own else f"{exact} (dense {dense}, OMPL's validator {own})")
-        cells.append(f"{name} {counts[0]} / {counts[1]} of {len(solved[pkey])}")
+        rejected = sum(q[f"{k}_rejected_motions"] for q in solved[pkey] for k in ("raw", "simplified"))
+        reversed_ok = sum(q[f"{k}_rejected_motions_valid_reversed"] for q in solved[pkey] for k in ("raw", "simplified"))
+        cells.append(f"{name} {counts[0]} / {counts[1]} of {len(solved[pkey])} ({reversed_ok} of the "
+                     f"{rejected} motions OMPL rejects in flight pass its check the other way round)")
     clear_ours = sum(1 for q in oq if q["exactly_clear"])
     rows.append((f"{title}: routes that come within the clearance, raw / simplified (exact check with skyroute's "
                  "predicates; the 0.1 m dense check and OMPL's own motion validator in the direction of flight agree "
@@ -190,7 +193,7 @@ def sssp_rows(work):
     return rows
 
 
-def callgrind(work, verdicts):
+def callgrind(work, verdicts, notes):
     files = sorted(glob.glob(os.path.join(work, "cg", "per.out.*")), key=lambda s: int(s.rsplit(".", 1)[1]))
     ir = []
     for f in files:
@@ -203,6 +206,10 @@ def callgrind(work, verdicts):
     rows = [("niendorf-urban: query instructions (callgrind Ir) median / p90 / max", f"{med / 1e6:.2f} M / {rank(ir, 0.9) / 1e6:.2f} M / {max(ir) / 1e6:.2f} M", "", ""),
             ("niendorf-urban: query wall time median / p90 / max (same queries)", f"{ms(rank(wall, 0.5))} / {ms(rank(wall, 0.9))} / {ms(max(wall))} ms", "", "")]
     verdicts.append(("niendorf-urban: our query max / median ≤ 1.5 in instructions", f"{max(ir) / med:.2f}", max(ir) / med <= 1.5))
+    solved = [(n, q["planned_length_m"]) for n, q in zip(ir, plan) if q["solved"]]
+    r = np.corrcoef([n for n, _ in solved], [l for _, l in solved])[0, 1]
+    notes.append(f"niendorf-urban: a query's instructions correlate with its planned route length (Pearson r = {r:.2f} "
+                 f"over the {len(solved)} solved queries)")
     top = []
     with open(os.path.join(work, "cg", "annotate.txt")) as fh:
         body = fh.read().split("file:function", 1)[-1]
@@ -224,7 +231,7 @@ def main():
         rows += query_rows(work, key, title, verdicts, notes)
     rows += dubins_rows(work, notes)
     rows += sssp_rows(work)
-    cg_rows, top, n_ir = callgrind(work, verdicts)
+    cg_rows, top, n_ir = callgrind(work, verdicts, notes)
     rows += cg_rows
     out = [f"Measured {datetime.date.today().isoformat()} on {machine()}.", f"Command: `{command}`", "",
            "| comparison | skyroute | peer | peer / skyroute |", "|---|---|---|---|"]
