@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # bench/compare.sh: skyroute next to real peers on this machine, one table of ratios.
 #
-#   bench/compare.sh                 (from the repository root; about 10 minutes on 2 cores)
+#   bench/compare.sh                 (from the repository root; about 5 minutes on 2 cores once
+#                                     target/ is built; the first run also installs and compiles)
 #
 # 1. Queries: OMPL's PRM* (with the DiscreteMotionValidator and with the DubinsMotionValidator)
 #    and LazyPRM in C++ (Debian libompl-dev, bench/ompl_cpp/) over a forward-only
