@@ -164,10 +164,24 @@ pub fn exit(ok: bool) -> ! {
     }
 }
 
+#[cfg(not(feature = "prove-no-panic"))]
 #[panic_handler]
 fn panic(info: &core::panic::PanicInfo) -> ! {
     defmt::error!("panic: {}", defmt::Display2Format(info));
     exit(false)
+}
+
+/// With the `prove-no-panic` feature the panic handler calls a function that exists nowhere:
+/// the release build links only if the optimiser removed every path to a panic, and otherwise
+/// the linker names each function that still reaches one (`scripts/prove-no-panic.sh`).
+#[cfg(feature = "prove-no-panic")]
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    extern "C" {
+        fn skyroute_firmware_can_panic() -> !;
+    }
+    // SAFETY: never linked; a build whose panics all optimise away has no call to it.
+    unsafe { skyroute_firmware_can_panic() }
 }
 
 #[exception]

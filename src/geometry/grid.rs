@@ -605,7 +605,7 @@ pub fn arc_cells<F: FnMut(u32, u32) -> bool>(
     let full = !(s < TAU);
 
     let (pieces, n_pieces) = sector_pieces(a0 - ea, s, full);
-    let pieces = &pieces[..n_pieces];
+    let pieces = pieces.get(..n_pieces).unwrap_or(&[]);
     let r1 = (r - w).max(0.0);
     let r2 = r + w;
 
@@ -642,8 +642,11 @@ pub fn arc_cells<F: FnMut(u32, u32) -> bool>(
         let mut n = 0;
         let mut push = |range: Option<(f32, f32)>, dx: f32| {
             if let Some((lo, hi)) = range {
-                if let Some(cols) = index_range(dx + lo - d, dx + hi + d, grid.cols) {
-                    runs[n] = cols;
+                if let (Some(cols), Some(slot)) = (
+                    index_range(dx + lo - d, dx + hi + d, grid.cols),
+                    runs.get_mut(n),
+                ) {
+                    *slot = cols;
                     n += 1;
                 }
             }
@@ -655,7 +658,7 @@ pub fn arc_cells<F: FnMut(u32, u32) -> bool>(
             push(disc_in_band(p0, rho, ya, yb), 0.0);
             push(disc_in_band(p1, rho, ya, yb), 0.0);
         }
-        let runs = &mut runs[..n];
+        let runs = runs.get_mut(..n).unwrap_or(&mut []);
         runs.sort_unstable_by_key(|run| run.0);
         let mut i = 0;
         while i < runs.len() {

@@ -306,7 +306,8 @@ impl Arc {
 
     /// The pose at arc length `s` from the start (clamped to the arc).
     pub fn pose_at(&self, s: f32) -> Pose {
-        let s = s.clamp(0.0, self.length());
+        // max/min rather than clamp: no panic when the length is NaN.
+        let s = s.max(0.0).min(self.length());
         let sign = self.turn().sign();
         let a = self.start_angle + sign * s / self.radius;
         let p = self.point_at_angle(a);

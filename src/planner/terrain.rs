@@ -558,7 +558,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let edges = self.network.edge_count();
         for k in 0..self.start_links.len() {
             let s = edges + k as u32;
-            let cost = self.start_links[k].path.length();
+            let Some(cost) = self.start_links.get(k).map(|link| link.path.length()) else {
+                return Err(PlanError::Internal);
+            };
             let (Some(d), Some(via)) =
                 (self.dist.get_mut(s as usize), self.via.get_mut(s as usize))
             else {

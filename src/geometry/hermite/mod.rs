@@ -22,9 +22,8 @@
 //! whose condition number grows with `T` (its entries span `T` to `20T³`). Scaling the unknowns to
 //! `b_k = c_k T^k` and the rows by `(1, T, T²)` turns it into the same system with the constant,
 //! well-conditioned matrix `M = [[1, 1, 1], [3, 4, 5], [6, 12, 20]]` (condition number ≈ 524)
-//! and right-hand side `(P1 − P0 − V0·T, (V1 − V0)·T, 0)`, solved with nalgebra's LU
-//! decomposition with partial pivoting (backward stable: the end conditions, which are the rows
-//! of the system, hold to f32 rounding of the coefficients). The segment is stored in that
+//! and right-hand side `(P1 − P0 − V0·T, (V1 − V0)·T, 0)`, solved with `M`'s exact inverse
+//! (`math::solve_hermite`: a constant matrix product, every entry of `M⁻¹` exact in f32). The segment is stored in that
 //! normalised form, `p(t) = q(t/T)` with `q(s) = Σ b_k s^k`, `b_k = c_k T^k`, which evaluates
 //! without the cancellation of large powers of `t`. The exact solution is the quintic with
 //! assigned end positions, velocities and accelerations, e.g. Biagiotti & Melchiorri,

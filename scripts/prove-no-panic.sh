@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Which functions of a release firmware binary can still reach a panic: disassembles each ELF
+# given (default: every firmware-example binary already built for the STM32F405) and lists every
+# function that branches to a panic entry point of `core` (panic_fmt, panic_bounds_check,
+# slice_index_fail, unwrap/expect failures, assertion and division panics). Exits 1 when a
+# function of the skyroute core is among them. The link check, `cargo build --release
+# --features prove-no-panic` in firmware-example, is the stronger form: it fails unless no
+# panic path survives at all, and the firmware's own defmt transport and panic formatting keep
+# it failing today (see docs/RELIABILITY.md).
+#
+#   scripts/prove-no-panic.sh [ELF ...]
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+elfs=("$@")
+if [[ ${#elfs[@]} -eq 0 ]]; then
+    for b in roadmap terrain landmark voronoi ruz; do
+        elfs+=("$root/firmware-example/target/thumbv7em-none-eabihf/release/$b")
+    done
+fi
+objdump=$(command -v llvm-objdump || command -v arm-none-eabi-objdump || true)
+if [[ -z $objdump ]]; then
+    echo "prove-no-panic: llvm-objdump (Debian: llvm) or arm-none-eabi-objdump is needed" >&2
+    exit 2
+fi
+status=0
+for elf in "${elfs[@]}"; do
+    [[ -f $elf ]] || { echo "prove-no-panic: $elf not built" >&2; exit 2; }
+    "$objdump" -d --no-show-raw-insn -C "$elf" >"$elf.dis" 2>/dev/null ||
+        "$objdump" -d -C "$elf" >"$elf.dis"
+    python3 - "$elf.dis" "$(basename "$elf")" <<'PY' || status=1
+import collections, re, sys
+path, name = sys.argv[1:]
+entry = re.compile(r"<(core::panicking::[^>]+|core::slice::index::slice_index_fail|"
+                   r"core::option::expect_failed|core::option::unwrap_failed|"
+                   r"core::result::unwrap_failed|core::panicking::panic_const::[a-z_]+)>")
+cur, callers = None, collections.defaultdict(set)
+for line in open(path, errors="replace"):
+    m = re.match(r"^([0-9a-f]+) <(.*)>:$", line)
+    if m:
+        cur = m.group(2)
+        continue
+    t = entry.search(line)
+    if t and cur and re.search(r"\s(bl|b|b\.w|blx|beq|bne|b\.n)(\.w)?\s", line) and not cur.startswith("core::"):
+        callers[cur].add(t.group(1).split("::")[-1])
+core = [f for f in callers if "skyroute::" in f and "firmware_example" not in f]
+print(f"{name}: {len(callers)} functions can reach a panic, {len(core)} of them in the skyroute core")
+for f in sorted(callers):
+    print(f"  {'CORE ' if f in core else '     '}{f[:140]} -> {', '.join(sorted(callers[f]))}")
+sys.exit(1 if core else 0)
+PY
+done
+exit $status
