@@ -123,6 +123,27 @@ pub enum Search {
     AStar,
 }
 
+/// A phase of a roadmap or terrain query, reported as it begins to the observer of
+/// [`Planner::plan_observed`] (for example to time each phase with a board's clock).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Phase {
+    /// The start and goal checked against the obstacles and pop-ups (and the terrain).
+    CheckFree,
+    /// The start connected to its nearest vertices.
+    ConnectStart,
+    /// The goal connected to its nearest vertices, over the goal headings.
+    ConnectGoal,
+    /// The direct path from the start to the goal.
+    ConnectDirect,
+    /// The search over the network.
+    Search,
+    /// The route written out.
+    Route,
+    /// The query has ended, with a route or an error.
+    Done,
+}
+
 /// One planning request.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

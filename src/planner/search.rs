@@ -2,7 +2,10 @@
 
 use super::heap::ItemState;
 use super::state::ModeState;
-use super::{Link, Meter, PlanError, Planner, Query, QueryField, RouteSummary, Search, FROM_START};
+use super::{
+    Link, Meter, Phase, PlanError, Planner, Query, QueryField, RouteSummary, Search, Work,
+    FROM_START,
+};
 use crate::geometry::{DubinsPath, Primitive, Vec2};
 
 /// How the best route found so far reaches the goal.
@@ -55,7 +58,32 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// `budget` (compare [`Planner::worst_case_work`]). On success the route replaces the
     /// previous one; on any error the previous route is left as it was.
     pub fn plan(&mut self, query: &Query, budget: u64) -> Result<RouteSummary, PlanError> {
+        self.plan_observed(query, budget, &mut |_, _| {})
+    }
+
+    /// [`Planner::plan`], telling `observe` as each [`Phase`] of a roadmap or terrain query
+    /// begins, with the work counted so far, and [`Phase::Done`] (also after an error) at the
+    /// end. Landmark and Voronoi queries report only [`Phase::Done`]. The observer sees the
+    /// query; it does not change it.
+    pub fn plan_observed(
+        &mut self,
+        query: &Query,
+        budget: u64,
+        observe: &mut dyn FnMut(Phase, &Work),
+    ) -> Result<RouteSummary, PlanError> {
         let mut meter = Meter::new(budget);
+        let result = self.plan_metered(query, &mut meter, observe);
+        observe(Phase::Done, &meter.work);
+        result
+    }
+
+    /// [`Planner::plan_observed`] with its meter.
+    fn plan_metered(
+        &mut self,
+        query: &Query,
+        meter: &mut Meter,
+        observe: &mut dyn FnMut(Phase, &Work),
+    ) -> Result<RouteSummary, PlanError> {
         if !query.start.is_finite() {
             return Err(PlanError::NonFinite {
                 field: QueryField::Start,
@@ -77,10 +105,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             });
         }
         match self.state {
-            ModeState::Roadmap => self.plan_roadmap(query, &mut meter),
-            ModeState::Terrain(_) => self.plan_terrain(query, &mut meter),
-            ModeState::Landmark(_) => self.plan_landmark(query, &mut meter),
-            ModeState::Voronoi(_) => self.plan_voronoi(query, &mut meter),
+            ModeState::Roadmap => self.plan_roadmap(query, meter, observe),
+            ModeState::Terrain(_) => self.plan_terrain(query, meter, observe),
+            ModeState::Landmark(_) => self.plan_landmark(query, meter),
+            ModeState::Voronoi(_) => self.plan_voronoi(query, meter),
         }
     }
 
@@ -90,12 +118,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &mut self,
         query: &Query,
         meter: &mut Meter,
+        observe: &mut dyn FnMut(Phase, &Work),
     ) -> Result<RouteSummary, PlanError> {
+        observe(Phase::CheckFree, &meter.work);
         self.check_free(query.start.position, QueryField::Start, meter)?;
         self.check_free(query.goal.position, QueryField::Goal, meter)?;
-
+        observe(Phase::ConnectStart, &meter.work);
         self.connect_start(&query.start, meter)?;
+        observe(Phase::ConnectGoal, &meter.work);
         self.connect_goal(&query.goal, meter)?;
+        observe(Phase::ConnectDirect, &meter.work);
         let direct = if query.start.position.distance(query.goal.position)
             <= self.config().connect_radius_m
         {
@@ -110,7 +142,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             return Err(PlanError::GoalUnconnected);
         }
         let direct = direct.map(|p| (p.length(), p));
+        observe(Phase::Search, &meter.work);
         let arrival = self.search(query, Ends::Links, direct, meter)?;
+        observe(Phase::Route, &meter.work);
         self.write_route(arrival, meter)
     }
 
