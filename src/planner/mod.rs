@@ -22,6 +22,7 @@ mod state;
 mod terrain;
 mod threats;
 mod voronoi;
+mod window;
 pub mod work;
 
 pub use error::{PlanError, PopupError, QueryField};
@@ -54,6 +55,10 @@ pub const MAX_LINKS: usize = 16;
 /// find its links: enough to get past nearby vertices whose heading or surroundings admit no
 /// collision-free connection.
 pub const MAX_CANDIDATES: usize = 32;
+
+/// The most headings a goal without one is tried at
+/// ([`PlannerConfig::free_goal_headings`] is clamped to it).
+pub const MAX_GOAL_HEADINGS: u16 = 360;
 
 /// How a query connects to the network.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -90,7 +95,7 @@ impl PlannerConfig {
     fn headings(&self, goal: &Goal) -> u16 {
         match goal.heading {
             Some(_) => 1,
-            None => self.free_goal_headings.clamp(1, 360),
+            None => self.free_goal_headings.clamp(1, MAX_GOAL_HEADINGS),
         }
     }
 }
@@ -365,7 +370,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             goal_headings: if goal_has_heading {
                 1
             } else {
-                self.config().free_goal_headings.clamp(1, 360) as u64
+                self.config().free_goal_headings.clamp(1, MAX_GOAL_HEADINGS) as u64
             },
         }
     }

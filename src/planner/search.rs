@@ -2,6 +2,7 @@
 
 use super::heap::ItemState;
 use super::state::ModeState;
+use super::window::ObstacleWindow;
 use super::{
     Link, Meter, Phase, PlanError, Planner, Query, QueryField, RouteSummary, Search, Work,
     FROM_START,
@@ -124,14 +125,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.check_free(query.start.position, QueryField::Start, meter)?;
         self.check_free(query.goal.position, QueryField::Goal, meter)?;
         observe(Phase::ConnectStart, &meter.work);
-        self.connect_start(&query.start, meter)?;
+        // The obstacles around the start, for the start links and the direct path.
+        let window = ObstacleWindow::around(&self.network, query.start.position, meter);
+        self.connect_start(&query.start, &window, meter)?;
         observe(Phase::ConnectGoal, &meter.work);
         self.connect_goal(&query.goal, meter)?;
         observe(Phase::ConnectDirect, &meter.work);
         let direct = if query.start.position.distance(query.goal.position)
             <= self.config().connect_radius_m
         {
-            self.best_clear_path_to_goal(&query.start, &query.goal, meter)?
+            self.best_clear_path_to_goal(&query.start, &query.goal, &window, meter)?
         } else {
             None
         };
