@@ -6,7 +6,9 @@ use super::{Goal, Link, Meter, PlanError, Planner, QueryField, MAX_CANDIDATES, M
 use crate::geometry::predicates::{
     conflicts_with_circle, conflicts_with_polygon, point_in_polygon,
 };
-use crate::geometry::{DubinsEnd, DubinsPath, DubinsWord, Pose, Primitive, Vec2, WordSet};
+use crate::geometry::{
+    wrap_to_tau, DubinsEnd, DubinsPath, DubinsWord, Pose, Primitive, Vec2, WordSet,
+};
 use crate::network::Obstacle;
 use core::f32::consts::TAU;
 use heapless::Vec;
@@ -56,13 +58,21 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     ) -> Result<Candidates, PlanError> {
         let k = MAX_CANDIDATES;
         let mut best = Candidates::new();
+        // The squared distance of each kept vertex, in the same order: a vertex whose squared
+        // distance is no smaller than the last one's is no nearer (the square root rounds
+        // monotonically), so it is passed over without its square root.
+        let mut squares: Vec<f32, MAX_CANDIDATES> = Vec::new();
         let radius = self.config().connect_radius_m;
+        meter.work.vertex_scans += self.network.vertex_count() as u64;
         for v in 0..self.network.vertex_count() {
-            meter.work.vertex_scans += 1;
             let Some(pose) = self.network.vertex(v) else {
                 return Err(PlanError::Internal);
             };
-            let d = pose.position.distance(p);
+            let square = (pose.position - p).norm_sq();
+            if squares.is_full() && squares.last().is_some_and(|s| square >= *s) {
+                continue; // no nearer than the k kept
+            }
+            let d = libm::sqrtf(square); // `pose.position.distance(p)`
             if !(d <= radius) {
                 continue;
             }
@@ -77,8 +87,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             if at < k {
                 if best.len() == k {
                     best.pop();
+                    squares.pop();
                 }
                 let _ = best.insert(at, (d, v));
+                let _ = squares.insert(at, square);
             }
         }
         meter.check()?;
@@ -206,6 +218,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     vertex: v,
                     path,
                     cost: path.length(),
+                    pending: false,
                 });
             }
             meter.check()?;
@@ -213,15 +226,24 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Ok(())
     }
 
-    /// Fills the goal links: for the vertices nearest the goal, the shortest collision-free
-    /// Dubins path to the goal over the goal headings tried; the [`MAX_CANDIDATES`] nearest are
-    /// tried in order until [`PlannerConfig::goal_candidates`](super::PlannerConfig) succeed.
-    /// Reads the obstacles around the goal once ([`ObstacleWindow`]) for all its candidates.
+    /// Fills the goal links: the [`MAX_CANDIDATES`] vertices nearest the goal are tried in
+    /// order until [`PlannerConfig::goal_candidates`](super::PlannerConfig) reach the goal by
+    /// a collision-free Dubins path, checked against the obstacles around the goal
+    /// ([`ObstacleWindow`], read once for all of them).
+    ///
+    /// With one goal heading a link is that heading's shortest path. With several, the
+    /// vertex's shortest clear path over all of them is what the search needs, but only when it
+    /// pops the vertex and the link could still improve the route; so a link is made *pending*
+    /// as soon as one path is clear — the one to the heading nearest the bearing from the
+    /// vertex to the goal — with [`DubinsPath::length_lower_bound`] as its cost, and the search
+    /// finds its shortest clear path if it needs it ([`Planner::resolve_goal_link`]). A vertex
+    /// whose probe is blocked has its shortest clear path, if any, found here.
     pub(super) fn connect_goal(&mut self, goal: &Goal, meter: &mut Meter) -> Result<(), PlanError> {
         self.goal_links.clear();
         let candidates = self.nearest_vertices(goal.position, meter)?;
         let wanted = self.config().goal_links();
         let window = ObstacleWindow::around(&self.network, goal.position, meter);
+        let headings = self.config().headings(goal);
         for &(_, v) in &candidates {
             if self.goal_links.len() >= wanted {
                 break;
@@ -229,15 +251,91 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             let Some(from) = self.network.vertex(v) else {
                 return Err(PlanError::Internal);
             };
+            if headings > 1 {
+                if let Some(path) = self.probe_goal_path(&from, goal, &window, meter) {
+                    let radius = self.network.turn_radius();
+                    let bound =
+                        DubinsPath::length_lower_bound(from.position, goal.position, radius);
+                    let _ = self.goal_links.push(Link {
+                        vertex: v,
+                        path,
+                        cost: bound,
+                        pending: true,
+                    });
+                    meter.check()?;
+                    continue;
+                }
+            }
             if let Some(path) = self.best_clear_path_to_goal(&from, goal, &window, meter)? {
                 let _ = self.goal_links.push(Link {
                     vertex: v,
                     path,
                     cost: path.length(),
+                    pending: false,
                 });
             }
         }
         Ok(())
+    }
+
+    /// The shortest path from `from` to the goal heading nearest the bearing from `from` to the
+    /// goal, if it is collision-free (one Dubins solve and one path check).
+    fn probe_goal_path(
+        &self,
+        from: &Pose,
+        goal: &Goal,
+        window: &ObstacleWindow<'n>,
+        meter: &mut Meter,
+    ) -> Option<DubinsPath> {
+        let headings = self.config().headings(goal) as f32;
+        let bearing = wrap_to_tau((goal.position - from.position).angle());
+        let k = (bearing / (TAU / headings) + 0.5) as u16 % self.config().headings(goal);
+        meter.work.dubins_solves += 1;
+        let (from, to) = (
+            DubinsEnd::new(from)?,
+            DubinsEnd::new(&self.goal_pose(goal, k))?,
+        );
+        let path =
+            DubinsPath::shortest_between(&from, &to, self.network.turn_radius(), WordSet::ALL)?;
+        self.path_is_clear_near(&path, window, meter)
+            .then_some(path)
+    }
+
+    /// Makes goal link `k` exact if it is pending: finds the shortest clear path from its vertex
+    /// to the goal ([`Planner::best_clear_path_to_goal`], against `window`, the obstacles
+    /// around the goal, read on the first call). Its probe was clear, so one exists. Not
+    /// inlined: called at most once per goal link, it would only crowd the search's loop.
+    #[inline(never)]
+    pub(super) fn resolve_goal_link(
+        &mut self,
+        k: usize,
+        goal: &Goal,
+        window: &mut Option<ObstacleWindow<'n>>,
+        meter: &mut Meter,
+    ) -> Result<Link, PlanError> {
+        let link = *self.goal_links.get(k).ok_or(PlanError::Internal)?;
+        if !link.pending {
+            return Ok(link);
+        }
+        let from = self
+            .network
+            .vertex(link.vertex)
+            .ok_or(PlanError::Internal)?;
+        let window = match window {
+            Some(w) => w,
+            None => window.insert(ObstacleWindow::around(&self.network, goal.position, meter)),
+        };
+        let path = self
+            .best_clear_path_to_goal(&from, goal, window, meter)?
+            .ok_or(PlanError::Internal)?;
+        let exact = Link {
+            path,
+            cost: path.length(),
+            pending: false,
+            ..link
+        };
+        *self.goal_links.get_mut(k).ok_or(PlanError::Internal)? = exact;
+        Ok(exact)
     }
 
     /// The shortest collision-free Dubins path from `from` to the goal over the goal headings

@@ -183,8 +183,12 @@ struct Link {
     vertex: u32,
     path: DubinsPath,
     /// What the link costs the search: its length, or in Voronoi mode its length and
-    /// exposure.
+    /// exposure; for a pending link, a lower bound of its length.
     cost: f32,
+    /// A roadmap goal link whose vertex is known to reach the goal by a collision-free path
+    /// (`path`), but whose shortest such path is found only when the search needs it: when
+    /// it pops the vertex and the lower bound `cost` could still improve the route.
+    pending: bool,
 }
 
 /// The planner. See the module documentation for its memory.

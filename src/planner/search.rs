@@ -178,6 +178,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.heap.clear(states);
         meter.work.vertex_scans += states as u64;
         let mut best = direct.map(|(cost, p)| (cost, Arrival::Direct(p)));
+        // The obstacles around the goal, read when a pending goal link is first resolved.
+        let mut goal_window = None;
         match space {
             StateSpace::Vertices => self.seed_vertices(query, ends, meter)?,
             StateSpace::EdgeStates => self.seed_edge_states(meter)?,
@@ -190,7 +192,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 break; // every remaining route costs at least `key`
             }
             let reached = match space {
-                StateSpace::Vertices => self.expand_vertex(query, ends, s, &mut best, meter)?,
+                StateSpace::Vertices => {
+                    self.expand_vertex(query, ends, s, &mut best, &mut goal_window, meter)?
+                }
                 StateSpace::EdgeStates => self.expand_edge_state(s, key, &mut best, meter)?,
             };
             if reached {
@@ -306,7 +310,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Ok(())
     }
 
-    /// Expands vertex `u`: offers the goal links that leave it to `best`, relaxes its usable
+    /// Expands vertex `u`: offers the goal links that leave it to `best` (resolving a pending
+    /// one first unless its lower bound shows it cannot improve `best`), relaxes its usable
     /// edges. Returns whether `u` is the target of an [`Ends::Vertices`] search (popped with
     /// its final cost: no cheaper route remains, and `best` is set to it).
     fn expand_vertex(
@@ -315,6 +320,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         ends: Ends,
         u: u32,
         best: &mut Option<(f32, Arrival)>,
+        goal_window: &mut Option<ObstacleWindow<'n>>,
         meter: &mut Meter,
     ) -> Result<bool, PlanError> {
         let du = self
@@ -328,17 +334,25 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 return Ok(true);
             }
         }
-        for (k, link) in self.goal_links.iter().enumerate() {
-            meter.work.relaxations += 1;
+        meter.work.relaxations += self.goal_links.len() as u64;
+        for k in 0..self.goal_links.len() {
+            let Some(&link) = self.goal_links.get(k) else {
+                return Err(PlanError::Internal);
+            };
             if link.vertex == u {
+                if link.pending && best.is_some_and(|(b, _)| du + link.cost >= b) {
+                    continue; // its shortest clear path is no shorter than `cost`
+                }
+                let link = self.resolve_goal_link(k, &query.goal, goal_window, meter)?;
                 let total = du + link.cost;
                 if best.is_none_or(|(b, _)| total < b) {
                     *best = Some((total, Arrival::FromState { state: u, link: k }));
                 }
             }
         }
-        for e in self.search_out_edges(u) {
-            meter.work.relaxations += 1;
+        let edges = self.search_out_edges(u);
+        meter.work.relaxations += edges.end.saturating_sub(edges.start) as u64;
+        for e in edges {
             if !self.is_edge_usable(e) {
                 continue;
             }
@@ -355,9 +369,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             if state == ItemState::Unseen || (state == ItemState::Queued && candidate < *dt) {
                 *dt = candidate;
                 *via = e;
-                let h = self
-                    .search_vertex_position(t)
-                    .map_or(0.0, |p| Self::heuristic(query, p));
+                let h = match query.search {
+                    Search::Dijkstra => 0.0, // without reading the vertex
+                    Search::AStar => self
+                        .search_vertex_position(t)
+                        .map_or(0.0, |p| Self::heuristic(query, p)),
+                };
                 meter.work.heap_steps += self.heap.push_or_decrease(t, candidate + h) as u64;
             }
         }

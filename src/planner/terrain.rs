@@ -339,6 +339,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     vertex: v,
                     path,
                     cost: 0.0,
+                    pending: false,
                 });
                 continue;
             }
@@ -355,6 +356,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         vertex: v,
                         path,
                         cost: path.length(),
+                        pending: false,
                     });
                 }
                 meter.check()?;
@@ -427,6 +429,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         vertex: v,
                         path,
                         cost: path.length(),
+                        pending: false,
                     });
                 }
                 meter.check()?;

@@ -98,12 +98,13 @@ pub struct WorkBoundInputs {
 ///
 /// * free-space checks of start and goal: 2(O + P) collision tests;
 /// * candidate search: 2|V| vertex scans (start and goal);
-/// * connections: N = C + C·H + H paths (start candidates, goal candidates over each heading,
-///   direct start–goal over each heading), each one Dubins solve; picking the next shortest
-///   goal path to check and solving its word again, ≤ C·H + H more; the obstacle windows of the
-///   start and the goal, 2O collision tests; each path checked at most once, ≤ 3 primitives,
-///   each tested against every obstacle's box (O), every polygon edge and containment
-///   (points + O), and every pop-up (P·(popup_vertices + 1)): 3·N·(2O + points +
+/// * connections: N = 2C + C·H + H paths (start candidates, one probe per goal candidate,
+///   goal candidates over each heading, direct start–goal over each heading), each one Dubins
+///   solve; picking the next shortest goal path to check and solving its word again, ≤ C·H + H
+///   more; the obstacle windows of the start and the goal (in the connection, and once more in
+///   the search for pending goal links), 3O collision tests; each path checked at most once,
+///   ≤ 3 primitives, each tested against every obstacle's box (O), every polygon edge and
+///   containment (points + O), and every pop-up (P·(popup_vertices + 1)): 3·N·(2O + points +
 ///   P·(popup_vertices + 1)) collision tests;
 /// * search: |V| heap resets; ≤ |V| pops and ≤ Ks + |E| pushes or decreases of ≤ L = ⌊log2|V|⌋+1
 ///   levels each; ≤ |E| out-edge and ≤ |V|·Kg goal-link relaxations;
@@ -112,11 +113,11 @@ pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
     let v = n.vertices;
     let levels = heap_levels(v);
     let goal_paths = n.candidates * n.goal_headings + n.goal_headings;
-    let connections = n.candidates + goal_paths;
+    let connections = 2 * n.candidates + goal_paths;
     let per_primitive = 2 * n.obstacles + n.obstacle_points + n.popups * (n.popup_vertices + 1);
     let candidates = 2 * v;
     let solves = connections + goal_paths;
-    let windows = 2 * n.obstacles;
+    let windows = 3 * n.obstacles;
     let connecting = solves + windows + 3 * connections * per_primitive;
     let search = v + (v + n.start_links + n.edges) * levels + n.edges + v * n.goal_links;
     let route = 2 * (v + 1);
