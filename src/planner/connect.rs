@@ -49,49 +49,61 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Ok(())
     }
 
-    /// The [`MAX_CANDIDATES`] vertices nearest to `p` within the connect radius, nearest first.
-    /// Work: |V| vertex scans (each with an insertion into the sorted list of ≤ 32).
+    /// The [`MAX_CANDIDATES`] vertices nearest to `p` within the connect radius, nearest first
+    /// (equally near ones in index order). Work: |V| vertex scans (each with, for a vertex
+    /// nearer than the farthest kept, a scan of the ≤ 32 kept for the new farthest).
     pub(super) fn nearest_vertices(
         &self,
         p: Vec2,
         meter: &mut Meter,
     ) -> Result<Candidates, PlanError> {
-        let k = MAX_CANDIDATES;
-        let mut best = Candidates::new();
-        // The squared distance of each kept vertex, in the same order: a vertex whose squared
-        // distance is no smaller than the last one's is no nearer (the square root rounds
-        // monotonically), so it is passed over without its square root.
-        let mut squares: Vec<f32, MAX_CANDIDATES> = Vec::new();
         let radius = self.config().connect_radius_m;
+        // The kept vertices as (distance, vertex, squared distance), unordered, and the index
+        // of the farthest (the largest distance, then the largest index) once they are
+        // MAX_CANDIDATES: a later vertex replaces it only if strictly nearer. A vertex whose
+        // squared distance is no smaller than the farthest's is no nearer (the square root
+        // rounds monotonically), so it is passed over without its square root.
+        let mut kept: Vec<(f32, u32, f32), MAX_CANDIDATES> = Vec::new();
+        let mut farthest = 0;
         meter.work.vertex_scans += self.network.vertex_count() as u64;
         for v in 0..self.network.vertex_count() {
             let Some(pose) = self.network.vertex(v) else {
                 return Err(PlanError::Internal);
             };
             let square = (pose.position - p).norm_sq();
-            if squares.is_full() && squares.last().is_some_and(|s| square >= *s) {
-                continue; // no nearer than the k kept
+            let full = kept.is_full();
+            if full && kept.get(farthest).is_some_and(|f| square >= f.2) {
+                continue;
             }
             let d = libm::sqrtf(square); // `pose.position.distance(p)`
             if !(d <= radius) {
                 continue;
             }
-            if best.len() == k && best.last().is_some_and(|(bd, _)| d >= *bd) {
-                continue; // no nearer than the k kept
+            if !full {
+                let _ = kept.push((d, v, square));
+            } else if let Some(f) = kept.get_mut(farthest).filter(|f| d < f.0) {
+                *f = (d, v, square);
+            } else {
+                continue;
             }
-            // Insertion into a sorted list of at most k entries.
+            if kept.is_full() {
+                farthest = (0..kept.len())
+                    .max_by(|&i, &j| {
+                        (kept[i].0, kept[i].1)
+                            .partial_cmp(&(kept[j].0, kept[j].1))
+                            .unwrap_or(core::cmp::Ordering::Equal)
+                    })
+                    .unwrap_or(0);
+            }
+        }
+        // Nearest first, equally near ones in index order (insertion sort of ≤ 32).
+        let mut best = Candidates::new();
+        for &(d, v, _) in &kept {
             let at = best
                 .iter()
-                .position(|(bd, _)| d < *bd)
+                .position(|&(bd, bv)| (d, v) < (bd, bv))
                 .unwrap_or(best.len());
-            if at < k {
-                if best.len() == k {
-                    best.pop();
-                    squares.pop();
-                }
-                let _ = best.insert(at, (d, v));
-                let _ = squares.insert(at, square);
-            }
+            let _ = best.insert(at, (d, v));
         }
         meter.check()?;
         Ok(best)

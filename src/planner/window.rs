@@ -25,7 +25,7 @@ pub(super) type NearObstacle<'n> = (f32, Obstacle<'n>, (Vec2, Vec2));
 /// The obstacles nearest to a point (see the module documentation).
 pub(super) struct ObstacleWindow<'n> {
     centre: Vec2,
-    /// Nearest box first.
+    /// The kept obstacles, every one at most as far as any left out, in no particular order.
     near: Vec<NearObstacle<'n>, WINDOW_OBSTACLES>,
     /// Distance of the nearest box left out (+∞ when every obstacle is kept).
     reach: f32,
@@ -42,14 +42,17 @@ impl<'n> ObstacleWindow<'n> {
     }
 
     /// The window around `centre`. Work: one collision test per obstacle (the distance of its
-    /// bounding box, with an insertion into the sorted list of ≤ [`WINDOW_OBSTACLES`]). A
-    /// record that cannot be read (validation rules that out) gives [`ObstacleWindow::none`].
+    /// bounding box, with, for an obstacle nearer than the farthest kept, a scan of the ≤
+    /// [`WINDOW_OBSTACLES`] kept for the new farthest). A record that cannot be read
+    /// (validation rules that out) gives [`ObstacleWindow::none`].
     pub(super) fn around(network: &Network<'n>, centre: Vec2, meter: &mut Meter) -> Self {
         let mut window = Self {
             centre,
             near: Vec::new(),
             reach: f32::INFINITY,
         };
+        // Once the window is full, the index of its farthest box: a nearer one replaces it.
+        let mut farthest = 0;
         for i in 0..network.obstacle_count() {
             meter.work.collision_tests += 1;
             let Some((obstacle, (lo, hi))) = network.obstacle(i) else {
@@ -61,21 +64,21 @@ impl<'n> ObstacleWindow<'n> {
             if !(d >= 0.0) {
                 return Self::none(centre); // not finite: validation rules it out
             }
-            if window.near.is_full() && window.near.last().is_some_and(|n| d >= n.0) {
+            let entry = (d, obstacle, (lo, hi));
+            if !window.near.is_full() {
+                let _ = window.near.push(entry);
+            } else if let Some(f) = window.near.get_mut(farthest).filter(|f| d < f.0) {
+                window.reach = window.reach.min(f.0);
+                *f = entry;
+            } else {
                 window.reach = window.reach.min(d);
                 continue;
             }
             if window.near.is_full() {
-                if let Some(out) = window.near.pop() {
-                    window.reach = window.reach.min(out.0);
-                }
+                farthest = (0..window.near.len())
+                    .max_by(|&a, &b| window.near[a].0.total_cmp(&window.near[b].0))
+                    .unwrap_or(0);
             }
-            let at = window
-                .near
-                .iter()
-                .position(|n| d < n.0)
-                .unwrap_or(window.near.len());
-            let _ = window.near.insert(at, (d, obstacle, (lo, hi)));
         }
         window
     }
