@@ -112,7 +112,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Whether every primitive of `path` keeps the network's clearance from every static
     /// obstacle and active pop-up. Exact predicates, after a bounding-box test per obstacle.
     /// In terrain mode, also that every primitive's band is over free terrain (exact cell
-    /// traversal), so shortcuts and smoothing keep terrain routes clear too.
+    /// traversal), so shortcuts and smoothing keep terrain routes clear too. Not inlined: its
+    /// many callers share one copy.
+    #[inline(never)]
     pub(super) fn path_is_clear(&self, path: &DubinsPath, meter: &mut Meter) -> bool {
         let count = self.network.obstacle_count() as usize;
         self.path_clear_of(path, count, |i| self.network.obstacle(i as u32), meter)
@@ -139,7 +141,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// [`Planner::path_is_clear`] against the `count` obstacles `obstacle` gives (with their
     /// bounding boxes; `None`: unreadable, so not clear).
-    #[inline(always)]
     fn path_clear_of(
         &self,
         path: &DubinsPath,
