@@ -354,12 +354,42 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         let edges = self.search_out_edges(u);
         meter.work.relaxations += edges.end.saturating_sub(edges.start) as u64;
+        // An edge's cost and target if the search may use it (`Some(None)`: it may not;
+        // `None`: unreadable). The roadmap's without matching the mode for every edge.
+        match self.state {
+            ModeState::Roadmap => self.relax_edges(query, du, edges, meter, |me, e| {
+                if me.is_edge_enabled(e) {
+                    me.network.edge_cost_target(e).map(Some)
+                } else {
+                    Some(None)
+                }
+            })?,
+            ModeState::Terrain(_) | ModeState::Landmark(_) | ModeState::Voronoi(_) => self
+                .relax_edges(query, du, edges, meter, |me, e| {
+                    if me.is_edge_usable(e) {
+                        me.search_edge_cost_target(e).map(Some)
+                    } else {
+                        Some(None)
+                    }
+                })?,
+        }
+        Ok(false)
+    }
+
+    /// Relaxes `edges` out of a vertex popped at cost `du`: `usable` gives an edge's cost and
+    /// target if the search may use it (see [`Planner::expand_vertex`]).
+    #[inline(always)]
+    fn relax_edges(
+        &mut self,
+        query: &Query,
+        du: f32,
+        edges: core::ops::Range<u32>,
+        meter: &mut Meter,
+        usable: impl Fn(&Self, u32) -> Option<Option<(f32, u32)>>,
+    ) -> Result<(), PlanError> {
         for e in edges {
-            if !self.is_edge_usable(e) {
+            let Some((cost, t)) = usable(self, e).ok_or(PlanError::Internal)? else {
                 continue;
-            }
-            let Some((cost, t)) = self.search_edge_cost_target(e) else {
-                return Err(PlanError::Internal);
             };
             let candidate = du + cost;
             let state = self.heap.state(t);
@@ -380,7 +410,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 meter.work.heap_steps += self.heap.push_or_decrease(t, candidate + h) as u64;
             }
         }
-        Ok(false)
+        Ok(())
     }
 
     /// The one walk-back of every search: follows search states back along their
