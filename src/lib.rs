@@ -37,6 +37,6 @@ pub mod planner;
 pub use geometry::{Arc, DubinsPath, DubinsWord, Pose, Primitive, Segment, Turn, Vec2};
 pub use network::{LoadError, Network};
 pub use planner::{
-    Goal, PlanError, Planner, PlannerConfig, Popup, PopupError, PopupSummary, Query, RouteSummary,
-    Search, SmoothSummary, Work,
+    Goal, Phase, PlanError, Planner, PlannerConfig, Popup, PopupError, PopupSummary, Query,
+    RouteSummary, Search, SmoothSummary, Work,
 };

@@ -4,14 +4,17 @@
 //!    the host's budget (a warning otherwise: the fixture is out of date);
 //! 2. [`CYCLES`] cycles of the [`RouteTask`] every [`PERIOD_MS`](crate::PERIOD_MS): the
 //!    fixture's query, Dijkstra, budget [`RouteFixture::budget`]; each `plan` call is timed;
-//! 3. the verdict: every cycle's route length is within [`TOLERANCE`] (relative) of the host's
+//! 3. one more `plan` of the same query with [`Planner::plan_observed`], timing each [`Phase`]
+//!    (connect the start, connect the goal, search, write the route) with SysTick;
+//! 4. the verdict: every cycle's route length is within [`TOLERANCE`] (relative) of the host's
 //!    and its primitives are all in the route.
 
 use crate::autopilot::{Cycle, Next, RouteTask};
 use crate::clock::{self, Clock};
 use crate::{log_stack, PERIOD_MS};
 use skyroute::network::Mode;
-use skyroute::{Goal, Planner, Popup, Pose, Query, Search, Vec2};
+use skyroute::planner::Work;
+use skyroute::{Goal, Phase, Planner, Popup, Pose, Query, Search, Vec2};
 
 /// What a roadmap or terrain binary's `query.rs` holds for this mission: the query, the pop-up,
 /// and the host's answer.
@@ -148,6 +151,7 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
             }
         },
     );
+    verdict &= log_phases(task.planner(), clock, &query, fixture.budget);
     match task.planner().network().mode() {
         Mode::Terrain => defmt::info!(
             "turn arcs checked in the last query: {}",
@@ -167,4 +171,46 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
         );
     }
     verdict
+}
+
+/// Plans `query` once more, timing each [`Phase`] with `clock` (the observer reads SysTick at
+/// every phase boundary, a few dozen ticks each), and logs each phase's ticks and counted work.
+/// False if the plan fails.
+fn log_phases<const V: usize, const E: usize, const P: usize, const R: usize>(
+    planner: &mut Planner<'_, V, E, P, R>,
+    clock: Clock,
+    query: &Query,
+    budget: u64,
+) -> bool {
+    let mut open: Option<(Phase, u64, u64)> = None;
+    let t0 = clock.now();
+    let outcome = planner.plan_observed(query, budget, &mut |phase: Phase, work: &Work| {
+        let now = clock.now();
+        if let Some((begun, t, w)) = open.take() {
+            defmt::info!(
+                "phase {}: {=u64} ticks, work {=u64}",
+                begun,
+                now - t,
+                work.total() - w
+            );
+        }
+        if phase != Phase::Done {
+            open = Some((phase, clock.now(), work.total()));
+        }
+    });
+    let ticks = clock.now() - t0;
+    match outcome {
+        Ok(s) => {
+            defmt::info!(
+                "phases: plan took {=u64} ticks with the observer, route {=f32} m",
+                ticks,
+                s.length
+            );
+            true
+        }
+        Err(e) => {
+            defmt::error!("observed plan failed: {}", e);
+            false
+        }
+    }
 }

@@ -12,7 +12,7 @@ pub mod spline;
 pub mod trig;
 pub mod voronoi;
 
-pub use dubins::{DubinsPath, DubinsWord, WordSet};
+pub use dubins::{DubinsEnd, DubinsPath, DubinsWord, WordSet};
 
 use core::f32::consts::{FRAC_PI_2, PI, TAU};
 use core::ops::{Add, Mul, Neg, Sub};
@@ -140,9 +140,19 @@ pub fn points_bounding_box(points: impl IntoIterator<Item = Vec2>) -> (Vec2, Vec
     (lo, hi)
 }
 
+/// `libm::fmodf(a, τ)`, exactly: `a` itself when |a| < τ (what `fmodf` returns then), so
+/// that the common case costs one comparison instead of a call.
+fn fmod_tau(a: f32) -> f32 {
+    if libm::fabsf(a) < TAU {
+        a
+    } else {
+        libm::fmodf(a, TAU)
+    }
+}
+
 /// Reduces an angle to [0, 2π), taking values within [`ANGLE_TOLERANCE`] of 2π as 0.
 pub fn wrap_to_tau(a: f32) -> f32 {
-    let mut r = libm::fmodf(a, TAU);
+    let mut r = fmod_tau(a);
     if r < 0.0 {
         r += TAU;
     }
@@ -155,7 +165,7 @@ pub fn wrap_to_tau(a: f32) -> f32 {
 
 /// Reduces an angle to (−π, π].
 pub fn wrap_to_pi(a: f32) -> f32 {
-    let r = libm::fmodf(a, TAU);
+    let r = fmod_tau(a);
     if r > PI {
         r - TAU
     } else if r <= -PI {

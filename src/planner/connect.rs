@@ -1,11 +1,14 @@
 //! Connecting the start and the goal to the network with collision-checked Dubins paths.
 
 use super::state::ModeState;
-use super::{Goal, Link, Meter, PlanError, Planner, QueryField, MAX_CANDIDATES};
+use super::window::ObstacleWindow;
+use super::{Goal, Link, Meter, PlanError, Planner, QueryField, MAX_CANDIDATES, MAX_GOAL_HEADINGS};
 use crate::geometry::predicates::{
     conflicts_with_circle, conflicts_with_polygon, point_in_polygon,
 };
-use crate::geometry::{DubinsPath, Pose, Vec2};
+use crate::geometry::{
+    wrap_to_tau, DubinsEnd, DubinsPath, DubinsWord, Pose, Primitive, Vec2, WordSet,
+};
 use crate::network::Obstacle;
 use core::f32::consts::TAU;
 use heapless::Vec;
@@ -46,36 +49,61 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Ok(())
     }
 
-    /// The [`MAX_CANDIDATES`] vertices nearest to `p` within the connect radius, nearest first.
-    /// Work: |V| vertex scans (each with an insertion into the sorted list of ≤ 32).
+    /// The [`MAX_CANDIDATES`] vertices nearest to `p` within the connect radius, nearest first
+    /// (equally near ones in index order). Work: |V| vertex scans (each with, for a vertex
+    /// nearer than the farthest kept, a scan of the ≤ 32 kept for the new farthest).
     pub(super) fn nearest_vertices(
         &self,
         p: Vec2,
         meter: &mut Meter,
     ) -> Result<Candidates, PlanError> {
-        let k = MAX_CANDIDATES;
-        let mut best = Candidates::new();
         let radius = self.config().connect_radius_m;
+        // The kept vertices as (distance, vertex, squared distance), unordered, and the index
+        // of the farthest (the largest distance, then the largest index) once they are
+        // MAX_CANDIDATES: a later vertex replaces it only if strictly nearer. A vertex whose
+        // squared distance is no smaller than the farthest's is no nearer (the square root
+        // rounds monotonically), so it is passed over without its square root.
+        let mut kept: Vec<(f32, u32, f32), MAX_CANDIDATES> = Vec::new();
+        let mut farthest = 0;
+        meter.work.vertex_scans += self.network.vertex_count() as u64;
         for v in 0..self.network.vertex_count() {
-            meter.work.vertex_scans += 1;
             let Some(pose) = self.network.vertex(v) else {
                 return Err(PlanError::Internal);
             };
-            let d = pose.position.distance(p);
+            let square = (pose.position - p).norm_sq();
+            let full = kept.is_full();
+            if full && kept.get(farthest).is_some_and(|f| square >= f.2) {
+                continue;
+            }
+            let d = libm::sqrtf(square); // `pose.position.distance(p)`
             if !(d <= radius) {
                 continue;
             }
-            // Insertion into a sorted list of at most k entries.
+            if !full {
+                let _ = kept.push((d, v, square));
+            } else if let Some(f) = kept.get_mut(farthest).filter(|f| d < f.0) {
+                *f = (d, v, square);
+            } else {
+                continue;
+            }
+            if kept.is_full() {
+                farthest = (0..kept.len())
+                    .max_by(|&i, &j| {
+                        (kept[i].0, kept[i].1)
+                            .partial_cmp(&(kept[j].0, kept[j].1))
+                            .unwrap_or(core::cmp::Ordering::Equal)
+                    })
+                    .unwrap_or(0);
+            }
+        }
+        // Nearest first, equally near ones in index order (insertion sort of ≤ 32).
+        let mut best = Candidates::new();
+        for &(d, v, _) in &kept {
             let at = best
                 .iter()
-                .position(|(bd, _)| d < *bd)
+                .position(|&(bd, bv)| (d, v) < (bd, bv))
                 .unwrap_or(best.len());
-            if at < k {
-                if best.len() == k {
-                    best.pop();
-                }
-                let _ = best.insert(at, (d, v));
-            }
+            let _ = best.insert(at, (d, v));
         }
         meter.check()?;
         Ok(best)
@@ -84,8 +112,42 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Whether every primitive of `path` keeps the network's clearance from every static
     /// obstacle and active pop-up. Exact predicates, after a bounding-box test per obstacle.
     /// In terrain mode, also that every primitive's band is over free terrain (exact cell
-    /// traversal), so shortcuts and smoothing keep terrain routes clear too.
+    /// traversal), so shortcuts and smoothing keep terrain routes clear too. Not inlined: its
+    /// many callers share one copy.
+    #[inline(never)]
     pub(super) fn path_is_clear(&self, path: &DubinsPath, meter: &mut Meter) -> bool {
+        let count = self.network.obstacle_count() as usize;
+        self.path_clear_of(path, count, |i| self.network.obstacle(i as u32), meter)
+    }
+
+    /// [`Planner::path_is_clear`], the same answer, checking only the obstacles `window` keeps
+    /// when they are all that the path can come near ([`ObstacleWindow::covering`]).
+    fn path_is_clear_near(
+        &self,
+        path: &DubinsPath,
+        window: &ObstacleWindow<'n>,
+        meter: &mut Meter,
+    ) -> bool {
+        match window.covering(path, self.network.clearance()) {
+            Some(near) => self.path_clear_of(
+                path,
+                near.len(),
+                |i| near.get(i).map(|&(_, o, bbox)| (o, bbox)),
+                meter,
+            ),
+            None => self.path_is_clear(path, meter),
+        }
+    }
+
+    /// [`Planner::path_is_clear`] against the `count` obstacles `obstacle` gives (with their
+    /// bounding boxes; `None`: unreadable, so not clear).
+    fn path_clear_of(
+        &self,
+        path: &DubinsPath,
+        count: usize,
+        obstacle: impl Fn(usize) -> Option<(Obstacle<'n>, (Vec2, Vec2))>,
+        meter: &mut Meter,
+    ) -> bool {
         let over_terrain = match self.state {
             ModeState::Roadmap | ModeState::Landmark(_) | ModeState::Voronoi(_) => true,
             ModeState::Terrain(_) => path
@@ -100,8 +162,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let clearance = self.network.clearance();
         for prim in path.primitives().into_iter().flatten() {
             let (lo, hi) = prim.bounding_box();
-            for i in 0..self.network.obstacle_count() {
-                let Some((obstacle, (olo, ohi))) = self.network.obstacle(i) else {
+            for i in 0..count {
+                let Some((obstacle, (olo, ohi))) = obstacle(i) else {
                     return false;
                 };
                 meter.work.collision_tests += 1;
@@ -109,20 +171,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     || hi.x + clearance < olo.x
                     || lo.y - clearance > ohi.y
                     || hi.y + clearance < olo.y;
-                if apart {
-                    continue;
-                }
-                let conflict = match obstacle {
-                    Obstacle::Polygon(poly) => {
-                        meter.work.collision_tests += poly.count_elements();
-                        conflicts_with_polygon(&prim, &poly, clearance)
-                    }
-                    Obstacle::Circle { centre, radius } => {
-                        meter.work.collision_tests += 1;
-                        conflicts_with_circle(&prim, centre, radius, clearance)
-                    }
-                };
-                if conflict {
+                if !apart && conflicts(&prim, &obstacle, clearance, meter) {
                     return false;
                 }
             }
@@ -152,14 +201,17 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Fills the start links: collision-free Dubins paths from the start to the nearest vertices
     /// they reach, trying the [`MAX_CANDIDATES`] nearest in order until
     /// [`PlannerConfig::start_candidates`](super::PlannerConfig) succeed.
+    /// `window`: the obstacles around the start.
     pub(super) fn connect_start(
         &mut self,
         start: &Pose,
+        window: &ObstacleWindow<'n>,
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
         self.start_links.clear();
         let candidates = self.nearest_vertices(start.position, meter)?;
         let wanted = self.config().start_links();
+        let from = DubinsEnd::new(start);
         for &(_, v) in &candidates {
             if self.start_links.len() >= wanted {
                 break;
@@ -168,15 +220,18 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 return Err(PlanError::Internal);
             };
             meter.work.dubins_solves += 1;
-            let Some(path) = DubinsPath::shortest(start, &target, self.network.turn_radius())
-            else {
+            let path = from.zip(DubinsEnd::new(&target)).and_then(|(from, to)| {
+                DubinsPath::shortest_between(&from, &to, self.network.turn_radius(), WordSet::ALL)
+            });
+            let Some(path) = path else {
                 continue;
             };
-            if self.path_is_clear(&path, meter) {
+            if self.path_is_clear_near(&path, window, meter) {
                 let _ = self.start_links.push(Link {
                     vertex: v,
                     path,
                     cost: path.length(),
+                    pending: false,
                 });
             }
             meter.check()?;
@@ -184,13 +239,24 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Ok(())
     }
 
-    /// Fills the goal links: for the vertices nearest the goal, the shortest collision-free
-    /// Dubins path to the goal over the goal headings tried; the [`MAX_CANDIDATES`] nearest are
-    /// tried in order until [`PlannerConfig::goal_candidates`](super::PlannerConfig) succeed.
+    /// Fills the goal links: the [`MAX_CANDIDATES`] vertices nearest the goal are tried in
+    /// order until [`PlannerConfig::goal_candidates`](super::PlannerConfig) reach the goal by
+    /// a collision-free Dubins path, checked against the obstacles around the goal
+    /// ([`ObstacleWindow`], read once for all of them).
+    ///
+    /// With one goal heading a link is that heading's shortest path. With several, the
+    /// vertex's shortest clear path over all of them is what the search needs, but only when it
+    /// pops the vertex and the link could still improve the route; so a link is made *pending*
+    /// as soon as one path is clear — the one to the heading nearest the bearing from the
+    /// vertex to the goal — with [`DubinsPath::length_lower_bound`] as its cost, and the search
+    /// finds its shortest clear path if it needs it ([`Planner::resolve_goal_link`]). A vertex
+    /// whose probe is blocked has its shortest clear path, if any, found here.
     pub(super) fn connect_goal(&mut self, goal: &Goal, meter: &mut Meter) -> Result<(), PlanError> {
         self.goal_links.clear();
         let candidates = self.nearest_vertices(goal.position, meter)?;
         let wanted = self.config().goal_links();
+        let window = ObstacleWindow::around(&self.network, goal.position, meter);
+        let headings = self.config().headings(goal);
         for &(_, v) in &candidates {
             if self.goal_links.len() >= wanted {
                 break;
@@ -198,40 +264,173 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             let Some(from) = self.network.vertex(v) else {
                 return Err(PlanError::Internal);
             };
-            if let Some(path) = self.best_clear_path_to_goal(&from, goal, meter)? {
+            if headings > 1 {
+                if let Some(path) = self.probe_goal_path(&from, goal, &window, meter) {
+                    let radius = self.network.turn_radius();
+                    let bound =
+                        DubinsPath::length_lower_bound(from.position, goal.position, radius);
+                    let _ = self.goal_links.push(Link {
+                        vertex: v,
+                        path,
+                        cost: bound,
+                        pending: true,
+                    });
+                    meter.check()?;
+                    continue;
+                }
+            }
+            if let Some(path) = self.best_clear_path_to_goal(&from, goal, &window, meter)? {
                 let _ = self.goal_links.push(Link {
                     vertex: v,
                     path,
                     cost: path.length(),
+                    pending: false,
                 });
             }
         }
         Ok(())
     }
 
-    /// The shortest collision-free Dubins path from `from` to the goal over the goal headings.
+    /// The shortest path from `from` to the goal heading nearest the bearing from `from` to the
+    /// goal, if it is collision-free (one Dubins solve and one path check).
+    fn probe_goal_path(
+        &self,
+        from: &Pose,
+        goal: &Goal,
+        window: &ObstacleWindow<'n>,
+        meter: &mut Meter,
+    ) -> Option<DubinsPath> {
+        let headings = self.config().headings(goal) as f32;
+        let bearing = wrap_to_tau((goal.position - from.position).angle());
+        let k = (bearing / (TAU / headings) + 0.5) as u16 % self.config().headings(goal);
+        meter.work.dubins_solves += 1;
+        let (from, to) = (
+            DubinsEnd::new(from)?,
+            DubinsEnd::new(&self.goal_pose(goal, k))?,
+        );
+        let path =
+            DubinsPath::shortest_between(&from, &to, self.network.turn_radius(), WordSet::ALL)?;
+        self.path_is_clear_near(&path, window, meter)
+            .then_some(path)
+    }
+
+    /// Makes goal link `k` exact if it is pending: finds the shortest clear path from its vertex
+    /// to the goal ([`Planner::best_clear_path_to_goal`], against `window`, the obstacles
+    /// around the goal, read on the first call). Its probe was clear, so one exists. Not
+    /// inlined: called at most once per goal link, it would only crowd the search's loop.
+    #[inline(never)]
+    pub(super) fn resolve_goal_link(
+        &mut self,
+        k: usize,
+        goal: &Goal,
+        window: &mut Option<ObstacleWindow<'n>>,
+        meter: &mut Meter,
+    ) -> Result<Link, PlanError> {
+        let link = *self.goal_links.get(k).ok_or(PlanError::Internal)?;
+        if !link.pending {
+            return Ok(link);
+        }
+        let from = self
+            .network
+            .vertex(link.vertex)
+            .ok_or(PlanError::Internal)?;
+        let window = match window {
+            Some(w) => w,
+            None => window.insert(ObstacleWindow::around(&self.network, goal.position, meter)),
+        };
+        let path = self
+            .best_clear_path_to_goal(&from, goal, window, meter)?
+            .ok_or(PlanError::Internal)?;
+        let exact = Link {
+            path,
+            cost: path.length(),
+            pending: false,
+            ..link
+        };
+        *self.goal_links.get_mut(k).ok_or(PlanError::Internal)? = exact;
+        Ok(exact)
+    }
+
+    /// The shortest collision-free Dubins path from `from` to the goal over the goal headings
+    /// (among equally long ones, the first heading's), checking against the obstacles that
+    /// `window` keeps where it covers the path.
+    ///
+    /// Solves every heading's shortest path first (one Dubins solve each), then checks them in
+    /// order of length (ties: heading order) and returns the first clear one: the shortest
+    /// clear path, found with as few collision checks as there are shorter blocked paths, plus
+    /// one. Picking the next path (a scan of the ≤ [`MAX_GOAL_HEADINGS`] stored lengths) and
+    /// solving its word again counts one Dubins solve.
     pub(super) fn best_clear_path_to_goal(
         &self,
         from: &Pose,
         goal: &Goal,
+        window: &ObstacleWindow<'n>,
         meter: &mut Meter,
     ) -> Result<Option<DubinsPath>, PlanError> {
-        let mut best: Option<DubinsPath> = None;
-        for k in 0..self.config().headings(goal) {
-            let target = self.goal_pose(goal, k);
+        let headings = self.config().headings(goal) as usize;
+        let radius = self.network.turn_radius();
+        let Some(from) = DubinsEnd::new(from) else {
+            meter.work.dubins_solves += headings as u64; // every heading tried, none solved
+            return Ok(None);
+        };
+        let goal_end = |k: usize| DubinsEnd::new(&self.goal_pose(goal, k as u16));
+        // Each heading's shortest length and word (+∞: none, or already checked).
+        let mut lengths = [f32::INFINITY; MAX_GOAL_HEADINGS as usize];
+        let mut words = [DubinsWord::Lsl; MAX_GOAL_HEADINGS as usize];
+        let mut left = 0;
+        for (k, (length, word)) in lengths
+            .iter_mut()
+            .zip(&mut words)
+            .take(headings)
+            .enumerate()
+        {
             meter.work.dubins_solves += 1;
-            let Some(path) = DubinsPath::shortest(from, &target, self.network.turn_radius()) else {
-                continue;
-            };
-            if best.is_some_and(|b| b.length() <= path.length()) {
-                continue;
+            let path = goal_end(k)
+                .and_then(|to| DubinsPath::shortest_between(&from, &to, radius, WordSet::ALL));
+            if let Some(path) = path {
+                (*length, *word) = (path.length(), path.word);
+                left += 1;
             }
-            if self.path_is_clear(&path, meter) {
-                best = Some(path);
+        }
+        meter.check()?;
+        while left > 0 {
+            meter.work.dubins_solves += 1;
+            let mut pick: Option<(usize, f32)> = None;
+            for (k, &length) in lengths.iter().enumerate().take(headings) {
+                if length < pick.map_or(f32::INFINITY, |(_, l)| l) {
+                    pick = Some((k, length));
+                }
+            }
+            let (Some((k, _)), Some(&word)) = (pick, pick.and_then(|(k, _)| words.get(k))) else {
+                return Err(PlanError::Internal); // `left` counts the finite lengths
+            };
+            lengths[k] = f32::INFINITY;
+            left -= 1;
+            let path = goal_end(k)
+                .and_then(|to| DubinsPath::word_between(&from, &to, radius, word))
+                .ok_or(PlanError::Internal)?; // solved above, with the same numbers
+            if self.path_is_clear_near(&path, window, meter) {
+                return Ok(Some(path));
             }
             meter.check()?;
         }
-        Ok(best)
+        Ok(None)
+    }
+}
+
+/// Whether `prim` comes within `clearance` of `obstacle` (exact predicates), counting one
+/// collision test per polygon edge and one for its containment test, or one for a circle.
+#[inline(always)]
+fn conflicts(prim: &Primitive, obstacle: &Obstacle<'_>, clearance: f32, meter: &mut Meter) -> bool {
+    match obstacle {
+        Obstacle::Polygon(poly) => {
+            meter.work.collision_tests += poly.count_elements();
+            conflicts_with_polygon(prim, poly, clearance)
+        }
+        Obstacle::Circle { centre, radius } => {
+            meter.work.collision_tests += 1;
+            conflicts_with_circle(prim, *centre, *radius, clearance)
+        }
     }
 }
 

@@ -20,14 +20,19 @@ pub enum ItemState {
 const UNSEEN: u32 = 0;
 const DONE: u32 = u32::MAX;
 
+/// A queued item: its key beside its id, so that comparing two heap entries reads one array.
+#[derive(Clone, Copy, Debug)]
+struct Slot {
+    key: f32,
+    id: u32,
+}
+
 /// The heap. Memory: 12·N bytes.
 #[derive(Debug)]
 pub struct IndexedHeap<const N: usize> {
-    /// Heap-ordered item ids; the first `len` are live.
-    items: [u32; N],
-    /// Key of each item id.
-    keys: [f32; N],
-    /// Position + 1 of each item id in `items`, or `UNSEEN` / `DONE`.
+    /// Heap-ordered items with their keys; the first `len` are live.
+    slots: [Slot; N],
+    /// Position + 1 of each item id in `slots`, or `UNSEEN` / `DONE`.
     position: [u32; N],
     len: usize,
 }
@@ -42,8 +47,7 @@ impl<const N: usize> IndexedHeap<N> {
     /// An empty heap (all items unseen).
     pub const fn new() -> Self {
         Self {
-            items: [0; N],
-            keys: [0.0; N],
+            slots: [Slot { key: 0.0, id: 0 }; N],
             position: [UNSEEN; N],
             len: 0,
         }
@@ -80,31 +84,27 @@ impl<const N: usize> IndexedHeap<N> {
     /// for a done item, an id out of range, or a key that is not lower. Returns the number of
     /// levels sifted (0 when nothing changed).
     pub fn push_or_decrease(&mut self, id: u32, key: f32) -> u32 {
-        let i = id as usize;
-        if i >= N {
+        let Some(&p) = self.position.get(id as usize) else {
             return 0;
-        }
-        let at = match self.state(id) {
-            ItemState::Done => return 0,
-            ItemState::Queued => {
-                if !(key < self.keys[i]) {
-                    return 0;
-                }
-                self.position[i] as usize - 1
-            }
-            ItemState::Unseen => {
+        };
+        let at = match p {
+            DONE => return 0,
+            UNSEEN => {
                 if self.len >= N {
                     return 0; // cannot happen: each id is queued at most once
                 }
-                let at = self.len;
                 self.len += 1;
-                self.items[at] = id;
-                self.position[i] = at as u32 + 1;
+                self.len - 1
+            }
+            p => {
+                let at = p as usize - 1;
+                if !self.slots.get(at).is_some_and(|s| key < s.key) {
+                    return 0;
+                }
                 at
             }
         };
-        self.keys[i] = key;
-        self.sift_up(at) + 1
+        self.sift_up(at, Slot { key, id }) + 1
     }
 
     /// Removes the item with the smallest key and marks it done. Returns it, its key and the
@@ -113,62 +113,82 @@ impl<const N: usize> IndexedHeap<N> {
         if self.len == 0 {
             return None;
         }
-        let top = self.items[0];
+        let top = self.slots[0];
         self.len -= 1;
-        let last = self.items[self.len];
-        self.position[top as usize] = DONE;
+        self.set_position(top.id, DONE);
         let mut levels = 1;
         if self.len > 0 {
-            self.items[0] = last;
-            self.position[last as usize] = 1;
-            levels += self.sift_down(0);
+            let last = self.slots[self.len];
+            levels += self.sift_down(last);
         }
-        Some((top, self.keys[top as usize], levels))
+        Some((top.id, top.key, levels))
     }
 
-    fn key_at(&self, at: usize) -> f32 {
-        self.keys[self.items[at] as usize]
+    fn set_position(&mut self, id: u32, position: u32) {
+        if let Some(p) = self.position.get_mut(id as usize) {
+            *p = position;
+        }
     }
 
-    fn swap(&mut self, a: usize, b: usize) {
-        self.items.swap(a, b);
-        self.position[self.items[a] as usize] = a as u32 + 1;
-        self.position[self.items[b] as usize] = b as u32 + 1;
-    }
-
-    fn sift_up(&mut self, mut at: usize) -> u32 {
+    /// Places `x` at the hole `at` (a live index) and moves it up past every parent with a
+    /// larger key, each parent moving down into the hole: the moves of swapping `x` upwards,
+    /// one write each. Returns the number of levels moved.
+    fn sift_up(&mut self, mut at: usize, x: Slot) -> u32 {
         let mut levels = 0;
+        let live = &mut self.slots[..self.len];
         while at > 0 {
             let parent = (at - 1) / 2;
-            if self.key_at(at) < self.key_at(parent) {
-                self.swap(at, parent);
+            let above = live[parent];
+            if x.key < above.key {
+                live[at] = above;
+                if let Some(p) = self.position.get_mut(above.id as usize) {
+                    *p = at as u32 + 1;
+                }
                 at = parent;
                 levels += 1;
             } else {
                 break;
             }
         }
+        live[at] = x;
+        self.set_position(x.id, at as u32 + 1);
         levels
     }
 
-    fn sift_down(&mut self, mut at: usize) -> u32 {
+    /// Places `x` at the root's hole and moves it down while a child has a smaller key (the
+    /// smaller child, the left one on a tie), each such child moving up into the hole: the
+    /// moves of swapping `x` downwards, one write each. Returns the number of levels moved.
+    fn sift_down(&mut self, x: Slot) -> u32 {
         let mut levels = 0;
+        let mut at = 0;
+        let live = &mut self.slots[..self.len];
         loop {
             let (l, r) = (2 * at + 1, 2 * at + 2);
-            let mut smallest = at;
-            if l < self.len && self.key_at(l) < self.key_at(smallest) {
-                smallest = l;
+            let (mut smallest, mut key) = (at, x.key);
+            if let Some(s) = live.get(l) {
+                if s.key < key {
+                    (smallest, key) = (l, s.key);
+                }
             }
-            if r < self.len && self.key_at(r) < self.key_at(smallest) {
-                smallest = r;
+            if let Some(s) = live.get(r) {
+                if s.key < key {
+                    smallest = r;
+                }
             }
             if smallest == at {
-                return levels;
+                break;
             }
-            self.swap(at, smallest);
+            let below = live[smallest];
+            live[at] = below;
+            if let Some(p) = self.position.get_mut(below.id as usize) {
+                *p = at as u32 + 1;
+            }
             at = smallest;
             levels += 1;
         }
+        live[at] = x;
+        self.set_position(x.id, at as u32 + 1);
+        levels
     }
 }
 

@@ -22,6 +22,7 @@ mod state;
 mod terrain;
 mod threats;
 mod voronoi;
+mod window;
 pub mod work;
 
 pub use error::{PlanError, PopupError, QueryField};
@@ -54,6 +55,10 @@ pub const MAX_LINKS: usize = 16;
 /// find its links: enough to get past nearby vertices whose heading or surroundings admit no
 /// collision-free connection.
 pub const MAX_CANDIDATES: usize = 32;
+
+/// The most headings a goal without one is tried at
+/// ([`PlannerConfig::free_goal_headings`] is clamped to it).
+pub const MAX_GOAL_HEADINGS: u16 = 360;
 
 /// How a query connects to the network.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -90,7 +95,7 @@ impl PlannerConfig {
     fn headings(&self, goal: &Goal) -> u16 {
         match goal.heading {
             Some(_) => 1,
-            None => self.free_goal_headings.clamp(1, 360),
+            None => self.free_goal_headings.clamp(1, MAX_GOAL_HEADINGS),
         }
     }
 }
@@ -121,6 +126,27 @@ pub enum Search {
     /// A* with the straight-line distance to the goal as heuristic (admissible and consistent,
     /// since no Dubins path is shorter than the chord it spans).
     AStar,
+}
+
+/// A phase of a roadmap or terrain query, reported as it begins to the observer of
+/// [`Planner::plan_observed`] (for example to time each phase with a board's clock).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Phase {
+    /// The start and goal checked against the obstacles and pop-ups (and the terrain).
+    CheckFree,
+    /// The start connected to its nearest vertices.
+    ConnectStart,
+    /// The goal connected to its nearest vertices, over the goal headings.
+    ConnectGoal,
+    /// The direct path from the start to the goal.
+    ConnectDirect,
+    /// The search over the network.
+    Search,
+    /// The route written out.
+    Route,
+    /// The query has ended, with a route or an error.
+    Done,
 }
 
 /// One planning request.
@@ -157,8 +183,12 @@ struct Link {
     vertex: u32,
     path: DubinsPath,
     /// What the link costs the search: its length, or in Voronoi mode its length and
-    /// exposure.
+    /// exposure; for a pending link, a lower bound of its length.
     cost: f32,
+    /// A roadmap goal link whose vertex is known to reach the goal by a collision-free path
+    /// (`path`), but whose shortest such path is found only when the search needs it: when
+    /// it pops the vertex and the lower bound `cost` could still improve the route.
+    pending: bool,
 }
 
 /// The planner. See the module documentation for its memory.
@@ -362,7 +392,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             goal_headings: if goal_has_heading {
                 1
             } else {
-                self.config().free_goal_headings.clamp(1, 360) as u64
+                self.config().free_goal_headings.clamp(1, MAX_GOAL_HEADINGS) as u64
             },
         }
     }

@@ -2,7 +2,11 @@
 
 use super::heap::ItemState;
 use super::state::ModeState;
-use super::{Link, Meter, PlanError, Planner, Query, QueryField, RouteSummary, Search, FROM_START};
+use super::window::ObstacleWindow;
+use super::{
+    Link, Meter, Phase, PlanError, Planner, Query, QueryField, RouteSummary, Search, Work,
+    FROM_START,
+};
 use crate::geometry::{DubinsPath, Primitive, Vec2};
 
 /// How the best route found so far reaches the goal.
@@ -55,7 +59,34 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// `budget` (compare [`Planner::worst_case_work`]). On success the route replaces the
     /// previous one; on any error the previous route is left as it was.
     pub fn plan(&mut self, query: &Query, budget: u64) -> Result<RouteSummary, PlanError> {
+        // Opaque, so that a program calling both `plan` and `plan_observed` gets one copy of
+        // the query code rather than a second one specialised for this observer.
+        self.plan_observed(query, budget, core::hint::black_box(&mut |_, _| {}))
+    }
+
+    /// [`Planner::plan`], telling `observe` as each [`Phase`] of a roadmap or terrain query
+    /// begins, with the work counted so far, and [`Phase::Done`] (also after an error) at the
+    /// end. Landmark and Voronoi queries report only [`Phase::Done`]. The observer sees the
+    /// query; it does not change it.
+    pub fn plan_observed(
+        &mut self,
+        query: &Query,
+        budget: u64,
+        observe: &mut dyn FnMut(Phase, &Work),
+    ) -> Result<RouteSummary, PlanError> {
         let mut meter = Meter::new(budget);
+        let result = self.plan_metered(query, &mut meter, observe);
+        observe(Phase::Done, &meter.work);
+        result
+    }
+
+    /// [`Planner::plan_observed`] with its meter.
+    fn plan_metered(
+        &mut self,
+        query: &Query,
+        meter: &mut Meter,
+        observe: &mut dyn FnMut(Phase, &Work),
+    ) -> Result<RouteSummary, PlanError> {
         if !query.start.is_finite() {
             return Err(PlanError::NonFinite {
                 field: QueryField::Start,
@@ -77,10 +108,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             });
         }
         match self.state {
-            ModeState::Roadmap => self.plan_roadmap(query, &mut meter),
-            ModeState::Terrain(_) => self.plan_terrain(query, &mut meter),
-            ModeState::Landmark(_) => self.plan_landmark(query, &mut meter),
-            ModeState::Voronoi(_) => self.plan_voronoi(query, &mut meter),
+            ModeState::Roadmap => self.plan_roadmap(query, meter, observe),
+            ModeState::Terrain(_) => self.plan_terrain(query, meter, observe),
+            ModeState::Landmark(_) => self.plan_landmark(query, meter),
+            ModeState::Voronoi(_) => self.plan_voronoi(query, meter),
         }
     }
 
@@ -90,16 +121,22 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &mut self,
         query: &Query,
         meter: &mut Meter,
+        observe: &mut dyn FnMut(Phase, &Work),
     ) -> Result<RouteSummary, PlanError> {
+        observe(Phase::CheckFree, &meter.work);
         self.check_free(query.start.position, QueryField::Start, meter)?;
         self.check_free(query.goal.position, QueryField::Goal, meter)?;
-
-        self.connect_start(&query.start, meter)?;
+        observe(Phase::ConnectStart, &meter.work);
+        // The obstacles around the start, for the start links and the direct path.
+        let window = ObstacleWindow::around(&self.network, query.start.position, meter);
+        self.connect_start(&query.start, &window, meter)?;
+        observe(Phase::ConnectGoal, &meter.work);
         self.connect_goal(&query.goal, meter)?;
+        observe(Phase::ConnectDirect, &meter.work);
         let direct = if query.start.position.distance(query.goal.position)
             <= self.config().connect_radius_m
         {
-            self.best_clear_path_to_goal(&query.start, &query.goal, meter)?
+            self.best_clear_path_to_goal(&query.start, &query.goal, &window, meter)?
         } else {
             None
         };
@@ -110,7 +147,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             return Err(PlanError::GoalUnconnected);
         }
         let direct = direct.map(|p| (p.length(), p));
+        observe(Phase::Search, &meter.work);
         let arrival = self.search(query, Ends::Links, direct, meter)?;
+        observe(Phase::Route, &meter.work);
         self.write_route(arrival, meter)
     }
 
@@ -141,6 +180,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.heap.clear(states);
         meter.work.vertex_scans += states as u64;
         let mut best = direct.map(|(cost, p)| (cost, Arrival::Direct(p)));
+        // The obstacles around the goal, read when a pending goal link is first resolved.
+        let mut goal_window = None;
         match space {
             StateSpace::Vertices => self.seed_vertices(query, ends, meter)?,
             StateSpace::EdgeStates => self.seed_edge_states(meter)?,
@@ -153,7 +194,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 break; // every remaining route costs at least `key`
             }
             let reached = match space {
-                StateSpace::Vertices => self.expand_vertex(query, ends, s, &mut best, meter)?,
+                StateSpace::Vertices => {
+                    self.expand_vertex(query, ends, s, &mut best, &mut goal_window, meter)?
+                }
                 StateSpace::EdgeStates => self.expand_edge_state(s, key, &mut best, meter)?,
             };
             if reached {
@@ -269,7 +312,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Ok(())
     }
 
-    /// Expands vertex `u`: offers the goal links that leave it to `best`, relaxes its usable
+    /// Expands vertex `u`: offers the goal links that leave it to `best` (resolving a pending
+    /// one first unless its lower bound shows it cannot improve `best`), relaxes its usable
     /// edges. Returns whether `u` is the target of an [`Ends::Vertices`] search (popped with
     /// its final cost: no cheaper route remains, and `best` is set to it).
     fn expand_vertex(
@@ -278,6 +322,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         ends: Ends,
         u: u32,
         best: &mut Option<(f32, Arrival)>,
+        goal_window: &mut Option<ObstacleWindow<'n>>,
         meter: &mut Meter,
     ) -> Result<bool, PlanError> {
         let du = self
@@ -291,22 +336,60 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 return Ok(true);
             }
         }
-        for (k, link) in self.goal_links.iter().enumerate() {
-            meter.work.relaxations += 1;
+        meter.work.relaxations += self.goal_links.len() as u64;
+        for k in 0..self.goal_links.len() {
+            let Some(&link) = self.goal_links.get(k) else {
+                return Err(PlanError::Internal);
+            };
             if link.vertex == u {
+                if link.pending && best.is_some_and(|(b, _)| du + link.cost >= b) {
+                    continue; // its shortest clear path is no shorter than `cost`
+                }
+                let link = self.resolve_goal_link(k, &query.goal, goal_window, meter)?;
                 let total = du + link.cost;
                 if best.is_none_or(|(b, _)| total < b) {
                     *best = Some((total, Arrival::FromState { state: u, link: k }));
                 }
             }
         }
-        for e in self.search_out_edges(u) {
-            meter.work.relaxations += 1;
-            if !self.is_edge_usable_from(u, e) {
+        let edges = self.search_out_edges(u);
+        meter.work.relaxations += edges.end.saturating_sub(edges.start) as u64;
+        // An edge's cost and target if the search may use it (`Some(None)`: it may not;
+        // `None`: unreadable). The roadmap's without matching the mode for every edge.
+        match self.state {
+            ModeState::Roadmap => self.relax_edges(query, du, edges, meter, |me, e| {
+                if me.is_edge_enabled(e) {
+                    me.network.edge_cost_target(e).map(Some)
+                } else {
+                    Some(None)
+                }
+            })?,
+            ModeState::Terrain(_) | ModeState::Landmark(_) | ModeState::Voronoi(_) => self
+                .relax_edges(query, du, edges, meter, |me, e| {
+                    if me.is_edge_usable_from(u, e) {
+                        me.search_edge_cost_target(e).map(Some)
+                    } else {
+                        Some(None)
+                    }
+                })?,
+        }
+        Ok(false)
+    }
+
+    /// Relaxes `edges` out of a vertex popped at cost `du`: `usable` gives an edge's cost and
+    /// target if the search may use it (see [`Planner::expand_vertex`]).
+    #[inline(always)]
+    fn relax_edges(
+        &mut self,
+        query: &Query,
+        du: f32,
+        edges: core::ops::Range<u32>,
+        meter: &mut Meter,
+        usable: impl Fn(&Self, u32) -> Option<Option<(f32, u32)>>,
+    ) -> Result<(), PlanError> {
+        for e in edges {
+            let Some((cost, t)) = usable(self, e).ok_or(PlanError::Internal)? else {
                 continue;
-            }
-            let Some((cost, t)) = self.search_edge_cost_target(e) else {
-                return Err(PlanError::Internal);
             };
             let candidate = du + cost;
             let state = self.heap.state(t);
@@ -318,13 +401,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             if state == ItemState::Unseen || (state == ItemState::Queued && candidate < *dt) {
                 *dt = candidate;
                 *via = e;
-                let h = self
-                    .search_vertex_position(t)
-                    .map_or(0.0, |p| Self::heuristic(query, p));
+                let h = match query.search {
+                    Search::Dijkstra => 0.0, // without reading the vertex
+                    Search::AStar => self
+                        .search_vertex_position(t)
+                        .map_or(0.0, |p| Self::heuristic(query, p)),
+                };
                 meter.work.heap_steps += self.heap.push_or_decrease(t, candidate + h) as u64;
             }
         }
-        Ok(false)
+        Ok(())
     }
 
     /// The one walk-back of every search: follows search states back along their

@@ -43,7 +43,9 @@ use super::heap::ItemState;
 use super::search::{Arrival, Ends};
 use super::state::{ArcCheckStats, ModeState};
 use super::work::{cells_bound, TerrainBoundInputs};
-use super::{Goal, Link, Meter, PlanError, Planner, Query, QueryField, RouteSummary, MAX_LINKS};
+use super::{
+    Goal, Link, Meter, Phase, PlanError, Planner, Query, QueryField, RouteSummary, Work, MAX_LINKS,
+};
 use super::{MAX_CANDIDATES, MAX_POPUP_VERTICES};
 use crate::geometry::grid::{arc_cells, primitive_cells, CellGrid};
 use crate::geometry::{Arc, DubinsPath, DubinsWord, Pose, Primitive, Turn, Vec2};
@@ -236,16 +238,21 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &mut self,
         query: &Query,
         meter: &mut Meter,
+        observe: &mut dyn FnMut(Phase, &Work),
     ) -> Result<RouteSummary, PlanError> {
         if let ModeState::Terrain(t) = &mut self.state {
             t.arc_stats = ArcCheckStats::default();
         }
+        observe(Phase::CheckFree, &meter.work);
         self.check_over_terrain(query.start.position, QueryField::Start, meter)?;
         self.check_over_terrain(query.goal.position, QueryField::Goal, meter)?;
         self.check_free(query.start.position, QueryField::Start, meter)?;
         self.check_free(query.goal.position, QueryField::Goal, meter)?;
+        observe(Phase::ConnectStart, &meter.work);
         self.connect_terrain_start(&query.start, meter)?;
+        observe(Phase::ConnectGoal, &meter.work);
         self.connect_terrain_goal(&query.goal, meter)?;
+        observe(Phase::ConnectDirect, &meter.work);
         // Always tried: its check is bounded by the grid, not by the connect radius.
         let direct = self.direct_terrain_path(&query.start, &query.goal, meter)?;
         if self.start_links.is_empty() && direct.is_none() {
@@ -255,7 +262,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             return Err(PlanError::GoalUnconnected);
         }
         let direct = direct.map(|p| (p.length(), p));
+        observe(Phase::Search, &meter.work);
         let arrival = self.search(query, Ends::Links, direct, meter)?;
+        observe(Phase::Route, &meter.work);
         self.write_terrain_route(arrival, meter)
     }
 
@@ -330,6 +339,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     vertex: v,
                     path,
                     cost: 0.0,
+                    pending: false,
                 });
                 continue;
             }
@@ -346,6 +356,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         vertex: v,
                         path,
                         cost: path.length(),
+                        pending: false,
                     });
                 }
                 meter.check()?;
@@ -418,6 +429,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         vertex: v,
                         path,
                         cost: path.length(),
+                        pending: false,
                     });
                 }
                 meter.check()?;

@@ -6,8 +6,8 @@
 //! | counter | one unit is |
 //! |---|---|
 //! | `vertex_scans` | reading one vertex's pose (candidate search, heap reset, route walk) |
-//! | `dubins_solves` | solving one Dubins path (six words) |
-//! | `collision_tests` | one obstacle bounding-box test, or one exact predicate against one polygon edge, containment test or circle |
+//! | `dubins_solves` | solving one Dubins path (six words), or picking the next shortest goal path to check (a scan of ≤ 360 stored lengths) and solving its one word again |
+//! | `collision_tests` | one obstacle bounding-box test (or the distance of its box from an endpoint, with an insertion into a sorted list of ≤ 32), or one exact predicate against one polygon edge, containment test or circle |
 //! | `heap_steps` | one level of a heap sift (push, decrease-key or pop) |
 //! | `relaxations` | examining one out-edge or one goal link of a popped vertex |
 //! | `cells_visited` | one grid cell visited by a terrain traversal (its elevation code compared) |
@@ -98,20 +98,27 @@ pub struct WorkBoundInputs {
 ///
 /// * free-space checks of start and goal: 2(O + P) collision tests;
 /// * candidate search: 2|V| vertex scans (start and goal);
-/// * connections: N = C + C·H + H Dubins solves (start candidates, goal candidates over each
-///   heading, direct start–goal over each heading), each of ≤ 3 primitives, each tested against
-///   every obstacle's box (O), every polygon edge and containment (points + O), and every pop-up
-///   (P·(popup_vertices + 1)): 3·N·(2O + points + P·(popup_vertices + 1)) collision tests;
+/// * connections: N = 2C + C·H + H paths (start candidates, one probe per goal candidate,
+///   goal candidates over each heading, direct start–goal over each heading), each one Dubins
+///   solve; picking the next shortest goal path to check and solving its word again, ≤ C·H + H
+///   more; the obstacle windows of the start and the goal (in the connection, and once more in
+///   the search for pending goal links), 3O collision tests; each path checked at most once,
+///   ≤ 3 primitives, each tested against every obstacle's box (O), every polygon edge and
+///   containment (points + O), and every pop-up (P·(popup_vertices + 1)): 3·N·(2O + points +
+///   P·(popup_vertices + 1)) collision tests;
 /// * search: |V| heap resets; ≤ |V| pops and ≤ Ks + |E| pushes or decreases of ≤ L = ⌊log2|V|⌋+1
 ///   levels each; ≤ |E| out-edge and ≤ |V|·Kg goal-link relaxations;
 /// * route: ≤ 2(|V| + 1) vertex scans for the two walks back from the goal.
 pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
     let v = n.vertices;
     let levels = heap_levels(v);
-    let connections = n.candidates + n.candidates * n.goal_headings + n.goal_headings;
+    let goal_paths = n.candidates * n.goal_headings + n.goal_headings;
+    let connections = 2 * n.candidates + goal_paths;
     let per_primitive = 2 * n.obstacles + n.obstacle_points + n.popups * (n.popup_vertices + 1);
     let candidates = 2 * v;
-    let connecting = connections + 3 * connections * per_primitive;
+    let solves = connections + goal_paths;
+    let windows = 3 * n.obstacles;
+    let connecting = solves + windows + 3 * connections * per_primitive;
     let search = v + (v + n.start_links + n.edges) * levels + n.edges + v * n.goal_links;
     let route = 2 * (v + 1);
     let endpoints_free = 2 * (n.obstacles + n.popups);

@@ -1232,3 +1232,40 @@ fn zero_length_right_arcs_keep_their_side() {
         check_properties(&c, &p, r * theta).unwrap_or_else(|e| panic!("{e}; {c:?}"));
     }
 }
+
+/// `DubinsPath::length_lower_bound` is below the length of every path of every word, in every
+/// case family (the planner skips a goal link whose bound shows it cannot improve the route,
+/// so a computed length under the bound could change a route). Prints the smallest margin,
+/// relative to the radius, by which a length exceeds a positive bound.
+#[test]
+fn every_word_is_at_least_the_length_lower_bound() {
+    let mut rng = Rng(0x5EED_D0B1_0000_0004);
+    let mut failures = Failures::default();
+    let mut n = 0usize;
+    let (mut closest, mut at) = (f64::INFINITY, String::new());
+    for (fam, count) in FAMILIES {
+        for _ in 0..cases(count / 10, count) {
+            let c = gen_case(&mut rng, fam);
+            let (s, g) = (c.start(), c.goal());
+            let bound = DubinsPath::length_lower_bound(s.position, g.position, c.r);
+            for w in DubinsWord::ALL {
+                let Some(p) = DubinsPath::with_word(&s, &g, c.r, w) else {
+                    continue;
+                };
+                n += 1;
+                let slack = (p.length() - bound) as f64 / c.r64();
+                if bound > 0.0 && slack < closest {
+                    (closest, at) = (slack, format!("({fam:?} {}; {c:?})", w.name()));
+                }
+                if p.length() < bound || p.length().is_nan() {
+                    failures.add(
+                        format!("{fam:?} {}", w.name()),
+                        format!("length {} < bound {bound}; {c:?}", p.length()),
+                    );
+                }
+            }
+        }
+    }
+    println!("length lower bound: {n} paths; smallest (length - bound) / r: {closest:.3e} {at}");
+    failures.assert_none("paths shorter than the lower bound", n);
+}

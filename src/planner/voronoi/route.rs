@@ -146,6 +146,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         vertex: v,
                         path: straight(a, b, radius),
                         cost,
+                        pending: false,
                     };
                     let _ = if from_start {
                         self.start_links.push(link)

@@ -1,0 +1,99 @@
+//! The static obstacles near an endpoint, read from the network once for all of the
+//! endpoint's connections.
+//!
+//! Connecting the start or the goal checks up to hundreds of Dubins paths that all begin or end
+//! at one point, each against every obstacle. An [`ObstacleWindow`] keeps the
+//! [`WINDOW_OBSTACLES`] obstacles whose bounding boxes lie nearest to that point, read once, and
+//! the distance `reach` of the nearest box it left out. Every point of a path of length `L`
+//! starting at `s` lies within `L + |s − centre|` of the centre, so when that plus the clearance
+//! stays below `reach` (with a margin far above f32 rounding), no obstacle left out can come
+//! within the clearance of the path, and checking the kept ones decides exactly what checking
+//! all of them would.
+
+use super::Meter;
+use crate::geometry::{DubinsPath, Vec2};
+use crate::network::{Network, Obstacle};
+use heapless::Vec;
+
+/// Obstacles an [`ObstacleWindow`] keeps.
+pub(super) const WINDOW_OBSTACLES: usize = 32;
+
+/// An obstacle as the window keeps it: the distance of its bounding box from the centre, the
+/// obstacle, and its bounding box `(min, max)`.
+pub(super) type NearObstacle<'n> = (f32, Obstacle<'n>, (Vec2, Vec2));
+
+/// The obstacles nearest to a point (see the module documentation).
+pub(super) struct ObstacleWindow<'n> {
+    centre: Vec2,
+    /// The kept obstacles, every one at most as far as any left out, in no particular order.
+    near: Vec<NearObstacle<'n>, WINDOW_OBSTACLES>,
+    /// Distance of the nearest box left out (+∞ when every obstacle is kept).
+    reach: f32,
+}
+
+impl<'n> ObstacleWindow<'n> {
+    /// A window that keeps nothing and covers no path: every check reads the network.
+    pub(super) fn none(centre: Vec2) -> Self {
+        Self {
+            centre,
+            near: Vec::new(),
+            reach: f32::NEG_INFINITY,
+        }
+    }
+
+    /// The window around `centre`. Work: one collision test per obstacle (the distance of its
+    /// bounding box, with, for an obstacle nearer than the farthest kept, a scan of the ≤
+    /// [`WINDOW_OBSTACLES`] kept for the new farthest). A record that cannot be read
+    /// (validation rules that out) gives [`ObstacleWindow::none`].
+    pub(super) fn around(network: &Network<'n>, centre: Vec2, meter: &mut Meter) -> Self {
+        let mut window = Self {
+            centre,
+            near: Vec::new(),
+            reach: f32::INFINITY,
+        };
+        // Once the window is full, the index of its farthest box: a nearer one replaces it.
+        let mut farthest = 0;
+        for i in 0..network.obstacle_count() {
+            meter.work.collision_tests += 1;
+            let Some((obstacle, (lo, hi))) = network.obstacle(i) else {
+                return Self::none(centre);
+            };
+            let dx = (lo.x - centre.x).max(centre.x - hi.x).max(0.0);
+            let dy = (lo.y - centre.y).max(centre.y - hi.y).max(0.0);
+            let d = libm::sqrtf(dx * dx + dy * dy);
+            if !(d >= 0.0) {
+                return Self::none(centre); // not finite: validation rules it out
+            }
+            let entry = (d, obstacle, (lo, hi));
+            if !window.near.is_full() {
+                let _ = window.near.push(entry);
+            } else if let Some(f) = window.near.get_mut(farthest).filter(|f| d < f.0) {
+                window.reach = window.reach.min(f.0);
+                *f = entry;
+            } else {
+                window.reach = window.reach.min(d);
+                continue;
+            }
+            if window.near.is_full() {
+                farthest = (0..window.near.len())
+                    .max_by(|&a, &b| window.near[a].0.total_cmp(&window.near[b].0))
+                    .unwrap_or(0);
+            }
+        }
+        window
+    }
+
+    /// The kept obstacles, if they are all that can come within `clearance` of `path`;
+    /// `None` when the path may reach beyond the window (check it against every obstacle).
+    pub(super) fn covering(
+        &self,
+        path: &DubinsPath,
+        clearance: f32,
+    ) -> Option<&[NearObstacle<'n>]> {
+        // Every point of the path lies within its length of its start.
+        let extent = path.length() + path.start.position.distance(self.centre) + clearance;
+        // Far above the rounding of the primitives and predicates (≈ 10⁻⁶ relative).
+        let margin = 1.0 + 1e-3 * (extent + self.centre.x.abs() + self.centre.y.abs());
+        (extent + margin < self.reach).then_some(self.near.as_slice())
+    }
+}
