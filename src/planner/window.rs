@@ -75,9 +75,12 @@ impl<'n> ObstacleWindow<'n> {
                 continue;
             }
             if window.near.is_full() {
-                farthest = (0..window.near.len())
-                    .max_by(|&a, &b| window.near[a].0.total_cmp(&window.near[b].0))
-                    .unwrap_or(0);
+                farthest = window
+                    .near
+                    .iter()
+                    .enumerate()
+                    .max_by(|(_, a), (_, b)| a.0.total_cmp(&b.0))
+                    .map_or(0, |(k, _)| k);
             }
         }
         window
