@@ -86,20 +86,11 @@ for name in "${names[@]}"; do
     status=$?
     set -e
     python3 - "$elf" "$dir/run.log" "$name" "$mode" "$bytes" "$target" "$status" <<'EOF' | tee -a "$out"
-import re, struct, sys
+import re, sys
+sys.path.insert(0, "scripts")
+from elf_sizes import sizes
 elf, log, name, mode, size, target, status = sys.argv[1:]
-data = open(elf, "rb").read()
-shoff, = struct.unpack_from("<I", data, 0x20)
-shentsize, shnum, shstrndx = struct.unpack_from("<HHH", data, 0x2E)
-flash = ram = 0
-for i in range(shnum):
-    n, typ, flags, addr, off, sz = struct.unpack_from("<IIIIII", data, shoff + i * shentsize)
-    if not flags & 2 or sz == 0:
-        continue
-    if 0x20000000 <= addr < 0x30000000:
-        ram += sz
-    if typ != 8:
-        flash += sz
+flash, ram, _ = sizes(elf, 0x10000000)  # the whole RAM window of either target
 text = open(log, errors="replace").read()
 per_tick = {"netduinoplus2": 168e6, "mps2-an500": 25e6}[target]
 per_tick = 1e9 / per_tick  # -icount shift=0: one instruction per virtual nanosecond

@@ -284,42 +284,11 @@ firmware_run() {
         bash scripts/run-firmware.sh "$1"
 }
 
-# firmware_size ELF: the firmware's flash and RAM. Flash: everything loaded into flash (vector
-# table, code, read-only data with the network, and the initial image of .data); RAM: .data +
-# .bss + .uninit (the stack takes the rest of the RAM from the top down). Read from the ELF's
-# section headers. FLASH and RAM: the target's sizes in bytes (default the STM32F405's 1 MiB and
-# 128 KiB; RAM at 0x20000000 on both targets).
+# firmware_size ELF [FLASH RAM]: the firmware's flash and RAM from the ELF's section headers
+# (scripts/elf_sizes.py); FLASH and RAM are the target's sizes in bytes (default the
+# STM32F405's 1 MiB and 128 KiB).
 firmware_size() {
-    python3 - "$1" "${2:-1048576}" "${3:-131072}" <<'EOF'
-import struct, sys
-data = open(sys.argv[1], "rb").read()
-flash_size, ram_size = int(sys.argv[2]), int(sys.argv[3])
-assert data[:4] == b"\x7fELF" and data[4] == 1, "expected a 32-bit ELF"
-shoff, = struct.unpack_from("<I", data, 0x20)
-shentsize, shnum, shstrndx = struct.unpack_from("<HHH", data, 0x2E)
-def sh(i):
-    return struct.unpack_from("<IIIIIIIIII", data, shoff + i * shentsize)
-strtab_off = sh(shstrndx)[4]
-def name(off):
-    return data[strtab_off + off:data.index(b"\0", strtab_off + off)].decode()
-SHF_ALLOC, SHT_NOBITS = 0x2, 8
-flash = ram = 0
-rows = []
-for i in range(shnum):
-    n, typ, flags, addr, off, size = sh(i)[:6]
-    if not flags & SHF_ALLOC or size == 0:
-        continue
-    in_ram = 0x20000000 <= addr < 0x20000000 + ram_size
-    if in_ram:
-        ram += size
-    if typ != SHT_NOBITS:
-        flash += size  # code/rodata in place, .data's initial image after them
-    rows.append((name(n), addr, size))
-for n, a, s in rows:
-    print(f"  {n:<16} 0x{a:08x} {s:>9} B")
-print(f"flash: {flash} B of {flash_size} ({100 * flash / flash_size:.1f} %)")
-print(f"RAM:   {ram} B of {ram_size} ({100 * ram / ram_size:.1f} %) static; the stack has the rest")
-EOF
+    python3 scripts/elf_sizes.py "$1" "${2:-1048576}" "${3:-131072}"
 }
 
 step "install missing tools" install_missing
