@@ -95,6 +95,13 @@ pub enum ErrorKind {
     Holes(usize),
     /// The polygon's ring has fewer than 3 distinct points.
     TooFewPoints(usize),
+    /// More of something than the scenario format's limit allows (see [`super::limits`]).
+    TooMany {
+        /// What is counted ("bytes", "ring vertices", "waypoints").
+        what: &'static str,
+        /// The limit.
+        limit: u64,
+    },
     /// Two edges of the polygon's ring meet (0-based edge `i` runs from vertex `i` to `i + 1`).
     SelfIntersecting {
         /// The first edge.
@@ -196,6 +203,9 @@ impl fmt::Display for ErrorKind {
                 f,
                 "polygon has {n} rings: holes are not supported, give one exterior ring"
             ),
+            ErrorKind::TooMany { what, limit } => {
+                write!(f, "more than {limit} {what}, the scenario format's limit")
+            }
             ErrorKind::TooFewPoints(n) => {
                 write!(f, "polygon ring has {n} distinct points, fewer than 3")
             }

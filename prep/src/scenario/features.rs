@@ -101,6 +101,13 @@ impl Parser<'_> {
                 },
             )
         })?;
+        if ring_v.len() > super::limits::MAX_RING_VERTICES + 1 {
+            let too_many = ErrorKind::TooMany {
+                what: "ring vertices",
+                limit: super::limits::MAX_RING_VERTICES as u64,
+            };
+            return Err(self.err(at, field, too_many));
+        }
         let mut ring = Vec::with_capacity(ring_v.len());
         for (i, p) in ring_v.iter().enumerate() {
             ring.push(self.position(at, p, &format!("{ring_field}[{i}]"))?);

@@ -83,29 +83,66 @@ fn segments_meet(a: P, b: P, c: P, d: P) -> bool {
         || (o4 == 0 && within(c, d, b))
 }
 
-/// The first pair of edges `(i, j, overlap)` of the closed ring (no repeated consecutive
-/// vertices) that meet other than at their shared vertex: non-adjacent edges that touch or
-/// cross, or adjacent edges that fold back onto each other (`overlap`).
+/// The first pair of edges `(i, j, overlap)` (smallest `i`, then smallest `j`) of the closed
+/// ring (no repeated consecutive vertices) that meet other than at their shared vertex:
+/// non-adjacent edges that touch or cross, or adjacent edges that fold back onto each other
+/// (`overlap`).
+///
+/// Adjacent pairs are checked directly (n tests). Non-adjacent pairs go through a sort-and-sweep
+/// on the edges' x-extents: the edges sorted by their least x, each compared only with the
+/// earlier edges whose x-extent still reaches it and whose y-extent overlaps its own, and only
+/// those pairs get the exact test. That is O(n log n + k) for k pairs of overlapping boxes: a
+/// 20 000-vertex circle is checked in milliseconds, where comparing every pair took minutes.
 pub(super) fn first_self_intersection(ring: &[P]) -> Option<(usize, usize, bool)> {
     let n = ring.len();
     let edge = |i: usize| (ring[i], ring[(i + 1) % n]);
-    for i in 0..n {
-        for j in i + 1..n {
-            let (a, b) = edge(i);
-            let (c, d) = edge(j);
-            if j == i + 1 || (i == 0 && j == n - 1) {
-                // Adjacent: they share one vertex s; they overlap iff the other two ends lie on
-                // the same ray from s.
-                let (s, u, w) = if j == i + 1 { (b, a, d) } else { (a, b, c) };
-                if orient(u, s, w) == 0 && dot_sign(s, u, w) > 0 {
-                    return Some((i, j, true));
-                }
-            } else if segments_meet(a, b, c, d) {
-                return Some((i, j, false));
-            }
+    let mut first: Option<(usize, usize, bool)> = None;
+    let mut keep = |found: (usize, usize, bool)| {
+        if first.is_none_or(|f| (found.0, found.1) < (f.0, f.1)) {
+            first = Some(found);
+        }
+    };
+    for i in 0..n.saturating_sub(1) {
+        // Edges i and i + 1 share the vertex s; they overlap iff the other two ends lie on the
+        // same ray from s.
+        let (u, s) = edge(i);
+        let (_, w) = edge(i + 1);
+        if orient(u, s, w) == 0 && dot_sign(s, u, w) > 0 {
+            keep((i, i + 1, true));
         }
     }
-    None
+    if n > 2 {
+        // Edges 0 and n − 1 share vertex 0.
+        let ((s, u), (w, _)) = (edge(0), edge(n - 1));
+        if orient(u, s, w) == 0 && dot_sign(s, u, w) > 0 {
+            keep((0, n - 1, true));
+        }
+    }
+    let bounds = |i: usize| {
+        let (a, b) = edge(i);
+        (a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1))
+    };
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&i, &j| bounds(i).0.total_cmp(&bounds(j).0));
+    let mut active: Vec<usize> = Vec::new();
+    for &j in &order {
+        let (x_min, _, y_min, y_max) = bounds(j);
+        active.retain(|&i| bounds(i).1 >= x_min);
+        for &i in &active {
+            let (lo, hi) = (i.min(j), i.max(j));
+            let adjacent = hi == lo + 1 || (lo == 0 && hi == n - 1);
+            let (_, _, iy_min, iy_max) = bounds(i);
+            if adjacent || iy_max < y_min || y_max < iy_min {
+                continue;
+            }
+            let ((a, b), (c, d)) = (edge(lo), edge(hi));
+            if segments_meet(a, b, c, d) {
+                keep((lo, hi, false));
+            }
+        }
+        active.push(j);
+    }
+    first
 }
 
 /// Whether `p` lies inside or on the boundary of the simple polygon `ring` (exact winding

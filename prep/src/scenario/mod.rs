@@ -61,11 +61,47 @@ pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
     load_with(path, &ParseOptions::default())
 }
 
+/// The scenario format's size limits, checked before the input is read or stored whole. They
+/// are far above the shipped scenarios (the largest is 0.4 MB, 120 no-fly vertices a ring, 5
+/// waypoints) and keep a wrong or hostile file from taking unbounded memory or time.
+pub mod limits {
+    /// The largest scenario file read, bytes (a longer file is refused after reading this
+    /// many bytes, so `/dev/zero` fails at once).
+    pub const MAX_SCENARIO_BYTES: u64 = 16 << 20;
+    /// The most vertices in one no-fly ring.
+    pub const MAX_RING_VERTICES: usize = 100_000;
+    /// The most waypoints in a scenario: each free-heading waypoint costs `plan` about a
+    /// quarter of a second on the urban network, so this is two minutes of planning.
+    pub const MAX_WAYPOINTS: usize = 500;
+}
+
 /// Reads and checks the scenario at `path`.
 pub fn load_with(path: &Path, options: &ParseOptions) -> Result<Scenario, ScenarioError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| ScenarioError::new(path, None, "", ErrorKind::Io(e.to_string())))?;
+    let text = read_bounded(path)?;
     parse_with(&text, path, options)
+}
+
+/// The text of `path`, refused when it is longer than [`limits::MAX_SCENARIO_BYTES`] or not
+/// UTF-8.
+fn read_bounded(path: &Path) -> Result<String, ScenarioError> {
+    use std::io::Read;
+    let io = |e: std::io::Error| ScenarioError::new(path, None, "", ErrorKind::Io(e.to_string()));
+    let file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::new();
+    file.take(limits::MAX_SCENARIO_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() as u64 > limits::MAX_SCENARIO_BYTES {
+        let too_long = ErrorKind::TooMany {
+            what: "bytes",
+            limit: limits::MAX_SCENARIO_BYTES,
+        };
+        return Err(ScenarioError::new(path, None, "", too_long));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        let why = format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to());
+        ScenarioError::new(path, None, "", ErrorKind::Io(why))
+    })
 }
 
 /// Reads and checks the scenario at `path`, taken as `mode` instead of its `planner.mode`
@@ -109,5 +145,7 @@ pub fn parse_with(
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_geometry;
 #[cfg(test)]
 mod tests_inputs;

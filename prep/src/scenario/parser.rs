@@ -490,6 +490,13 @@ impl Parser<'_> {
                 *endpoint = Some(e);
                 *first = Some(me.clone());
             }
+            None if s.waypoints.len() >= super::limits::MAX_WAYPOINTS => {
+                let too_many = ErrorKind::TooMany {
+                    what: "waypoints",
+                    limit: super::limits::MAX_WAYPOINTS as u64,
+                };
+                return Err(self.err(at, "properties.kind", too_many));
+            }
             None => s.waypoints.push(e),
         }
         seen.placed.push(Placed {

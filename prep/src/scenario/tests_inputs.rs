@@ -202,3 +202,78 @@ fn non_finite_vehicle_and_planner_numbers_are_named() {
         "{m}"
     );
 }
+
+#[test]
+fn more_waypoints_than_the_limit_are_refused_at_the_first_extra_one() {
+    let start = point("start", "S", r#", "heading_deg": 90"#);
+    let waypoints = |n: usize| -> String {
+        (0..n)
+            .map(|i| point("waypoint", &format!("W{i}"), ""))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let at_limit = doc(
+        "roadmap",
+        &format!("{start}, {}", waypoints(limits::MAX_WAYPOINTS)),
+    );
+    let s = parse(&at_limit, Path::new(FILE)).expect("the limit itself is accepted");
+    assert_eq!(s.waypoints.len(), limits::MAX_WAYPOINTS);
+    let over = doc(
+        "roadmap",
+        &format!("{start}, {}", waypoints(limits::MAX_WAYPOINTS + 1)),
+    );
+    assert_eq!(
+        message(&over),
+        format!(
+            "{FILE}: feature 501 (W500): properties.kind: more than 500 waypoints, the scenario \
+             format's limit"
+        )
+    );
+}
+
+#[test]
+fn a_ring_longer_than_the_limit_is_refused_before_it_is_checked() {
+    let n = limits::MAX_RING_VERTICES + 1;
+    let ring: Vec<String> = (0..=n)
+        .map(|i| {
+            let t = std::f64::consts::TAU * (i % n) as f64 / n as f64;
+            format!("[{}, {}]", 10.0 + 0.1 * t.cos(), 48.0 + 0.1 * t.sin())
+        })
+        .collect();
+    let zone = format!(
+        r#"{{"type": "Feature", "properties": {{"kind": "no_fly", "name": "Z"}},
+            "geometry": {{"type": "Polygon", "coordinates": [[{}]]}}}}"#,
+        ring.join(", ")
+    );
+    let m = message(&doc("roadmap", &zone));
+    assert_eq!(
+        m,
+        format!(
+            "{FILE}: feature 0 (Z): geometry.coordinates: more than 100000 ring vertices, the \
+             scenario format's limit"
+        )
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn an_endless_file_is_refused_after_the_byte_limit() {
+    let e = load(Path::new("/dev/zero")).expect_err("refused");
+    assert_eq!(
+        e.to_string(),
+        "/dev/zero: more than 16777216 bytes, the scenario format's limit"
+    );
+}
+
+#[test]
+fn a_file_that_is_not_utf8_names_the_first_bad_byte() {
+    let path = std::env::temp_dir().join(format!("skyroute-latin1-{}.geojson", std::process::id()));
+    std::fs::write(&path, b"{\"name\": \"M\xfcnchen\"}").unwrap();
+    let e = load(&path).expect_err("refused");
+    std::fs::remove_file(&path).ok();
+    assert!(
+        e.to_string()
+            .ends_with("cannot read: not UTF-8 text (byte 11)"),
+        "{e}"
+    );
+}
