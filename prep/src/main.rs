@@ -30,6 +30,8 @@ Outputs are written to a temporary file and renamed, so a failure leaves no part
 const BUILD_LIMITS: &str =
     "Limits (each checked before the allocation it bounds; exit code 1, and the
 message names the file and the field, or the option):
+  scenario files: at most 16 MiB (read no further), 100 000 vertices a no-fly ring,
+    500 waypoints (each free-heading waypoint costs `plan` about 0.25 s on the urban network)
   roadmap: the scenario's positions span at most 1000 km a side in its local frame;
     sample spacing at least 1 m; at most 1 048 576 sample candidates (2 x area / spacing^2);
     at most 33 554 432 neighbour pairs, estimated as (candidates / 2)^2 x

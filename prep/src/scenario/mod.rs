@@ -62,7 +62,7 @@ pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
 }
 
 /// The scenario format's size limits, checked before the input is read or stored whole. They
-/// are far above the shipped scenarios (the largest is 0.4 MB, 120 no-fly vertices a ring, 5
+/// are far above the shipped scenarios (the largest is 41 kB, 10 vertices a no-fly ring, 4
 /// waypoints) and keep a wrong or hostile file from taking unbounded memory or time.
 pub mod limits {
     /// The largest scenario file read, bytes (a longer file is refused after reading this
