@@ -13,7 +13,7 @@ use crate::scenario::{Endpoint, Scenario};
 use rayon::prelude::*;
 use skyroute::network::Mode;
 use skyroute::planner::{
-    Goal, PlanError, PlannerConfig, Query, QueryField, RouteSummary, Search, Work,
+    Goal, PlanError, PlannerConfig, Query, QueryField, RouteSummary, Search, Violation, Work,
 };
 use skyroute::{Planner, Pose, Primitive, Vec2};
 use std::fmt;
@@ -518,6 +518,40 @@ fn walk_back(stages: &[Stage], best: &[StageBest]) -> Result<Vec<usize>, Mission
         k = best[i][k].map(|v| v.1).unwrap_or(0);
     }
     Ok(chosen)
+}
+
+/// What a leg that began inside (or within the clearance of) a no-fly zone, threat or pop-up
+/// did first, for the command line: the region's name and the exit's length; `None` for a leg
+/// that began clear. The core numbers obstacles as the scenario's no-fly zones then its
+/// threats, and pop-ups by the order they were added (`popups`).
+pub fn exit_note(leg: &Leg, scenario: &Scenario, popups: &[LocalPopup]) -> Option<String> {
+    let exit = leg.summary.exit?;
+    let region = match exit.violated {
+        Violation::Obstacle(i) => scenario
+            .no_fly
+            .iter()
+            .map(|z| format!("no-fly zone {:?}", z.name))
+            .chain(
+                scenario
+                    .threats
+                    .iter()
+                    .map(|t| format!("threat {:?}", t.name)),
+            )
+            .nth(i as usize)
+            .unwrap_or_else(|| format!("network obstacle {i}")),
+        Violation::Popup(id) => popups
+            .get(id as usize)
+            .map_or_else(|| format!("pop-up {id}"), |p| p.name.clone()),
+    };
+    let others = match exit.regions {
+        1 => String::new(),
+        n => format!(" and {} more", n - 1),
+    };
+    Some(format!(
+        "{} lies inside or within the clearance of {region}{others}: the leg first leaves by a \
+         {:.1} m exit",
+        leg.from, exit.length
+    ))
 }
 
 /// Plans the chosen legs once more to keep their geometry, post-processed; returns them and

@@ -273,6 +273,9 @@ fn plan_mission_route(
                 ""
             }
         );
+        if let Some(note) = crate::mission::exit_note(l, s, popups) {
+            println!("    {note}");
+        }
     }
     println!(
         "planned {}: {:.1} m over {} legs ({} core queries to choose headings), {:.2} s -> {}",

@@ -89,6 +89,14 @@ pub fn mission_json(m: &Mission, frame: &LocalFrame, scenario_name: &str) -> Val
             "network_edges": l.summary.network_edges,
             "arrival_heading_rad": l.summary.arrival_heading,
             "work": work_json(&l.summary.work),
+            "exit": l.summary.exit.map(|e| json!({
+                "region": match e.violated {
+                    skyroute::planner::Violation::Obstacle(i) => json!({"obstacle": i}),
+                    skyroute::planner::Violation::Popup(id) => json!({"popup": id}),
+                },
+                "regions": e.regions,
+                "length_m": e.length,
+            })),
             "primitives": l.primitives.iter().map(primitive_json).collect::<Vec<_>>(),
         })).collect::<Vec<_>>(),
         "geometry": {"type": "LineString", "coordinates": sampled_lon_lat(&all, frame, 5.0)},

@@ -7,6 +7,7 @@
 mod dubins;
 pub mod grid;
 pub mod hermite;
+pub mod line_cover;
 pub mod predicates;
 pub mod spline;
 pub mod trig;

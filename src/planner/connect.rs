@@ -421,7 +421,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 /// Whether `prim` comes within `clearance` of `obstacle` (exact predicates), counting one
 /// collision test per polygon edge and one for its containment test, or one for a circle.
 #[inline(always)]
-fn conflicts(prim: &Primitive, obstacle: &Obstacle<'_>, clearance: f32, meter: &mut Meter) -> bool {
+pub(super) fn conflicts(
+    prim: &Primitive,
+    obstacle: &Obstacle<'_>,
+    clearance: f32,
+    meter: &mut Meter,
+) -> bool {
     match obstacle {
         Obstacle::Polygon(poly) => {
             meter.work.collision_tests += poly.count_elements();

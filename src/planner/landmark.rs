@@ -290,6 +290,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             network_edges: edges,
             arrival_heading,
             work: meter.work,
+            exit: None,
         };
         self.summary = Some(summary);
         Ok(summary)

@@ -12,6 +12,7 @@
 mod connect;
 pub mod decision;
 mod error;
+mod exit;
 pub mod heap;
 mod landmark;
 mod popup;
@@ -26,6 +27,9 @@ mod window;
 pub mod work;
 
 pub use error::{PlanError, PopupError, QueryField};
+pub use exit::{
+    Exit, Violation, EXIT_MARGIN_M, EXIT_TURN_STEPS, MAX_EXIT_INTERVALS, MAX_EXIT_REGIONS,
+};
 pub use landmark::POPUP_CHORDS_PER_PIECE;
 pub use popup::{Popup, PopupSummary, MAX_POPUP_VERTICES};
 pub use smooth::SmoothSummary;
@@ -37,9 +41,9 @@ pub use voronoi::{
     VORONOI_LINKS,
 };
 pub use work::{
-    cells_bound, landmark_plan_work_bound, landmark_popup_work_bound, plan_work_bound,
-    popup_work_bound, terrain_plan_work_bound, voronoi_plan_work_bound, TerrainBoundInputs,
-    VoronoiBoundInputs, Work, WorkBoundInputs,
+    cells_bound, exit_work_bound, landmark_plan_work_bound, landmark_popup_work_bound,
+    plan_work_bound, popup_work_bound, terrain_plan_work_bound, voronoi_plan_work_bound,
+    TerrainBoundInputs, VoronoiBoundInputs, Work, WorkBoundInputs,
 };
 
 use crate::geometry::{DubinsPath, Pose, Primitive, Vec2};
@@ -175,6 +179,9 @@ pub struct RouteSummary {
     pub arrival_heading: f32,
     /// Work the query counted.
     pub work: Work,
+    /// Roadmap mode: the exit the route begins with when the start lay inside or within the
+    /// clearance of an obstacle or pop-up (`planner/exit.rs`); `None` otherwise.
+    pub exit: Option<Exit>,
 }
 
 /// A connection between the start or goal and a network vertex.

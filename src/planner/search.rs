@@ -116,7 +116,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Roadmap mode's [`Planner::plan`], after the query's numbers were checked: connect the
-    /// start and goal to nearby vertices (and to each other), search, write the route.
+    /// start and goal to nearby vertices (and to each other), search, write the route. A start
+    /// inside or within the clearance of an obstacle or pop-up first leaves it by the exit of
+    /// `planner/exit.rs`, and the query goes on from where the exit ends.
     fn plan_roadmap(
         &mut self,
         query: &Query,
@@ -124,8 +126,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         observe: &mut dyn FnMut(Phase, &Work),
     ) -> Result<RouteSummary, PlanError> {
         observe(Phase::CheckFree, &meter.work);
-        self.check_free(query.start.position, QueryField::Start, meter)?;
         self.check_free(query.goal.position, QueryField::Goal, meter)?;
+        let exit = self.exit_from(&query.start, meter)?;
+        let query = &Query {
+            start: exit.map_or(query.start, |(path, _)| path.end()),
+            ..*query
+        };
         observe(Phase::ConnectStart, &meter.work);
         // The obstacles around the start, for the start links and the direct path.
         let window = ObstacleWindow::around(&self.network, query.start.position, meter);
@@ -150,7 +156,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         observe(Phase::Search, &meter.work);
         let arrival = self.search(query, Ends::Links, direct, meter)?;
         observe(Phase::Route, &meter.work);
-        self.write_route(arrival, meter)
+        let mut summary = self.write_route(arrival, exit.as_ref().map(|(path, _)| path), meter)?;
+        summary.exit = exit.map(|(_, e)| e);
+        self.summary = Some(summary);
+        Ok(summary)
     }
 
     /// The one search of every mode: Dijkstra (or A*, over vertices) from the start links (or
@@ -484,11 +493,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Ok(edges)
     }
 
-    /// Replaces the route with the one `arrival` describes, if it fits in `R` paths and `R`
-    /// primitives.
+    /// Replaces the route with the one `arrival` describes, after `exit` when the start had
+    /// to leave a keep-out region, if it fits in `R` paths and `R` primitives.
     fn write_route(
         &mut self,
         arrival: Arrival,
+        exit: Option<&DubinsPath>,
         meter: &mut Meter,
     ) -> Result<RouteSummary, PlanError> {
         let (link, direct) = match arrival {
@@ -500,14 +510,18 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             ),
         };
         self.write_path_route(meter, link.is_some(), |me, meter, visit| {
-            match (link, direct) {
+            let edges = match (link, direct) {
                 (Some(link), _) => me.walk_back(&link, meter, visit),
                 (None, Some(path)) => {
                     visit(&path);
                     Ok(0)
                 }
                 (None, None) => Err(PlanError::Internal),
+            }?;
+            if let Some(path) = exit {
+                visit(path); // the walk is goal end first: the exit is the route's first path
             }
+            Ok(edges)
         })
     }
 
@@ -566,6 +580,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             network_edges,
             arrival_heading: self.paths.last().map_or(0.0, |p| p.end().heading),
             work: meter.work,
+            exit: None,
         };
         self.summary = Some(summary);
         summary

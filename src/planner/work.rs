@@ -108,7 +108,8 @@ pub struct WorkBoundInputs {
 ///   P·(popup_vertices + 1)) collision tests;
 /// * search: |V| heap resets; ≤ |V| pops and ≤ Ks + |E| pushes or decreases of ≤ L = ⌊log2|V|⌋+1
 ///   levels each; ≤ |E| out-edge and ≤ |V|·Kg goal-link relaxations;
-/// * route: ≤ 2(|V| + 1) vertex scans for the two walks back from the goal.
+/// * route: ≤ 2(|V| + 1) vertex scans for the two walks back from the goal;
+/// * the exit from a keep-out region the start lies in: [`exit_work_bound`].
 pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
     let v = n.vertices;
     let levels = heap_levels(v);
@@ -122,7 +123,25 @@ pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
     let search = v + (v + n.start_links + n.edges) * levels + n.edges + v * n.goal_links;
     let route = 2 * (v + 1);
     let endpoints_free = 2 * (n.obstacles + n.popups);
-    endpoints_free + candidates + connecting + search + route
+    endpoints_free + candidates + connecting + search + route + exit_work_bound(n)
+}
+
+/// The most work the exit from a keep-out region can count (`planner/exit.rs`). With
+/// `Q = 2O + points + P·(popup_vertices + 1)`, the tests that place one point among every
+/// obstacle and pop-up (and the cost of checking one primitive against all of them):
+///
+/// * the regions the start lies in: Q;
+/// * each of the 2·EXIT_TURN_STEPS + 1 candidates: the trace of the regions, at most
+///   2·(points + P·popup_vertices) (an interval and a crossing per edge); the sort of at most
+///   MAX_EXIT_INTERVALS intervals, counted as its square; its ≤ 3 primitives checked against
+///   the rest, 3Q; the regions its end lies in, Q;
+/// * a refusal when no candidate is kept: O + P free-space tests and Q.
+pub fn exit_work_bound(n: &WorkBoundInputs) -> u64 {
+    let q = 2 * n.obstacles + n.obstacle_points + n.popups * (n.popup_vertices + 1);
+    let candidates = 2 * super::EXIT_TURN_STEPS as u64 + 1;
+    let trace = 2 * (n.obstacle_points + n.popups * n.popup_vertices);
+    let sort = (super::MAX_EXIT_INTERVALS * super::MAX_EXIT_INTERVALS) as u64;
+    q + candidates * (trace + sort + 4 * q) + n.obstacles + n.popups + q
 }
 
 /// The most work one [`Planner::add_popup`](super::Planner::add_popup) can count: every grid

@@ -8,6 +8,8 @@
 mod compact_records;
 /// The pop-up decision (Ruz et al.) against a brute force over every combination.
 mod decision;
+/// A start inside an obstacle or pop-up: the exit against a marching f64 reference.
+mod drift_exit;
 /// Dubins paths against OMPL's CSV and an f64 brute force.
 mod dubins;
 /// `geometry::grid` traversals against sampled and exact f64 references.

@@ -403,7 +403,9 @@ fn bad_queries_are_refused_and_keep_the_route() {
             field: QueryField::Goal
         })
     );
-    // A start inside the first obstacle.
+    // A start inside the first obstacle, heading north into the fourth, which overlaps it:
+    // every exit of the family (`planner/exit.rs`) runs into the fourth, so the start is
+    // refused, naming the obstacle it lies in.
     let inside = match &w.obstacles[0] {
         skyroute::network::write::ObstacleSpec::Polygon(pts) => (pts[0] + pts[2]) * 0.5,
         skyroute::network::write::ObstacleSpec::Circle { centre, .. } => *centre,

@@ -1,0 +1,320 @@
+//! A start inside (or within the clearance of) an obstacle or pop-up: the route begins with the
+//! shortest exit of the documented family, checked against an f64 reference that marches
+//! along each candidate in 1 cm steps; the rest of the route keeps the clearance; the work
+//! stays within the bound.
+
+use host_tests::reference::{dist, dist_point_segment, inside};
+use host_tests::world::{world, World};
+use host_tests::{cases, Rng};
+use skyroute::network::write::ObstacleSpec;
+use skyroute::planner::{
+    Exit, Goal, PlanError, Popup, Query, QueryField, Search, Violation, EXIT_MARGIN_M,
+    EXIT_TURN_STEPS,
+};
+use skyroute::{DubinsPath, Planner, Pose, Vec2};
+
+type TestPlanner<'n> = Planner<'n, 4096, 65536, 16, 1024>;
+
+type P = (f64, f64);
+
+/// A region in f64: a polygon or a disc.
+enum Region {
+    Polygon(Vec<P>),
+    Disc(P, f64),
+}
+
+impl Region {
+    fn from_spec(o: &ObstacleSpec) -> Region {
+        match o {
+            ObstacleSpec::Polygon(pts) => {
+                Region::Polygon(pts.iter().map(|v| (v.x as f64, v.y as f64)).collect())
+            }
+            ObstacleSpec::Circle { centre, radius } => {
+                Region::Disc((centre.x as f64, centre.y as f64), *radius as f64)
+            }
+        }
+    }
+
+    /// Distance from `p` to the region's area (0 inside).
+    fn distance(&self, p: P) -> f64 {
+        match self {
+            Region::Polygon(poly) => {
+                if inside(p, poly) {
+                    return 0.0;
+                }
+                (0..poly.len())
+                    .map(|i| dist_point_segment(p, poly[i], poly[(i + 1) % poly.len()]))
+                    .fold(f64::INFINITY, f64::min)
+            }
+            Region::Disc(c, r) => (dist(p, *c) - r).max(0.0),
+        }
+    }
+}
+
+/// The exit the reference finds: the shortest candidate of the family (turn `kπ/32` either
+/// way on radius `r`, then straight out of the regions containing the start, plus the
+/// margin) whose sampled points keep more than `clearance + slack` from every other region.
+/// A positive `slack` is strict, a negative one lenient: the core's exact answer lies
+/// between the two.
+fn reference_exit(start: Pose, r: f64, c: f64, regions: &[Region], slack: f64) -> Option<f64> {
+    let s = (start.position.x as f64, start.position.y as f64);
+    let h = start.heading as f64;
+    let containing: Vec<bool> = regions.iter().map(|g| g.distance(s) <= c).collect();
+    let in_union = |p: P| {
+        regions
+            .iter()
+            .zip(&containing)
+            .any(|(g, &cont)| cont && g.distance(p) <= c)
+    };
+    let clear_of_others = |p: P| {
+        regions
+            .iter()
+            .zip(&containing)
+            .all(|(g, &cont)| cont || g.distance(p) > c + slack)
+    };
+    // The exit's end is found in 1 cm steps; clearance from the other regions is sampled every
+    // 5 cm, which can miss at most 2.5 cm of approach (distance is 1-Lipschitz): callers pass
+    // a slack of at least that.
+    let (step, clear_step) = (0.01, 0.05);
+    let mut best: Option<f64> = None;
+    for k in 0..=EXIT_TURN_STEPS {
+        for sign in [1.0f64, -1.0] {
+            if k == 0 && sign < 0.0 {
+                continue;
+            }
+            let phi = k as f64 * std::f64::consts::PI / EXIT_TURN_STEPS as f64;
+            // The arc about the turn centre.
+            let centre = (s.0 - sign * r * h.sin(), s.1 + sign * r * h.cos());
+            let at_angle = |a: f64| {
+                let heading = h + sign * a;
+                (
+                    centre.0 + sign * r * heading.sin(),
+                    centre.1 - sign * r * heading.cos(),
+                )
+            };
+            let o = at_angle(phi);
+            let u = ((h + sign * phi).cos(), (h + sign * phi).sin());
+            let point = |t: f64| (o.0 + t * u.0, o.1 + t * u.1);
+            let mut t = 0.0;
+            while in_union(point(t)) && t < 1e5 {
+                t += step;
+            }
+            let end = t + EXIT_MARGIN_M as f64;
+            let length = r * phi + end;
+            if best.is_some_and(|b| b <= length) {
+                continue;
+            }
+            let arc_steps = (r * phi / clear_step).ceil() as usize;
+            let arc_clear = (0..=arc_steps)
+                .all(|i| clear_of_others(at_angle(phi * i as f64 / arc_steps.max(1) as f64)));
+            let straight_steps = (end / clear_step).ceil() as usize;
+            let straight_clear = (0..=straight_steps)
+                .all(|i| clear_of_others(point(end * i as f64 / straight_steps as f64)));
+            let end_free = regions.iter().all(|g| g.distance(point(end)) > c + slack);
+            if arc_clear && straight_clear && end_free {
+                best = Some(length);
+            }
+        }
+    }
+    best
+}
+
+/// A point within `c` of obstacle `o` (inside it, or in its clearance band).
+fn point_in_keepout(rng: &mut Rng, o: &ObstacleSpec, c: f32) -> Vec2 {
+    match o {
+        ObstacleSpec::Polygon(pts) => {
+            let (lo, hi) = pts.iter().fold(
+                (Vec2::new(f32::MAX, f32::MAX), Vec2::new(f32::MIN, f32::MIN)),
+                |(lo, hi), p| {
+                    (
+                        Vec2::new(lo.x.min(p.x), lo.y.min(p.y)),
+                        Vec2::new(hi.x.max(p.x), hi.y.max(p.y)),
+                    )
+                },
+            );
+            Vec2::new(
+                rng.range_f32(lo.x - 0.9 * c, hi.x + 0.9 * c),
+                rng.range_f32(lo.y - 0.9 * c, hi.y + 0.9 * c),
+            )
+        }
+        ObstacleSpec::Circle { centre, radius } => {
+            let a = rng.range_f32(0.0, std::f32::consts::TAU);
+            let d = rng.range_f32(0.0, radius + 0.9 * c);
+            *centre + Vec2::from_angle(a) * d
+        }
+    }
+}
+
+/// Checks a planned route that began with `exit`: the first path starts at the start, is
+/// the exit, and leaves every region; every later path keeps the clearance (sampled, f64).
+fn check_route(p: &TestPlanner<'_>, w: &World, start: Pose, exit: &Exit) {
+    let paths: &[DubinsPath] = p.route_paths();
+    let first = paths[0];
+    assert_eq!(first.start, start);
+    assert!((first.length() - exit.length).abs() < 1e-3);
+    let c = w.spec.clearance_m as f64;
+    let regions: Vec<Region> = w.obstacles.iter().map(Region::from_spec).collect();
+    for path in &paths[1..] {
+        let n = (path.length() / 0.5).ceil().max(1.0) as usize;
+        for i in 0..=n {
+            let q = path.sample(path.length() * i as f32 / n as f32).position;
+            let q = (q.x as f64, q.y as f64);
+            for g in &regions {
+                assert!(
+                    g.distance(q) > c - 0.05,
+                    "route point {q:?} within the clearance"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_start_in_an_obstacle_leaves_by_the_shortest_exit_of_the_family() {
+    let mut rng = Rng(0x5EED_0E1D);
+    let (mut exits, mut refused) = (0, 0);
+    for seed in 0..cases(4, 24) as u64 {
+        let w = world(300 + seed, 1500.0, 50.0, 40.0, 6);
+        let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
+        p.load(&w.bytes).unwrap();
+        let regions: Vec<Region> = w.obstacles.iter().map(Region::from_spec).collect();
+        let c = w.spec.clearance_m;
+        for _ in 0..20 {
+            let o = rng.below(w.obstacles.len() as u64) as usize;
+            let position = point_in_keepout(&mut rng, &w.obstacles[o], c);
+            let pos64 = (position.x as f64, position.y as f64);
+            if regions.iter().all(|g| g.distance(pos64) > c as f64) {
+                continue; // the box corner outside the band
+            }
+            let start = Pose {
+                position,
+                heading: rng.range_f32(-3.1, 3.1),
+            };
+            let goal = host_tests::world::free_pose(&mut rng, &w, 10.0);
+            let q = Query {
+                start,
+                goal: Goal {
+                    position: goal.position,
+                    heading: None,
+                },
+                search: Search::Dijkstra,
+            };
+            let strict = reference_exit(start, 40.0, c as f64, &regions, 0.03);
+            let lenient = reference_exit(start, 40.0, c as f64, &regions, -0.03);
+            match p.plan(&q, u64::MAX) {
+                Ok(summary) => {
+                    let exit = summary.exit.expect("the start lies in a keep-out region");
+                    assert!(matches!(exit.violated, Violation::Obstacle(_)));
+                    let lenient = lenient.expect("the reference finds an exit too");
+                    assert!(exit.length as f64 >= lenient - 0.03, "{exit:?} < {lenient}");
+                    if let Some(strict) = strict {
+                        assert!(exit.length as f64 <= strict + 0.03, "{exit:?} > {strict}");
+                    }
+                    assert!(summary.work.total() <= p.worst_case_work());
+                    check_route(&p, &w, start, &exit);
+                    exits += 1;
+                }
+                Err(PlanError::InsideObstacle {
+                    field: QueryField::Start,
+                    ..
+                }) => {
+                    assert!(strict.is_none(), "the reference exits by {strict:?}");
+                    refused += 1;
+                }
+                // After the exit the query goes on like any other.
+                Err(
+                    PlanError::StartUnconnected | PlanError::GoalUnconnected | PlanError::NoRoute,
+                ) => {}
+                Err(e) => panic!("{e:?}"),
+            }
+        }
+    }
+    assert!(exits >= 10, "{exits} exits, {refused} refusals");
+}
+
+#[test]
+fn a_popup_over_the_aircraft_is_left_by_at_most_the_straight_ahead_exit() {
+    let w = world(41, 1500.0, 50.0, 40.0, 6);
+    let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
+    p.load(&w.bytes).unwrap();
+    let mut rng = Rng(77);
+    let c = w.spec.clearance_m as f64;
+    let mut exits = 0;
+    for _ in 0..cases(20, 200) {
+        let start = host_tests::world::free_pose(&mut rng, &w, 200.0);
+        let goal = host_tests::world::free_pose(&mut rng, &w, 10.0);
+        let radius = rng.range_f32(20.0, 80.0);
+        let offset = Vec2::from_angle(rng.range_f32(0.0, 6.28)) * rng.range_f32(0.0, radius);
+        let centre = start.position + offset;
+        let id = p.add_popup(Popup::Circle { centre, radius }).unwrap().id;
+        let q = Query {
+            start,
+            goal: Goal {
+                position: goal.position,
+                heading: None,
+            },
+            search: Search::Dijkstra,
+        };
+        if let Ok(summary) = p.plan(&q, u64::MAX) {
+            let exit = summary.exit.expect("the start lies in the pop-up");
+            assert_eq!(exit.violated, Violation::Popup(id));
+            // Straight ahead leaves the disc widened by the clearance where
+            // |s + t·u − centre| = radius + c (the larger root).
+            let (s, m) = (start.position, centre);
+            let u = Vec2::from_angle(start.heading);
+            let w0 = ((s.x - m.x) as f64, (s.y - m.y) as f64);
+            let b = w0.0 * u.x as f64 + w0.1 * u.y as f64;
+            let k = w0.0 * w0.0 + w0.1 * w0.1 - (radius as f64 + c).powi(2);
+            let straight = -b + (b * b - k).sqrt() + EXIT_MARGIN_M as f64;
+            assert!(
+                exit.length as f64 <= straight + 0.01,
+                "{exit:?} > {straight}"
+            );
+            assert!(exit.length as f64 >= (radius as f64 + c) - offset.norm() as f64);
+            exits += 1;
+        }
+        p.remove_popup(id).unwrap();
+    }
+    assert!(exits >= cases(20, 200) / 2, "{exits} exits");
+}
+
+#[test]
+fn a_start_in_more_regions_than_the_limit_is_refused_naming_the_first() {
+    let w = world(41, 1500.0, 50.0, 40.0, 6);
+    let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
+    p.load(&w.bytes).unwrap();
+    let mut rng = Rng(5);
+    let start = host_tests::world::free_pose(&mut rng, &w, 200.0);
+    let mut ids = Vec::new();
+    for i in 0..=skyroute::planner::MAX_EXIT_REGIONS {
+        let centre = start.position + Vec2::new(i as f32, 0.0);
+        ids.push(
+            p.add_popup(Popup::Circle {
+                centre,
+                radius: 30.0,
+            })
+            .unwrap()
+            .id,
+        );
+    }
+    let q = Query {
+        start,
+        goal: Goal {
+            position: start.position + Vec2::new(500.0, 0.0),
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    };
+    assert_eq!(
+        p.plan(&q, u64::MAX),
+        Err(PlanError::InsidePopup {
+            field: QueryField::Start,
+            popup: ids[0]
+        })
+    );
+    // One fewer is left by an exit.
+    p.remove_popup(ids[skyroute::planner::MAX_EXIT_REGIONS])
+        .unwrap();
+    let exit = p.plan(&q, u64::MAX).map(|s| s.exit);
+    assert!(matches!(exit, Ok(Some(e)) if e.regions == 4), "{exit:?}");
+}
