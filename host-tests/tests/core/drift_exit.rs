@@ -244,7 +244,8 @@ fn a_popup_over_the_aircraft_is_left_by_at_most_the_straight_ahead_exit() {
         let start = host_tests::world::free_pose(&mut rng, &w, 200.0);
         let goal = host_tests::world::free_pose(&mut rng, &w, 10.0);
         let radius = rng.range_f32(20.0, 80.0);
-        let offset = Vec2::from_angle(rng.range_f32(0.0, 6.28)) * rng.range_f32(0.0, radius);
+        let offset = Vec2::from_angle(rng.range_f32(0.0, std::f32::consts::TAU))
+            * rng.range_f32(0.0, radius);
         let centre = start.position + offset;
         let id = p.add_popup(Popup::Circle { centre, radius }).unwrap().id;
         let q = Query {
