@@ -22,6 +22,7 @@
 #                        host-tests/src/bin/firmware_fixture/
 #   FIRMWARE_TIMEOUT     seconds the firmware may run under QEMU (default 300)
 #   KEEP_GOING=1         run every step even after a failure
+#   SWEEP_QUERIES        random queries per mode of the work bound sweep (default 100000)
 #   STEPS=REGEX          run only the steps whose name matches REGEX (grep -E), e.g.
 #                        STEPS=firmware for the five firmware binaries' steps, or
 #                        STEPS='voronoi firmware' for one binary's
@@ -305,6 +306,8 @@ step "core docs (cargo doc, warnings denied)" \
 step "OMPL Dubins reference" ompl_reference
 step "SciPy Voronoi reference" scipy_voronoi_reference
 step "cargo test --workspace (full tier)" env SKYROUTE_TIER=full cargo test --workspace
+step "work bound sweep (random queries per mode, docs/RELIABILITY.md)" \
+    cargo run --release -q -p host-tests --bin work_sweep -- --queries "${SWEEP_QUERIES:-100000}"
 step "firmware fixture" fixture
 step "firmware build (release, bin roadmap)" firmware_build roadmap
 step "firmware clippy (bin roadmap)" firmware_clippy roadmap

@@ -1,0 +1,281 @@
+//! Random queries on every mode's scenario network, each checked against the documented work
+//! bound (`Planner::worst_case_work`); the worst query found is then re-run with a budget one
+//! below its work, which must be refused with the previous route kept.
+//!
+//! ```text
+//! work_sweep [--queries N]      # N per mode, default 100 000
+//! ```
+//!
+//! Roadmap (niendorf-urban): random start and goal poses, 0–3 circular pop-ups, Dijkstra or A*.
+//! Terrain (medeiros-jacksboro): random poses, the built altitude and three others (−150,
+//! −75, +100 m), 0–2 pop-ups.
+//! Landmark (babel-II-N): the network's start and goal, a random weather, random rosette
+//! losses and 0–2 pop-ups. Voronoi (voronoi-dense): random poses and threat weights, threats
+//! popped and removed. Prints one line per mode; exits 1 if any work exceeds its bound.
+
+use host_tests::scenarios::built;
+use host_tests::Rng;
+use skyroute_prep::scenario::Mode;
+use skyroute::planner::{PlanError, VoronoiStorage};
+use skyroute::{Goal, Network, Planner, Popup, Pose, Query, Search, Vec2};
+use std::process::ExitCode;
+use std::time::Instant;
+
+type Big<'n> = Planner<'n, 131072, 131072, 4, 4096>;
+
+/// What a mode's sweep found.
+#[derive(Default)]
+struct Sweep {
+    queries: u64,
+    routes: u64,
+    worst_work: u64,
+    bound: u64,
+    over_bound: u64,
+    worst_refused_below: bool,
+}
+
+/// Uniform in the network's extent.
+fn at(rng: &mut Rng, net: &Network) -> Vec2 {
+    let (lo, hi) = net.extent();
+    Vec2::new(
+        rng.range(lo.x as f64, hi.x as f64) as f32,
+        rng.range(lo.y as f64, hi.y as f64) as f32,
+    )
+}
+
+fn pose(rng: &mut Rng, net: &Network) -> Pose {
+    Pose {
+        position: at(rng, net),
+        heading: rng.range(-3.2, 3.2) as f32,
+    }
+}
+
+/// Runs `queries` random queries through `step` (which prepares the planner's in-flight
+/// state and returns the query), recording the worst and re-running it one unit short.
+fn sweep<'n>(
+    p: &mut Big<'n>,
+    queries: u64,
+    seed: u64,
+    mut step: impl FnMut(&mut Big<'n>, &mut Rng, u64) -> Query,
+) -> Sweep {
+    let mut rng = Rng(seed);
+    let mut s = Sweep::default();
+    let mut worst: Option<(u64, Query)> = None;
+    for i in 0..queries {
+        let q = step(p, &mut rng, i);
+        let bound = p.worst_case_work();
+        s.queries += 1;
+        if let Ok(r) = p.plan(&q, u64::MAX) {
+            s.routes += 1;
+            let used = r.work.total();
+            if used > bound {
+                s.over_bound += 1;
+            }
+            if used > s.worst_work {
+                s.worst_work = used;
+                s.bound = bound;
+                worst = Some((i, q));
+            }
+        }
+    }
+    // The worst query again, in the in-flight state it had: replay the steps up to it.
+    if let Some((i, q)) = worst {
+        let mut rng = Rng(seed);
+        for k in 0..=i {
+            let _ = step(p, &mut rng, k);
+        }
+        let used = p.plan(&q, u64::MAX).map(|r| r.work.total()).unwrap_or(0);
+        let before = p.route().to_vec();
+        s.worst_refused_below = used == s.worst_work
+            && matches!(p.plan(&q, used - 1), Err(PlanError::BudgetExhausted { .. }))
+            && p.route() == &before[..];
+    }
+    s
+}
+
+/// Replaces the planner's pop-ups by `n` random discs of 50–500 m.
+fn random_popups(p: &mut Big<'_>, rng: &mut Rng, n: u64, net: &Network) {
+    let ids: Vec<u8> = p.popups().map(|(id, _)| id).collect();
+    for id in ids {
+        let _ = p.remove_popup(id);
+    }
+    for _ in 0..n {
+        let centre = at(rng, net);
+        let radius = rng.range(50.0, 500.0) as f32;
+        let _ = p.add_popup(Popup::Circle { centre, radius });
+    }
+}
+
+fn roadmap(queries: u64) -> Sweep {
+    let b = built("niendorf-urban");
+    let net = Network::from_bytes(&b.bytes).unwrap();
+    let mut p: Box<Big<'_>> = Box::new(Planner::new());
+    p.load(&b.bytes).unwrap();
+    sweep(&mut p, queries, 1, |p, rng, i| {
+        if i % 16 == 0 {
+            let n = rng.below(4);
+            random_popups(p, rng, n, &net);
+        }
+        let goal = pose(rng, &net);
+        Query {
+            start: pose(rng, &net),
+            goal: Goal {
+                position: goal.position,
+                heading: rng.chance(0.5).then_some(goal.heading),
+            },
+            search: if i % 2 == 0 {
+                Search::Dijkstra
+            } else {
+                Search::AStar
+            },
+        }
+    })
+}
+
+fn terrain(queries: u64) -> Sweep {
+    let b = built("medeiros-jacksboro");
+    let net = Network::from_bytes(&b.bytes).unwrap();
+    let mut p: Box<Big<'_>> = Box::new(Planner::new());
+    p.load(&b.bytes).unwrap();
+    let t = *net.terrain().unwrap();
+    // The built altitude and three others: lower ones block more of the network.
+    let levels = [-150.0, -75.0, 0.0, 100.0].map(|d| t.altitude_m + d);
+    sweep(&mut p, queries, 2, |p, rng, i| {
+        if i % 16 == 0 {
+            let a = levels[rng.below(levels.len() as u64) as usize];
+            let _ = p.set_altitude(a, t.safety_height_m);
+            let n = rng.below(3);
+            random_popups(p, rng, n, &net);
+        }
+        let goal = pose(rng, &net);
+        Query {
+            start: pose(rng, &net),
+            goal: Goal {
+                position: goal.position,
+                heading: rng.chance(0.5).then_some(goal.heading),
+            },
+            search: Search::Dijkstra,
+        }
+    })
+}
+
+fn landmark(queries: u64) -> Sweep {
+    let b = built("babel-II-N");
+    let net = Network::from_bytes(&b.bytes).unwrap();
+    let l = *net.landmark().unwrap();
+    let mut p: Box<Big<'_>> = Box::new(Planner::new());
+    p.load(&b.bytes).unwrap();
+    let q = Query {
+        start: net.vertex(l.start_vertex).unwrap(),
+        goal: Goal {
+            position: net.vertex(l.goal_vertex).unwrap().position,
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    };
+    sweep(&mut p, queries, 3, |p, rng, i| {
+        if i % 4 == 0 {
+            let _ = p.set_weather(rng.below(l.weather_count as u64) as u32);
+            let lost = rng.below(l.landmark_count as u64) as u32;
+            let quality = rng.unit() as f32;
+            let _ = p.update_rosette(lost, &vec![quality; l.directions as usize]);
+            let n = rng.below(3);
+            random_popups(p, rng, n, &net);
+        }
+        q
+    })
+}
+
+fn voronoi(queries: u64) -> Sweep {
+    let mut s = host_tests::scenarios::scenario("voronoi-dense").clone();
+    s.planner.mode = Mode::Voronoi;
+    let b = skyroute_prep::build::build(&s, &Default::default(), &|_, _| {}).unwrap();
+    let bytes: &'static [u8] = Box::leak(b.bytes.into_boxed_slice());
+    let net = Network::from_bytes(bytes).unwrap();
+    let storage = Box::leak(Box::new(VoronoiStorage::new()));
+    let mut p: Box<Big<'_>> = Box::new(Planner::new());
+    p.load_voronoi(bytes, storage).unwrap();
+    sweep(&mut p, queries, 4, |p, rng, i| {
+        if i % 16 == 0 {
+            let popped: Vec<u8> = p
+                .threats()
+                .iter()
+                .filter_map(|t| match t.origin {
+                    skyroute::planner::ThreatOrigin::Popped(id) => Some(id),
+                    skyroute::planner::ThreatOrigin::Network(_) => None,
+                })
+                .collect();
+            for id in popped {
+                let _ = p.remove_threat(id);
+            }
+            for _ in 0..rng.below(3) {
+                let r = rng.range(500.0, 5000.0) as f32;
+                let _ = p.add_threat(at(rng, &net), r);
+            }
+            let _ = p.set_threat_weight(rng.unit() as f32);
+        }
+        let goal = pose(rng, &net);
+        Query {
+            start: pose(rng, &net),
+            goal: Goal {
+                position: goal.position,
+                heading: rng.chance(0.5).then_some(goal.heading),
+            },
+            search: Search::Dijkstra,
+        }
+    })
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().collect();
+    let queries = match args.iter().position(|a| a == "--queries") {
+        Some(i) => match args.get(i + 1).and_then(|n| n.parse::<u64>().ok()) {
+            Some(n) if n > 0 => n,
+            _ => {
+                eprintln!("work_sweep: --queries takes a positive count");
+                return ExitCode::from(2);
+            }
+        },
+        None => 100_000,
+    };
+    let modes: [(&str, fn(u64) -> Sweep); 4] = [
+        ("roadmap niendorf-urban", roadmap),
+        ("terrain medeiros-jacksboro", terrain),
+        ("landmark babel-II-N", landmark),
+        ("voronoi voronoi-dense", voronoi),
+    ];
+    let results: Vec<(&str, Sweep, f64)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = modes
+            .iter()
+            .map(|&(name, run)| {
+                scope.spawn(move || {
+                    let t = Instant::now();
+                    (name, run(queries), t.elapsed().as_secs_f64())
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    let mut failed = false;
+    println!("| mode, scenario | queries | routes | worst work | its bound | worst / bound | over the bound | worst re-run with work − 1 refused, route kept | seconds |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for (name, s, secs) in results {
+        println!(
+            "| {name} | {} | {} | {} | {} | {:.4} | {} | {} | {secs:.0} |",
+            s.queries,
+            s.routes,
+            s.worst_work,
+            s.bound,
+            s.worst_work as f64 / s.bound.max(1) as f64,
+            s.over_bound,
+            if s.worst_refused_below { "yes" } else { "NO" },
+        );
+        failed |= s.over_bound > 0 || !s.worst_refused_below || s.routes == 0;
+    }
+    if failed {
+        eprintln!("work_sweep: a query exceeded its bound, or the worst was not refused below it");
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
