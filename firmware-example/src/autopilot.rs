@@ -131,9 +131,11 @@ impl<
         loop {
             let cycle_start = self.clock.ticks();
             let q = query(index);
-            let t0 = self.clock.ticks();
-            let outcome = self.planner.plan(&q, self.budget);
-            let plan_ticks = self.clock.ticks() - t0;
+            let (outcome, plan_ticks) = crate::with_stack_peak("plan", || {
+                let t0 = self.clock.ticks();
+                let outcome = self.planner.plan(&q, self.budget);
+                (outcome, self.clock.ticks() - t0)
+            });
             let next = on_route(&Cycle {
                 index,
                 query: q,

@@ -135,9 +135,11 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
         );
         return false;
     };
-    let t = clock.now();
-    let updated = task.planner().update_rosette(lost_landmark, lost);
-    let update_ticks = clock.now() - t;
+    let (updated, update_ticks) = crate::with_stack_peak("update_rosette", || {
+        let t = clock.now();
+        let updated = task.planner().update_rosette(lost_landmark, lost);
+        (updated, clock.now() - t)
+    });
     if let Err(e) = updated {
         defmt::error!("update_rosette({=u32}) failed: {}", lost_landmark, e);
         return false;

@@ -59,12 +59,15 @@ pub fn start<const V: usize, const E: usize, const P: usize, const R: usize>(
     config: Option<PlannerConfig>,
 ) -> Option<Clock> {
     let clock = boot::<V, E, P, R>()?;
-    let t = clock.now();
-    if let Err(e) = planner.load(network) {
+    let (loaded, load_ticks) = with_stack_peak("load", || {
+        let t = clock.now();
+        let loaded = planner.load(network);
+        (loaded, clock.now() - t)
+    });
+    if let Err(e) = loaded {
         defmt::error!("load failed: {}", e);
         return None;
     }
-    let load_ticks = clock.now() - t;
     if let Some(config) = config {
         planner.set_config(config);
     }
@@ -139,6 +142,16 @@ pub fn start_clock() -> Option<Clock> {
         clock::CORE_HZ
     );
     Some(clock)
+}
+
+/// Runs `op` with the stack below the caller painted again ([`stack::repaint`]) and logs the
+/// deepest stack use during it, measured from the top of RAM (so the caller's frames count).
+pub fn with_stack_peak<T>(name: &str, op: impl FnOnce() -> T) -> T {
+    stack::repaint();
+    let result = op();
+    let (used, _) = stack::high_water();
+    defmt::info!("stack {=str}: peak {=usize} B", name, used);
+    result
 }
 
 /// Logs the peak stack use ([`stack::high_water`]); every mission ends with it.

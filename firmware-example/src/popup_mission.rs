@@ -48,12 +48,14 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
     fixture: &RouteFixture,
 ) -> bool {
     let (x, y, radius) = fixture.popup;
-    let t = clock.now();
-    let popup = planner.add_popup(Popup::Circle {
-        centre: Vec2::new(x, y),
-        radius,
+    let (popup, popup_ticks) = crate::with_stack_peak("add_popup", || {
+        let t = clock.now();
+        let popup = planner.add_popup(Popup::Circle {
+            centre: Vec2::new(x, y),
+            radius,
+        });
+        (popup, clock.now() - t)
     });
-    let popup_ticks = clock.now() - t;
     match popup {
         Ok(s) => defmt::info!(
             "pop-up ({=f32}, {=f32}) r={=f32} m: {} in {=u64} ticks, bound {=u64} work",
@@ -183,22 +185,24 @@ fn log_phases<const V: usize, const E: usize, const P: usize, const R: usize>(
     budget: u64,
 ) -> bool {
     let mut open: Option<(Phase, u64, u64)> = None;
-    let t0 = clock.now();
-    let outcome = planner.plan_observed(query, budget, &mut |phase: Phase, work: &Work| {
-        let now = clock.now();
-        if let Some((begun, t, w)) = open.take() {
-            defmt::info!(
-                "phase {}: {=u64} ticks, work {=u64}",
-                begun,
-                now - t,
-                work.total() - w
-            );
-        }
-        if phase != Phase::Done {
-            open = Some((phase, clock.now(), work.total()));
-        }
+    let (outcome, ticks) = crate::with_stack_peak("plan", || {
+        let t0 = clock.now();
+        let outcome = planner.plan_observed(query, budget, &mut |phase: Phase, work: &Work| {
+            let now = clock.now();
+            if let Some((begun, t, w)) = open.take() {
+                defmt::info!(
+                    "phase {}: {=u64} ticks, work {=u64}",
+                    begun,
+                    now - t,
+                    work.total() - w
+                );
+            }
+            if phase != Phase::Done {
+                open = Some((phase, clock.now(), work.total()));
+            }
+        });
+        (outcome, clock.now() - t0)
     });
-    let ticks = clock.now() - t0;
     match outcome {
         Ok(s) => {
             defmt::info!(

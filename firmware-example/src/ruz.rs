@@ -177,9 +177,11 @@ fn decide_and_check(
 ) -> bool {
     let rows = inputs.rows();
     let rows = rows.get(..inputs.popups).unwrap_or(&[]);
-    let t = clock.now();
-    let got = decide(rows, limits);
-    let ticks = clock.now() - t;
+    let (got, ticks) = crate::with_stack_peak("decide", || {
+        let t = clock.now();
+        let got = decide(rows, limits);
+        (got, clock.now() - t)
+    });
     let bound = inputs.bound();
     match &got {
         Ok(d) => defmt::info!(

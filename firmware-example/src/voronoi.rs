@@ -163,9 +163,11 @@ fn pop_up<const V: usize, const E: usize, const P: usize, const R: usize>(
     fixture: &VoronoiFixture,
 ) -> bool {
     let (x, y, radius) = fixture.threat;
-    let t = clock.now();
-    let added = task.planner().add_threat(Vec2::new(x, y), radius);
-    let ticks = clock.now() - t;
+    let (added, ticks) = crate::with_stack_peak("add_threat", || {
+        let t = clock.now();
+        let added = task.planner().add_threat(Vec2::new(x, y), radius);
+        (added, clock.now() - t)
+    });
     let s = match added {
         Ok(s) => s,
         Err(e) => {

@@ -11,13 +11,15 @@
 //! −75, +100 m), 0–2 pop-ups.
 //! Landmark (babel-II-N): the network's start and goal, a random weather, random rosette
 //! losses and 0–2 pop-ups. Voronoi (voronoi-dense): random poses and threat weights, threats
-//! popped and removed. Prints one line per mode; exits 1 if any work exceeds its bound.
+//! popped and removed. Every roadmap and terrain route is also checked for continuity and the
+//! turn radius ([`route_is_flyable`]). Prints one line per mode; exits 1 if any work exceeds
+//! its bound or a route is not flyable.
 
 use host_tests::scenarios::built;
 use host_tests::Rng;
-use skyroute_prep::scenario::Mode;
 use skyroute::planner::{PlanError, VoronoiStorage};
 use skyroute::{Goal, Network, Planner, Popup, Pose, Query, Search, Vec2};
+use skyroute_prep::scenario::Mode;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -32,6 +34,43 @@ struct Sweep {
     bound: u64,
     over_bound: u64,
     worst_refused_below: bool,
+    /// Roadmap and terrain routes that broke an invariant of [`route_is_flyable`].
+    not_flyable: u64,
+}
+
+/// The invariants of a route of Dubins pieces (roadmap and terrain): it starts at the start
+/// pose and ends at the goal (and its heading, when fixed); each primitive starts where the
+/// previous ends (within 1 cm) with the same heading (within 10⁻³ rad); every arc's radius is
+/// at least the network's turn radius (less 10⁻⁴ relative).
+fn route_is_flyable(route: &[skyroute::Primitive], q: &Query, turn_radius: f32) -> bool {
+    let (Some(first), Some(last)) = (route.first(), route.last()) else {
+        return false;
+    };
+    let heading_gap = |a: f32, b: f32| {
+        let d = (a - b).rem_euclid(std::f32::consts::TAU);
+        d.min(std::f32::consts::TAU - d)
+    };
+    let start = first.pose_at(0.0);
+    let end = last.pose_at(last.length());
+    let mut ok = start.position.distance(q.start.position) <= 0.01
+        && heading_gap(start.heading, q.start.heading) <= 1e-3
+        && end.position.distance(q.goal.position) <= 0.01
+        && q.goal
+            .heading
+            .is_none_or(|h| heading_gap(end.heading, h) <= 1e-3);
+    for pair in route.windows(2) {
+        let (a, b) = (&pair[0], &pair[1]);
+        let (a_end, b_start) = (a.pose_at(a.length()), b.pose_at(0.0));
+        ok &= a_end.position.distance(b_start.position) <= 0.01;
+        // A zero-length line has no heading of its own.
+        if a.length() > 0.0 && b.length() > 0.0 {
+            ok &= heading_gap(a_end.heading, b_start.heading) <= 1e-3;
+        }
+    }
+    ok && route.iter().all(|p| match p {
+        skyroute::Primitive::Arc(a) => a.radius >= turn_radius * (1.0 - 1e-4),
+        skyroute::Primitive::Line(_) => true,
+    })
 }
 
 /// Uniform in the network's extent.
@@ -51,16 +90,17 @@ fn pose(rng: &mut Rng, net: &Network) -> Pose {
 }
 
 /// Runs `queries` random queries through `step` (which prepares the planner's in-flight
-/// state and returns the query), recording the worst and re-running it one unit short.
+/// state and returns the query), recording the worst; each new worst is re-run at once one
+/// unit short.
 fn sweep<'n>(
     p: &mut Big<'n>,
     queries: u64,
     seed: u64,
+    dubins_routes: bool,
     mut step: impl FnMut(&mut Big<'n>, &mut Rng, u64) -> Query,
 ) -> Sweep {
     let mut rng = Rng(seed);
     let mut s = Sweep::default();
-    let mut worst: Option<(u64, Query)> = None;
     for i in 0..queries {
         let q = step(p, &mut rng, i);
         let bound = p.worst_case_work();
@@ -71,24 +111,21 @@ fn sweep<'n>(
             if used > bound {
                 s.over_bound += 1;
             }
+            if dubins_routes && !route_is_flyable(p.route(), &q, p.network().turn_radius()) {
+                s.not_flyable += 1;
+            }
             if used > s.worst_work {
+                // The new worst, at once in the state it ran in: one unit short is refused,
+                // and the route just planned is kept.
+                let before = p.route().to_vec();
+                let refused =
+                    matches!(p.plan(&q, used - 1), Err(PlanError::BudgetExhausted { .. }))
+                        && p.route() == &before[..];
+                s.worst_refused_below = (s.worst_work == 0 || s.worst_refused_below) && refused;
                 s.worst_work = used;
                 s.bound = bound;
-                worst = Some((i, q));
             }
         }
-    }
-    // The worst query again, in the in-flight state it had: replay the steps up to it.
-    if let Some((i, q)) = worst {
-        let mut rng = Rng(seed);
-        for k in 0..=i {
-            let _ = step(p, &mut rng, k);
-        }
-        let used = p.plan(&q, u64::MAX).map(|r| r.work.total()).unwrap_or(0);
-        let before = p.route().to_vec();
-        s.worst_refused_below = used == s.worst_work
-            && matches!(p.plan(&q, used - 1), Err(PlanError::BudgetExhausted { .. }))
-            && p.route() == &before[..];
     }
     s
 }
@@ -111,7 +148,7 @@ fn roadmap(queries: u64) -> Sweep {
     let net = Network::from_bytes(&b.bytes).unwrap();
     let mut p: Box<Big<'_>> = Box::new(Planner::new());
     p.load(&b.bytes).unwrap();
-    sweep(&mut p, queries, 1, |p, rng, i| {
+    sweep(&mut p, queries, 1, true, |p, rng, i| {
         if i % 16 == 0 {
             let n = rng.below(4);
             random_popups(p, rng, n, &net);
@@ -140,7 +177,7 @@ fn terrain(queries: u64) -> Sweep {
     let t = *net.terrain().unwrap();
     // The built altitude and three others: lower ones block more of the network.
     let levels = [-150.0, -75.0, 0.0, 100.0].map(|d| t.altitude_m + d);
-    sweep(&mut p, queries, 2, |p, rng, i| {
+    sweep(&mut p, queries, 2, true, |p, rng, i| {
         if i % 16 == 0 {
             let a = levels[rng.below(levels.len() as u64) as usize];
             let _ = p.set_altitude(a, t.safety_height_m);
@@ -173,7 +210,7 @@ fn landmark(queries: u64) -> Sweep {
         },
         search: Search::Dijkstra,
     };
-    sweep(&mut p, queries, 3, |p, rng, i| {
+    sweep(&mut p, queries, 3, false, |p, rng, i| {
         if i % 4 == 0 {
             let _ = p.set_weather(rng.below(l.weather_count as u64) as u32);
             let lost = rng.below(l.landmark_count as u64) as u32;
@@ -195,7 +232,7 @@ fn voronoi(queries: u64) -> Sweep {
     let storage = Box::leak(Box::new(VoronoiStorage::new()));
     let mut p: Box<Big<'_>> = Box::new(Planner::new());
     p.load_voronoi(bytes, storage).unwrap();
-    sweep(&mut p, queries, 4, |p, rng, i| {
+    sweep(&mut p, queries, 4, false, |p, rng, i| {
         if i % 16 == 0 {
             let popped: Vec<u8> = p
                 .threats()
@@ -224,6 +261,11 @@ fn voronoi(queries: u64) -> Sweep {
             search: Search::Dijkstra,
         }
     })
+}
+
+/// Whether a mode's routes are Dubins pieces (checked by [`route_is_flyable`]).
+fn dubins(name: &str) -> bool {
+    name.starts_with("roadmap") || name.starts_with("terrain")
 }
 
 fn main() -> ExitCode {
@@ -257,11 +299,11 @@ fn main() -> ExitCode {
         handles.into_iter().map(|h| h.join().unwrap()).collect()
     });
     let mut failed = false;
-    println!("| mode, scenario | queries | routes | worst work | its bound | worst / bound | over the bound | worst re-run with work − 1 refused, route kept | seconds |");
-    println!("|---|---|---|---|---|---|---|---|---|");
+    println!("| mode, scenario | queries | routes | worst work | its bound | worst / bound | over the bound | worst re-run with work − 1 refused, route kept | routes not flyable | seconds |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
     for (name, s, secs) in results {
         println!(
-            "| {name} | {} | {} | {} | {} | {:.4} | {} | {} | {secs:.0} |",
+            "| {name} | {} | {} | {} | {} | {:.4} | {} | {} | {} | {secs:.0} |",
             s.queries,
             s.routes,
             s.worst_work,
@@ -269,8 +311,13 @@ fn main() -> ExitCode {
             s.worst_work as f64 / s.bound.max(1) as f64,
             s.over_bound,
             if s.worst_refused_below { "yes" } else { "NO" },
+            if dubins(name) {
+                s.not_flyable.to_string()
+            } else {
+                "–".into()
+            },
         );
-        failed |= s.over_bound > 0 || !s.worst_refused_below || s.routes == 0;
+        failed |= s.over_bound > 0 || !s.worst_refused_below || s.routes == 0 || s.not_flyable > 0;
     }
     if failed {
         eprintln!("work_sweep: a query exceeded its bound, or the worst was not refused below it");
