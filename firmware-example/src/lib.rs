@@ -38,6 +38,7 @@ pub mod stack;
 pub mod voronoi;
 
 use clock::Clock;
+use core::sync::atomic::{AtomicUsize, Ordering};
 use cortex_m_rt::{exception, ExceptionFrame};
 use cortex_m_semihosting::debug::{self, ExitStatus};
 use defmt_semihosting as _; // the defmt transport: semihosting writes to QEMU's stdout
@@ -147,16 +148,24 @@ pub fn start_clock() -> Option<Clock> {
 /// Runs `op` with the stack below the caller painted again ([`stack::repaint`]) and logs the
 /// deepest stack use during it, measured from the top of RAM (so the caller's frames count).
 pub fn with_stack_peak<T>(name: &str, op: impl FnOnce() -> T) -> T {
+    // The mark so far is kept before the paint erases it.
+    PROGRAM_PEAK.fetch_max(stack::high_water().0, Ordering::Relaxed);
     stack::repaint();
     let result = op();
     let (used, _) = stack::high_water();
+    PROGRAM_PEAK.fetch_max(used, Ordering::Relaxed);
     defmt::info!("stack {=str}: peak {=usize} B", name, used);
     result
 }
 
-/// Logs the peak stack use ([`stack::high_water`]); every mission ends with it.
+/// The deepest stack use seen before the last [`stack::repaint`], bytes.
+static PROGRAM_PEAK: AtomicUsize = AtomicUsize::new(0);
+
+/// Logs the peak stack use of the whole program so far (the marks of every
+/// [`with_stack_peak`] and [`stack::high_water`] since); every mission ends with it.
 pub fn log_stack() {
-    let (stack_used, stack_size) = stack::high_water();
+    let (now, stack_size) = stack::high_water();
+    let stack_used = PROGRAM_PEAK.load(Ordering::Relaxed).max(now);
     defmt::info!(
         "stack: peak {=usize} B of the {=usize} B left above .data/.bss",
         stack_used,

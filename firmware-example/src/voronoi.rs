@@ -82,9 +82,11 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
         core::mem::size_of::<VoronoiStorage>(),
         VORONOI_GRAPH_VERTICES
     );
-    let t = clock.now();
-    let loaded = planner.load_voronoi(network, storage);
-    let load_ticks = clock.now() - t;
+    let (loaded, load_ticks) = crate::with_stack_peak("load_voronoi", || {
+        let t = clock.now();
+        let loaded = planner.load_voronoi(network, storage);
+        (loaded, clock.now() - t)
+    });
     if let Err(e) = loaded {
         defmt::error!("load_voronoi failed: {}", e);
         return false;
