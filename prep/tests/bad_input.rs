@@ -2,7 +2,7 @@
 //! `docs/RELIABILITY.md` that no other test file covers: damaged networks, files of another
 //! format where a scenario or a DEM is expected, endpoints inside pop-ups, outputs whose name
 //! does not match their format or whose folder is missing, the Monte Carlo study's inputs, and
-//! the sizes that once hung. Each refusal is one line naming the file (or the option) with its
+//! the sizes that once hung, plan options that do not apply, an empty scenario. Each refusal is one line naming the file (or the option) with its
 //! exit code, and writes nothing.
 
 mod common;
@@ -452,4 +452,73 @@ fn a_twenty_thousand_vertex_no_fly_ring_builds_promptly() {
         "build with a 20 000-vertex ring",
     );
     assert!(t0.elapsed() < Duration::from_secs(10), "{:?}", t0.elapsed());
+}
+
+#[test]
+fn plan_options_that_do_not_apply_are_refused_by_name() {
+    let dir = TempDir::new("plan-options");
+    let (net, sc, out) = (niendorf_network(), niendorf(), dir.file("r.json"));
+    let plan = |extra: &[&str]| {
+        let mut a = vec!["plan", net, "--scenario", &sc, "-o", &out];
+        a.extend_from_slice(extra);
+        a.iter().map(|s| s.to_string()).collect::<Vec<_>>()
+    };
+    for (extra, part) in [
+        (
+            &["--threat", "11.63,48.09,100"][..],
+            "--threat applies to voronoi networks",
+        ),
+        (
+            &["--popup-appears", "Nope"],
+            "has no popup feature named \"Nope\" (its pop-ups: none)",
+        ),
+    ] {
+        let args = plan(extra);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        refused(&args, &out, 1, &[part]);
+    }
+    refused(
+        &plan(&["--weather", "sunny"])
+            .iter()
+            .map(String::as_str)
+            .collect::<Vec<_>>(),
+        &out,
+        1,
+        &[
+            "--weather sunny: ",
+            "is not a landmark network, so it has no weather",
+        ],
+    );
+}
+
+#[test]
+fn a_scenario_without_features_or_with_a_negative_clearance_is_refused() {
+    let dir = TempDir::new("empty-scenario");
+    let out = dir.file("n.bin");
+    let mut s = read_json(&niendorf());
+    s["features"] = json!([]);
+    let empty = dir.file("empty.geojson");
+    std::fs::write(&empty, serde_json::to_string(&s).unwrap()).unwrap();
+    refused(
+        &["build", &empty, "-o", &out],
+        &out,
+        1,
+        &[
+            &empty,
+            "features: empty: a scenario needs at least one feature",
+        ],
+    );
+    let mut s = read_json(&niendorf());
+    s["planner"]["clearance_m"] = json!(-5.0);
+    let negative = dir.file("negative.geojson");
+    std::fs::write(&negative, serde_json::to_string(&s).unwrap()).unwrap();
+    refused(
+        &["build", &negative, "-o", &out],
+        &out,
+        1,
+        &[
+            &negative,
+            "planner.clearance_m: -5 is out of range: expected a non-negative number",
+        ],
+    );
 }
