@@ -1,9 +1,9 @@
 //! Bad input to the `skyroute` binary, each case a row of the "Bad input" table in
 //! `docs/RELIABILITY.md` that no other test file covers: damaged networks, files of another
 //! format where a scenario or a DEM is expected, endpoints inside pop-ups, outputs whose name
-//! does not match their format or whose folder is missing, the Monte Carlo study's inputs, and
-//! the sizes that once hung, plan options that do not apply, an empty scenario. Each refusal is one line naming the file (or the option) with its
-//! exit code, and writes nothing.
+//! does not match their format or whose folder is missing, the Monte Carlo study's inputs, the
+//! sizes that once hung, plan options that do not apply, an empty scenario. Each refusal is one
+//! line naming the file (or the option) with its exit code, and writes nothing.
 
 mod common;
 
