@@ -522,3 +522,44 @@ fn a_scenario_without_features_or_with_a_negative_clearance_is_refused() {
         ],
     );
 }
+
+#[test]
+fn popups_of_no_area_or_off_the_globe_are_refused() {
+    let dir = TempDir::new("popup-radius");
+    let (net, sc, out) = (niendorf_network(), niendorf(), dir.file("r.json"));
+    // clap's usage errors: exit code 2, the value and the rule.
+    for popup in [
+        "11.63,48.09,0",
+        "11.63,48.09,-5",
+        "nan,48.09,50",
+        "11.63,91,50",
+    ] {
+        let o = skyroute(&["plan", net, "--scenario", &sc, "--popup", popup, "-o", &out]);
+        assert_eq!(code(&o), 2, "{popup}: {}", stderr(&o));
+        for part in [
+            format!("invalid value '{popup}' for '--popup <POPUP>'"),
+            "radius > 0".to_string(),
+        ] {
+            assert!(stderr(&o).contains(&part), "{popup}: {}", stderr(&o));
+        }
+        assert!(!Path::new(&out).exists());
+    }
+    let mut s = read_json(&sc);
+    let [lon, lat] = endpoint(&s, "goal");
+    s["features"].as_array_mut().unwrap().push(json!({
+        "type": "Feature",
+        "properties": {"kind": "popup", "name": "Zero", "radius_m": 0.0, "probability": 1.0},
+        "geometry": {"type": "Point", "coordinates": [lon + 0.001, lat]}
+    }));
+    let zero = dir.file("zero.geojson");
+    std::fs::write(&zero, serde_json::to_string(&s).unwrap()).unwrap();
+    refused(
+        &["plan", net, "--scenario", &zero, "-o", &out],
+        &out,
+        1,
+        &[
+            &zero,
+            "(Zero): properties.radius_m: 0 is out of range: expected a positive number",
+        ],
+    );
+}

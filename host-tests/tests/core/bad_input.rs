@@ -211,3 +211,25 @@ fn bad_popups_are_refused_with_their_own_errors() {
     );
     p.add_popup(circle(450.0, 10.0)).unwrap();
 }
+
+#[test]
+fn a_popup_over_the_start_is_refused_by_its_id_and_keeps_the_route() {
+    let w = world(8, 800.0, 60.0, 40.0, 3);
+    let (mut p, q) = planned(&w.bytes, &w);
+    let kept = p.route().to_vec();
+    let id = p
+        .add_popup(Popup::Circle {
+            centre: q.start.position + Vec2::new(5.0, 0.0),
+            radius: 20.0,
+        })
+        .unwrap()
+        .id;
+    assert_eq!(
+        p.plan(&q, u64::MAX),
+        Err(PlanError::InsidePopup {
+            field: QueryField::Start,
+            popup: id
+        })
+    );
+    assert_eq!(p.route(), &kept[..]);
+}
