@@ -1,8 +1,9 @@
 //! Bad input to the loader and the planner API that the other modules do not cover, each a row
 //! of the "Bad input" table in `docs/RELIABILITY.md`: an empty network (it plans the direct
 //! path), a header claiming more vertices than exist, a position beyond the coordinate limit,
-//! a zero budget, the mode-only calls on the wrong mode, pop-ups with a negative or infinite radius, a full pop-up table and
-//! an unknown pop-up id. Each refused call returns its own typed error and keeps the route.
+//! a zero budget, the mode-only calls on the wrong mode, pop-ups with a negative or infinite
+//! radius, a pop-up over the start, a full pop-up table and an unknown pop-up id. Each refused
+//! call returns its own typed error and keeps the route.
 
 use host_tests::world::{free_pose, world};
 use host_tests::Rng;
