@@ -75,7 +75,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn an_output_naming_an_input_through_another_path_is_refused() {
+    fn outputs_naming_an_input_or_in_a_missing_folder_are_refused() {
         let dir = std::env::temp_dir().join(format!("skyroute-output-{}", std::process::id()));
         std::fs::create_dir_all(dir.join("sub")).unwrap();
         let input = dir.join("in.bin");
