@@ -134,7 +134,9 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
     let s = req
         .scenario
         .as_deref()
-        .map(|p| crate::plan_cli::read_scenario(p, &scenario::ParseOptions::default(), req.mode))
+        .map(|p| {
+            crate::scenario_input::read_scenario(p, &scenario::ParseOptions::default(), req.mode)
+        })
         .transpose()?;
     if let Some(s) = &s {
         // Drawn over a network it does not match, a scenario's zones would be missing from
