@@ -34,7 +34,7 @@ fn foreign_format(path: &Path) -> Option<&'static str> {
         .read_to_end(&mut head)
         .ok()?;
     if head.starts_with(b"II*\0") || head.starts_with(b"MM\0*") {
-        return Some("a TIFF image (a GeoTIFF DEM is not read: convert it to an ESRI ASCII grid)");
+        return Some("a TIFF image (a GeoTIFF DEM belongs in the scenario's terrain.dem)");
     }
     if head.starts_with(b"\x89PNG") {
         return Some("a PNG image");
