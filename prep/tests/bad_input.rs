@@ -558,3 +558,26 @@ fn popups_of_no_area_or_off_the_globe_are_refused() {
         ],
     );
 }
+
+#[test]
+fn render_refuses_a_geojson_file_as_a_route_by_what_it_is() {
+    let dir = TempDir::new("route-geojson");
+    let svg = dir.file("x.svg");
+    refused(
+        &[
+            "render",
+            niendorf_network(),
+            "--route",
+            &niendorf(),
+            "-o",
+            &svg,
+        ],
+        &svg,
+        1,
+        &[
+            &niendorf(),
+            "a GeoJSON FeatureCollection",
+            "not a route file",
+        ],
+    );
+}
