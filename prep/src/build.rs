@@ -265,6 +265,15 @@ fn build_terrain(
         return Err(BuildError::ZoneInTerrain(file, what));
     }
     let dem = crate::dem::load(&t.dem).map_err(BuildError::Dem)?;
+    if dem.max().is_none() {
+        // The DEM is at fault, not the scenario: the message names the DEM's file.
+        return Err(BuildError::Terrain(
+            t.dem.display().to_string(),
+            crate::terrain::TerrainError::InvalidParameter(
+                "every cell is NODATA: the DEM has no elevation".into(),
+            ),
+        ));
+    }
     let frame = s.local_frame();
     let clearance = s.planner.clearance_m.unwrap_or(0.0);
     let params = TerrainParams {

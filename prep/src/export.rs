@@ -146,6 +146,15 @@ fn edge_json(net: &Network, i: u32) -> Option<Value> {
 /// Reads the network image `input` and writes it as JSON to `output` (indented when `pretty`).
 /// Returns the numbers of vertices, edges and obstacles. Errors name the file concerned.
 pub fn export_file(input: &Path, output: &Path, pretty: bool) -> Result<(u32, u32, u32), String> {
+    if !output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+    {
+        return Err(format!(
+            "{}: export writes JSON; name the output .json",
+            output.display()
+        ));
+    }
     crate::output::refuse_overwriting_inputs(output, &[input])?;
     let bytes = read_network(input)?;
     let net = Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", input.display()))?;

@@ -27,6 +27,7 @@ pub mod route_mission;
 pub mod route_output;
 pub mod ruz;
 pub mod scenario;
+pub mod scenario_input;
 pub mod terrain;
 pub mod voronoi;
 pub mod voronoi_mission;

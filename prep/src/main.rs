@@ -20,7 +20,8 @@ const EXIT_CODES: &str = "Exit codes:
   1  bad input: the message names the file, and for scenarios the feature and the field
      (a corrupt network, a scenario that does not match its network, an endpoint or pop-up
      off the network's map, a start inside a no-fly zone, an output path naming an input,
-     a build parameter beyond its limits: see `skyroute build --help`)
+     in a missing folder or with another format's extension, a build parameter beyond its
+     limits: see `skyroute build --help`)
   2  usage: an unknown option or a malformed value (clap's message)
   3  no route exists: the message names the leg and why (for a landmark scenario, the proof
      when the scenario's numbers alone rule every route out)
@@ -209,7 +210,7 @@ enum Command {
         /// The largest mean fuel factor.
         #[arg(long, default_value_t = skyroute_prep::ruz::cli::FUEL_LIMIT, value_parser = parse_limit)]
         fuel_limit: f32,
-        /// Where to write the results (JSON).
+        /// Where to write the results (JSON; the name ends in `.json`).
         #[arg(short, long)]
         output: PathBuf,
         /// Write the histograms as PREFIX-decision.svg/.png and PREFIX-baseline.svg/.png.
@@ -228,7 +229,7 @@ enum Command {
     Export {
         /// The network image.
         network: PathBuf,
-        /// Where to write the JSON.
+        /// Where to write the JSON (the name ends in `.json`).
         #[arg(short, long)]
         output: PathBuf,
         /// Indent the JSON (several times larger).
@@ -257,10 +258,11 @@ enum Command {
         /// A circular pop-up obstacle to draw, `LON,LAT,RADIUS_M` (repeatable).
         #[arg(long, value_parser = parse_popup)]
         popup: Vec<(f64, f64, f64)>,
-        /// Where to write the picture: PNG when the name ends in `.png`, SVG otherwise.
+        /// Where to write the picture: PNG when the name ends in `.png`, SVG when in `.svg`.
         #[arg(short, long)]
         output: PathBuf,
-        /// Also write a PNG of the same picture here (with an SVG `--output`).
+        /// Also write a PNG of the same picture here (a name ending in `.png`, with an SVG
+        /// `--output`).
         #[arg(long)]
         png: Option<PathBuf>,
         /// Width of the map in pixels (a 400-pixel legend panel is added to its right).

@@ -20,9 +20,20 @@ fn resolved(path: &Path) -> PathBuf {
     }
 }
 
-/// Refuses an output path that names one of the command's inputs (`what` says which option
-/// the output came from, e.g. `-o`).
+/// Refuses an output path that names one of the command's inputs, or whose folder does not
+/// exist (so that a long command fails before its work, not after it).
 pub fn refuse_overwriting_inputs(output: &Path, inputs: &[&Path]) -> Result<(), String> {
+    let folder = match output.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !folder.is_dir() {
+        return Err(format!(
+            "{}: the folder {} does not exist; create it first or choose another output path",
+            output.display(),
+            folder.display()
+        ));
+    }
     let out = resolved(output);
     for input in inputs {
         if resolved(input) == out {
@@ -64,7 +75,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn an_output_naming_an_input_through_another_path_is_refused() {
+    fn outputs_naming_an_input_or_in_a_missing_folder_are_refused() {
         let dir = std::env::temp_dir().join(format!("skyroute-output-{}", std::process::id()));
         std::fs::create_dir_all(dir.join("sub")).unwrap();
         let input = dir.join("in.bin");
@@ -74,6 +85,9 @@ mod tests {
         assert!(refuse_overwriting_inputs(&dir.join("out.bin"), &[&input]).is_ok());
         // Not there yet, in an existing folder: compared by its resolved folder.
         assert!(refuse_overwriting_inputs(&dir.join("sub/new.bin"), &[&input]).is_ok());
+        // In a folder that does not exist: refused, naming the folder.
+        let e = refuse_overwriting_inputs(&dir.join("nowhere/new.bin"), &[&input]).unwrap_err();
+        assert!(e.contains("nowhere does not exist"), "{e}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -191,3 +191,47 @@ pub fn check_query(
     }
     Ok(())
 }
+
+/// Refuses, by name, a waypoint or goal inside the disc of one of `popups`, and a start too
+/// except on a roadmap network (whose planner leaves the pop-up by an exit first,
+/// `src/planner/exit.rs`): no route can pass or end there, and the message names the endpoint
+/// and the pop-up as the scenario and the command line do (the core's refusal would name the
+/// pop-up by its slot, and a goal it cannot be reached in is reported at the waypoint before
+/// it).
+pub fn check_ends_clear_of_popups(
+    s: &Scenario,
+    frame: &LocalFrame,
+    popups: &[PopupInput],
+) -> Result<(), String> {
+    let exits = s.planner.mode == crate::scenario::Mode::Roadmap;
+    let ends = s
+        .start
+        .iter()
+        .filter(|_| !exits)
+        .map(|e| ("start", e))
+        .chain(s.waypoints.iter().map(|e| ("waypoint", e)))
+        .chain(s.goal.iter().map(|e| ("goal", e)));
+    for (role, e) in ends {
+        let (x, y) = frame.to_local(e.lon, e.lat);
+        for p in popups {
+            let (cx, cy) = frame.to_local(p.lon, p.lat);
+            let d = (x - cx).hypot(y - cy);
+            if d < p.radius_m {
+                return Err(format!(
+                    "{role} {:?} lies inside {} (radius {} m, its centre {:.0} m away): no \
+                     route can {} there",
+                    e.name,
+                    p.name,
+                    p.radius_m,
+                    d,
+                    match role {
+                        "start" => "begin",
+                        "goal" => "end",
+                        _ => "pass",
+                    }
+                ));
+            }
+        }
+    }
+    Ok(())
+}

@@ -7,7 +7,9 @@ use crate::landmark_reach::no_route_proof;
 use crate::local::local;
 use crate::mission::{plan_mission_with, LocalPopup, MissionOptions};
 use crate::output::{refuse_overwriting_inputs, write_atomically};
-use crate::plan_checks::{check_query, gather_popups, PopupInput, PopupSource};
+use crate::plan_checks::{
+    check_ends_clear_of_popups, check_query, gather_popups, PopupInput, PopupSource,
+};
 use crate::provenance::check_binding;
 use crate::route_mission::{mission_route, mission_summary, MissionOutput};
 use crate::route_output::{route_text, RouteFormat};
@@ -120,6 +122,8 @@ pub fn plan_command(req: &PlanRequest) -> CliResult {
     let frame = crate::export::network_frame(&net);
     let popups = gather_popups(&s, req.popups, req.scenario_popups);
     check_query(&s, &net, &frame, &popups).map_err(|e| format!("{}: {e}", on()))?;
+    check_ends_clear_of_popups(&s, &frame, &popups)
+        .map_err(|e| NoRoute(format!("{}: {e}", req.scenario.display())))?;
     for p in &popups {
         println!(
             "  {} (lon {}, lat {}, radius {} m{}) applied",
@@ -407,7 +411,7 @@ pub fn load_scenario(
     let options = scenario::ParseOptions {
         hull_self_intersecting_no_fly: hull_repair,
     };
-    let s = scenario::load_in_mode(path, &options, mode)?;
+    let s = crate::scenario_input::read_scenario(path, &options, mode)?;
     for w in &s.warnings {
         eprintln!("warning: {w}");
     }

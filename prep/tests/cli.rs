@@ -179,10 +179,10 @@ fn truncated_network_gives_one_line_naming_the_file() {
     let bytes = std::fs::read(&net).unwrap();
     std::fs::write(&cut, &bytes[..bytes.len() / 3]).unwrap();
     // (`plan` picks its format by the extension: a route file ends in .json.)
-    let (out, route) = (dir.file("x.out"), dir.file("x.json"));
+    let (out, svg, route) = (dir.file("x.json"), dir.file("x.svg"), dir.file("r.json"));
     for (args, written) in [
         (vec!["export", &cut, "-o", &out], &out),
-        (vec!["render", &cut, "-o", &out], &out),
+        (vec!["render", &cut, "-o", &svg], &svg),
         (
             vec!["plan", &cut, "--scenario", &scenario, "-o", &route],
             &route,

@@ -506,4 +506,23 @@ fn landmark_networks_export_their_chains_and_prove_an_impossible_weather() {
         ],
     );
     assert_eq!(e.lines().count(), 1, "{e}");
+    // A weather the scenario does not have: bad input, named with the ones it has.
+    refused(
+        &[
+            "plan",
+            &net,
+            "--scenario",
+            &sc,
+            "--weather",
+            "hurricane",
+            "-o",
+            &out,
+        ],
+        &out,
+        1,
+        &[
+            "weather \"hurricane\" is not one of the scenario's",
+            "\"haze\"",
+        ],
+    );
 }

@@ -3,6 +3,10 @@
 //! f64 reference geometry, synthetic worlds, tiers) are in `host_tests` (`host-tests/src`).
 //! Random counts come from `host_tests::cases` (`SKYROUTE_TIER`, see `docs/TESTING.md`).
 
+/// Bad input to the loader and the planner API not covered elsewhere: an empty network, a
+/// header claiming four billion vertices, positions beyond the limit, a zero budget, mode-only
+/// calls on a roadmap, bad pop-ups, a pop-up over the start, a full pop-up table, unknown ids.
+mod bad_input;
 /// Format v4's compact records: damaged cell lists and Dubins words each refused by name; the
 /// in-flight checksum pass.
 mod compact_records;

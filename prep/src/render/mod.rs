@@ -72,7 +72,34 @@ pub struct RenderRequest {
 }
 
 fn is_png(p: &Path) -> bool {
-    p.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"))
+    has_extension(p, "png")
+}
+
+fn has_extension(p: &Path, ext: &str) -> bool {
+    p.extension().is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
+/// Refuses outputs whose names do not say what they hold: `-o` must end in `.svg` or `.png`,
+/// `--png` in `.png`, and the two must differ.
+fn check_output_names(req: &RenderRequest) -> Result<(), String> {
+    if !(is_png(&req.output) || has_extension(&req.output, "svg")) {
+        return Err(format!(
+            "{}: render writes SVG or PNG; name the output .svg or .png",
+            req.output.display()
+        ));
+    }
+    if let Some(p) = &req.png {
+        if !is_png(p) {
+            return Err(format!("{}: --png writes PNG; name it .png", p.display()));
+        }
+        if p == &req.output {
+            return Err(format!(
+                "{}: given as both -o and --png; choose two paths",
+                p.display()
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Reads a route file and checks that it was planned in `net`'s frame; errors name the file.
@@ -95,6 +122,7 @@ fn read_route_on(path: &Path, net: &Network, net_path: &Path) -> Result<Route, S
 /// Reads the inputs, draws, writes the picture(s). Returns the files written. Errors name the
 /// file concerned.
 pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::Error>> {
+    check_output_names(req)?;
     let bytes = read_network(&req.network)?;
     let net = Network::from_bytes(&bytes).map_err(|e| format!("{}: {e}", req.network.display()))?;
     let frame = network_frame(&net);
@@ -106,7 +134,9 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
     let s = req
         .scenario
         .as_deref()
-        .map(|p| scenario::load_in_mode(p, &scenario::ParseOptions::default(), req.mode))
+        .map(|p| {
+            crate::scenario_input::read_scenario(p, &scenario::ParseOptions::default(), req.mode)
+        })
         .transpose()?;
     if let Some(s) = &s {
         // Drawn over a network it does not match, a scenario's zones would be missing from

@@ -214,6 +214,13 @@ pub fn parse_route(text: &str) -> Result<Route, String> {
 
 /// A route from the parsed JSON of a route file.
 pub fn route_from_json(v: &Value) -> Result<Route, String> {
+    if v.get("type").and_then(Value::as_str) == Some("FeatureCollection") {
+        return Err(
+            "a GeoJSON FeatureCollection (a scenario or a .geojson route), not a route \
+                    file: give the .json route file `skyroute plan -o ROUTE.json` writes"
+                .into(),
+        );
+    }
     let frame = v.get("frame").ok_or("frame: missing")?;
     let origin_deg = (
         num(frame, "origin_lat_deg").map_err(|e| format!("frame.{e}"))?,

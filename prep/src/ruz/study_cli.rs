@@ -6,7 +6,7 @@ use super::histogram::{histogram_svg, Histogram};
 use super::montecarlo::{expected, run, setup, Tally};
 use super::risk_params;
 use crate::mission::MissionOptions;
-use crate::output::write_atomically;
+use crate::output::{refuse_overwriting_inputs, write_atomically};
 use crate::plan_cli::{load_scenario, CliResult};
 use crate::provenance::check_binding;
 use crate::scenario;
@@ -49,6 +49,26 @@ fn tally_json(t: &Tally, top: f64) -> serde_json::Value {
 
 /// `skyroute montecarlo`.
 pub fn montecarlo_command(req: &MonteCarloRequest) -> CliResult {
+    if req.missions == 0 {
+        return Err("--missions 0: the study needs at least one mission".into());
+    }
+    if !req
+        .output
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+    {
+        return Err(format!(
+            "{}: montecarlo writes JSON; name the output .json",
+            req.output.display()
+        )
+        .into());
+    }
+    let inputs = [req.network, req.scenario];
+    refuse_overwriting_inputs(req.output, &inputs)?;
+    if let Some(prefix) = req.histograms {
+        let first = format!("{}-decision.svg", prefix.display());
+        refuse_overwriting_inputs(Path::new(&first), &inputs)?;
+    }
     let bytes =
         std::fs::read(req.network).map_err(|e| format!("{}: {e}", req.network.display()))?;
     let net = skyroute::Network::from_bytes(&bytes)
