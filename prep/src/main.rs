@@ -518,7 +518,7 @@ fn build_command(
 }
 
 /// The scenario `skyroute demo` runs, built into the binary.
-const DEMO_SCENARIO: &str = include_str!("../../scenarios/niendorf-urban.geojson");
+const DEMO_SCENARIO: &str = include_str!("../demo/niendorf-urban.geojson");
 
 /// `skyroute demo`: build, plan and render the embedded niendorf-urban scenario.
 fn demo_command(dir: &Path) -> CliResult {
