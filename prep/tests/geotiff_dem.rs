@@ -358,3 +358,67 @@ fn utm_and_non_square_geotiff_scenarios_build_and_plan() {
         assert!(r.is_object(), "{name}: {r}");
     }
 }
+
+/// GDAL's tiled Deflate and striped LZW (floating-point predictor) files with random bytes
+/// changed are errors or DEMs, never panics.
+#[test]
+fn mutated_gdal_files_never_panic() {
+    let dir = TempDir::new("geotiff-mutated");
+    let (tiled, lzw) = (dir.file("tiled.tif"), dir.file("lzw.tif"));
+    let asc = ascii_dem();
+    let a = [
+        "-q",
+        "-a_srs",
+        "EPSG:4326",
+        "-ot",
+        "Int16",
+        "-co",
+        "TILED=YES",
+        "-co",
+        "BLOCKXSIZE=64",
+        "-co",
+        "BLOCKYSIZE=64",
+        "-co",
+        "COMPRESS=DEFLATE",
+        &asc,
+        &tiled,
+    ];
+    let b = [
+        "-q",
+        "-a_srs",
+        "EPSG:4326",
+        "-ot",
+        "Float32",
+        "-co",
+        "COMPRESS=LZW",
+        "-co",
+        "PREDICTOR=3",
+        &asc,
+        &lzw,
+    ];
+    if gdal("gdal_translate", &a).is_none() || gdal("gdal_translate", &b).is_none() {
+        return;
+    }
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    for file in [&tiled, &lzw] {
+        let base = std::fs::read(file).unwrap();
+        for _ in 0..300 {
+            let mut bytes = base.clone();
+            for _ in 0..1 + next() % 8 {
+                // Half the changes in the first 1 KiB (header, IFD, tags), half anywhere.
+                let span = if next() % 2 == 0 { 1024 } else { bytes.len() };
+                let i = (next() % span.min(bytes.len()) as u64) as usize;
+                bytes[i] = next() as u8;
+            }
+            if let Ok(dem) = dem::geotiff::parse(&bytes, Path::new(file)) {
+                assert_eq!(dem.values().len(), dem.ncols * dem.nrows);
+            }
+        }
+    }
+}

@@ -30,7 +30,8 @@
 //! Before anything is decoded: at most [`MAX_CELLS`] cells, and every strip or tile lies
 //! within the file (a header claiming a large grid over a short file fails here, having
 //! allocated nothing but the file). The elevations then grow strip by strip (or by one row of
-//! tiles), so memory follows the data actually decoded.
+//! tiles, once its first tile has decoded), so memory follows the data actually decoded; the
+//! decoder itself refuses a chunk over 256 MiB (the `tiff` crate's default limit).
 //!
 //! Every error names the file and the tag (or GeoKey, or strip/tile, or cell):
 //!
@@ -454,7 +455,7 @@ fn read_samples(
     nodata: Option<f64>,
 ) -> Result<Vec<f32>, DemError> {
     let (cw, ch) = dec.chunk_dimensions();
-    let (cw, ch) = (cw as usize, ch as usize);
+    let (cw, ch) = (cw.max(1) as usize, ch.max(1) as usize);
     let tiled = dec.get_chunk_type() == ChunkType::Tile;
     let kind = if tiled { "tile" } else { "strip" };
     let across = if tiled { ncols.div_ceil(cw) } else { 1 };
@@ -464,7 +465,6 @@ fn read_samples(
         let top = band * ch;
         let band_rows = ch.min(nrows - top);
         let start = values.len();
-        values.resize(start + band_rows * ncols, f32::NAN);
         for t in 0..across {
             let index = (band * across + t) as u32;
             let field = format!("{kind} {index}");
@@ -481,6 +481,10 @@ fn read_samples(
             if h != band_rows || left + w > ncols {
                 let m = format!("{w} x {h} samples do not fit the grid at row {top}");
                 return Err(error(path, &field, DemErrorKind::Invalid(m)));
+            }
+            // The band's cells, once its first chunk has decoded.
+            if values.len() == start {
+                values.resize(start + band_rows * ncols, f32::NAN);
             }
             let mut put = |i: usize, v: f64, single: bool| -> Result<(), DemError> {
                 let (r, c) = (i / w, i % w);
@@ -503,23 +507,30 @@ fn read_samples(
                 values[start + r * ncols + left + c] = e;
                 Ok(())
             };
-            for_each_sample(&chunk, &mut put)?;
+            let n = for_each_sample(&chunk, &mut put)?;
+            if n != w * h {
+                let m = format!("{n} samples decoded, {w} x {h} expected");
+                return Err(error(path, &field, DemErrorKind::Invalid(m)));
+            }
         }
     }
     Ok(values)
 }
 
-/// Calls `f(index, value, is_single_precision)` for every sample of `chunk`.
+/// Calls `f(index, value, is_single_precision)` for every sample of `chunk`; returns how many
+/// there were.
 fn for_each_sample<E>(
     chunk: &DecodingResult,
     f: &mut impl FnMut(usize, f64, bool) -> Result<(), E>,
-) -> Result<(), E> {
+) -> Result<usize, E> {
+    let mut n = 0;
     macro_rules! each {
-        ($v:expr, $single:expr) => {
+        ($v:expr, $single:expr) => {{
             for (i, &x) in $v.iter().enumerate() {
                 f(i, f64::from(x), $single)?;
             }
-        };
+            n = $v.len();
+        }};
     }
     match chunk {
         DecodingResult::U8(v) => each!(v, false),
@@ -535,12 +546,14 @@ fn for_each_sample<E>(
             for (i, &x) in v.iter().enumerate() {
                 f(i, x as f64, false)?;
             }
+            n = v.len();
         }
         DecodingResult::I64(v) => {
             for (i, &x) in v.iter().enumerate() {
                 f(i, x as f64, false)?;
             }
+            n = v.len();
         }
     }
-    Ok(())
+    Ok(n)
 }

@@ -266,6 +266,17 @@ fn a_large_header_over_a_short_file_fails_before_allocating() {
         "tag 279 (StripByteCounts)",
         "ends past the end of the file",
     );
+    // Deflate: the byte count cannot bound the grid; the strip fails to decode, and nothing
+    // of the grid's size is allocated before (the decoder's own limit, 256 MiB a chunk).
+    let deflate = [
+        (256, V::Long(vec![16384])),
+        (257, V::Long(vec![16384])),
+        (278, V::Long(vec![16384])),
+        (259, V::Short(vec![8])),
+        (33550, V::Double(vec![1e-4, 1e-4, 0.0])),
+    ];
+    let b = int16_dem(1, 1, &[7], &deflate);
+    expect(&b, "strip 0", "cannot decode");
     let strips = [(257, V::Long(vec![4])), (278, V::Long(vec![1]))];
     let b = int16_dem(1, 1, &[7], &strips);
     expect(
@@ -289,5 +300,29 @@ fn a_truncated_file_is_an_error_not_a_panic() {
     for n in [4, 8, 12, 40, b.len() - 1] {
         let m = err(&b[..n]);
         assert!(m.starts_with("t/x.tif: "), "{m}");
+    }
+}
+
+/// Random byte changes to a small tiled-or-striped DEM are errors or DEMs, never panics.
+#[test]
+fn mutated_files_never_panic() {
+    let nodata = (42113, V::Ascii("-32768"));
+    let base = int16_dem(3, 2, &[1, 2, 3, 4, -32768, 6], &[nodata]);
+    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    for _ in 0..5000 {
+        let mut b = base.clone();
+        for _ in 0..1 + next() % 4 {
+            let i = (next() % b.len() as u64) as usize;
+            b[i] = next() as u8;
+        }
+        if let Ok(dem) = parse(&b, Path::new("t/x.tif")) {
+            assert_eq!(dem.values().len(), dem.ncols * dem.nrows);
+        }
     }
 }
