@@ -523,16 +523,15 @@ fn for_each_sample<E>(
     chunk: &DecodingResult,
     f: &mut impl FnMut(usize, f64, bool) -> Result<(), E>,
 ) -> Result<usize, E> {
-    let mut n = 0;
     macro_rules! each {
         ($v:expr, $single:expr) => {{
             for (i, &x) in $v.iter().enumerate() {
                 f(i, f64::from(x), $single)?;
             }
-            n = $v.len();
+            $v.len()
         }};
     }
-    match chunk {
+    let n = match chunk {
         DecodingResult::U8(v) => each!(v, false),
         DecodingResult::U16(v) => each!(v, false),
         DecodingResult::U32(v) => each!(v, false),
@@ -546,14 +545,14 @@ fn for_each_sample<E>(
             for (i, &x) in v.iter().enumerate() {
                 f(i, x as f64, false)?;
             }
-            n = v.len();
+            v.len()
         }
         DecodingResult::I64(v) => {
             for (i, &x) in v.iter().enumerate() {
                 f(i, x as f64, false)?;
             }
-            n = v.len();
+            v.len()
         }
-    }
+    };
     Ok(n)
 }
