@@ -22,7 +22,9 @@
 //!   32701–32760, 26901–26923, 25828–25838). Anything else (another projection, a datum far
 //!   from WGS-84, units other than degrees or metres) is refused by name. A file without a
 //!   GeoKey directory is taken as geographic or unnamed-projected by the rule of the ASCII
-//!   reader ([`super::ascii`]).
+//!   reader ([`super::ascii`]). Elevations are metres (a `VerticalUnitsGeoKey` other than
+//!   metres is refused); the vertical datum is the file's (EGM96/EGM2008 for SRTM and GLO-30),
+//!   and the scenario's `altitude_m` is on the same datum.
 //! * **No-data**: the GDAL_NODATA value, and NaN samples, are NODATA.
 //!
 //! # Limits
@@ -384,6 +386,10 @@ fn units_of(keys: &[(u16, u16)], path: &Path) -> Result<Option<Units>, DemError>
             DemErrorKind::Unsupported(format!("{value}: {what}")),
         )
     };
+    if let Some(u) = key(4099).filter(|&u| u != 9001) {
+        let what = "elevations in units other than metres (9001)";
+        return Err(refuse(4099, "VerticalUnitsGeoKey", u, what));
+    }
     let model = key(1024).or(if key(3072).is_some() {
         Some(1)
     } else if key(2048).is_some() {

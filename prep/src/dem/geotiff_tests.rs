@@ -205,6 +205,10 @@ fn unknown_coordinate_systems_are_refused_by_key() {
     let b = int16_dem(1, 1, &[7], &[(34735, feet)]);
     let field = "tag 34735 (GeoKeyDirectory) key 3076 (ProjLinearUnitsGeoKey)";
     expect(&b, field, "9002");
+    let feet = V::Short(vec![1, 1, 0, 2, 2048, 0, 1, 4326, 4099, 0, 1, 9002]);
+    let b = int16_dem(1, 1, &[7], &[(34735, feet)]);
+    let field = "tag 34735 (GeoKeyDirectory) key 4099 (VerticalUnitsGeoKey)";
+    expect(&b, field, "9002");
     let short = V::Short(vec![1, 1, 0, 5, 1024, 0, 1, 2]);
     let b = int16_dem(1, 1, &[7], &[(34735, short)]);
     expect(&b, "tag 34735 (GeoKeyDirectory)", "too few");
