@@ -7,6 +7,7 @@ pub mod dem;
 pub mod export;
 pub mod frame;
 pub mod info;
+pub mod init;
 pub mod landmark;
 pub mod landmark_mission;
 pub mod landmark_reach;

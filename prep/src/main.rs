@@ -4,6 +4,7 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use skyroute::planner::decision::DecisionLimits;
 use skyroute_prep::build::{build, BuildOptions};
+use skyroute_prep::init::init_command;
 use skyroute_prep::output::{refuse_overwriting_inputs, write_atomically};
 use skyroute_prep::plan_cli::{load_scenario, plan_command, CliResult, NoRoute, PlanRequest};
 use skyroute_prep::route_mission::{Autopilot, MissionOutput};
@@ -43,6 +44,31 @@ message names the file and the field, or the option):
   the network has at least one vertex
 Option values must be finite numbers, lengths positive (--node-spacing and --node-margin
 may be 0); a malformed value is a usage error, exit code 2.";
+
+/// `skyroute init`'s arguments.
+#[derive(clap::Args)]
+struct InitArgs {
+    /// Where to write the scenario.
+    output: PathBuf,
+    /// The mode: roadmap (default), landmark, terrain (needs --dem) or voronoi.
+    #[arg(long, value_parser = parse_mode, default_value = "roadmap")]
+    mode: Mode,
+    /// Terrain mode: the DEM (ESRI ASCII grid or GeoTIFF) the template flies over.
+    #[arg(long)]
+    dem: Option<PathBuf>,
+    /// Overwrite an existing file.
+    #[arg(long)]
+    force: bool,
+}
+
+/// `skyroute init`: writes the template, prints what it wrote.
+fn init(a: &InitArgs) -> CliResult {
+    println!(
+        "{}",
+        init_command(&a.output, a.mode, a.dem.as_deref(), a.force)?
+    );
+    Ok(())
+}
 
 /// Scenarios in, preprocessed networks out.
 #[derive(Parser)]
@@ -217,6 +243,10 @@ enum Command {
         #[arg(long, value_name = "PREFIX")]
         histograms: Option<PathBuf>,
     },
+    /// Write a commented template scenario (GeoJSON) for a mode, that builds and plans as
+    /// written: the comments are foreign members (`comments`, each feature's `comment`) that
+    /// skyroute and GIS tools ignore.
+    Init(InitArgs),
     /// Describe a network image: mode, counts and bytes, what it records of its scenario, the
     /// planner capacities (`V`, `E`) and RAM it needs onboard, and the worst-case work of a
     /// query and of a pop-up.
@@ -492,7 +522,7 @@ fn build_command(
 }
 
 /// The scenario `skyroute demo` runs, built into the binary.
-const DEMO_SCENARIO: &str = include_str!("../../scenarios/niendorf-urban.geojson");
+const DEMO_SCENARIO: &str = include_str!("../demo/niendorf-urban.geojson");
 
 /// `skyroute demo`: build, plan and render the embedded niendorf-urban scenario.
 fn demo_command(dir: &Path) -> CliResult {
@@ -635,6 +665,7 @@ fn run(cli: Cli) -> CliResult {
             output: &output,
             histograms: histograms.as_deref(),
         }),
+        Command::Init(a) => init(&a),
         Command::Info { network } => {
             let bytes =
                 std::fs::read(&network).map_err(|e| format!("{}: {e}", network.display()))?;

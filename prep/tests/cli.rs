@@ -145,6 +145,7 @@ fn help_works_on_every_command() {
         &["export", "--help"],
         &["render", "--help"],
         &["info", "--help"],
+        &["init", "--help"],
         &["help", "render"],
     ] {
         let o = ok(skyroute(args), &args.join(" "));

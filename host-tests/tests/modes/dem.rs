@@ -29,7 +29,8 @@ fn jacksboro_header_extremes_and_cells() {
     assert_eq!((dem.ncols, dem.nrows), (403, 344));
     assert_eq!(dem.xllcorner, -84.41375);
     assert_eq!(dem.yllcorner, 36.44625);
-    assert_eq!(dem.cellsize, 0.0008333333); // 3 arc-seconds
+    assert_eq!(dem.cell_x, 0.0008333333); // 3 arc-seconds
+    assert_eq!(dem.cell_y, dem.cell_x);
     assert_eq!(dem.nodata, Some(-9999.0));
     assert_eq!(dem.units, Units::Geographic);
     assert_eq!(dem.values().len(), 403 * 344);

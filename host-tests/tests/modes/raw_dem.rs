@@ -10,8 +10,8 @@ use skyroute_prep::frame::LocalFrame;
 /// The raw DEM cell holding `(lon, lat)` — `floor` of the offset from the south-west corner in
 /// cells — is navigable: inside the DEM, not NODATA, elevation below `threshold`.
 pub fn raw_navigable(dem: &Dem, lon: f64, lat: f64, threshold: f64) -> bool {
-    let u = (lon - dem.xllcorner) / dem.cellsize;
-    let v = (lat - dem.yllcorner) / dem.cellsize;
+    let u = (lon - dem.xllcorner) / dem.cell_x;
+    let v = (lat - dem.yllcorner) / dem.cell_y;
     if !(u >= 0.0 && v >= 0.0) {
         return false;
     }

@@ -261,8 +261,8 @@ fn jacksboro_graph_at_750_m_is_clear_of_the_raw_dem() {
     let threshold = t.altitude_m - t.safety_height_m;
     for e in [s.start.as_ref().unwrap(), s.goal.as_ref().unwrap()] {
         assert!(raw_navigable(&dem, e.lon, e.lat, threshold), "{}", e.name);
-        let u = ((e.lon - dem.xllcorner) / dem.cellsize).floor() as usize;
-        let v = ((e.lat - dem.yllcorner) / dem.cellsize).floor() as usize;
+        let u = ((e.lon - dem.xllcorner) / dem.cell_x).floor() as usize;
+        let v = ((e.lat - dem.yllcorner) / dem.cell_y).floor() as usize;
         assert!(dem.is_navigable(u, v, t.altitude_m, t.safety_height_m));
         let (x, y) = frame.to_local(e.lon, e.lat);
         eprintln!(

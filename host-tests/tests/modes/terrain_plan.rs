@@ -276,8 +276,8 @@ fn components(dem: &Dem, threshold: f64, band: f64, ew: f64, ns: f64) -> Vec<u32
 /// The component label of the raw DEM cell under local point `v` (0: blocked or outside).
 fn component_at(dem: &Dem, frame: &LocalFrame, labels: &[u32], v: Vec2) -> u32 {
     let (lon, lat) = frame.to_geo(v.x as f64, v.y as f64);
-    let u = ((lon - dem.xllcorner) / dem.cellsize).floor();
-    let w = ((lat - dem.yllcorner) / dem.cellsize).floor();
+    let u = ((lon - dem.xllcorner) / dem.cell_x).floor();
+    let w = ((lat - dem.yllcorner) / dem.cell_y).floor();
     if u < 0.0 || w < 0.0 || u >= dem.ncols as f64 || w >= dem.nrows as f64 {
         return 0;
     }

@@ -4,7 +4,7 @@
 use super::cells::{is_blocked, segment_clear};
 use super::grid::{elevation_coding, highest_elevations, metric_grid};
 use super::types::{TerrainError, TerrainGraph, TerrainParams, TerrainStats};
-use crate::dem::{Dem, Units};
+use crate::dem::{Dem, Placement};
 use crate::frame::LocalFrame;
 use rayon::prelude::*;
 use skyroute::geometry::grid::{segment_cells, CellGrid};
@@ -24,14 +24,8 @@ pub fn build_terrain_graph(
     wingspan_m: f64,
     params: &TerrainParams,
 ) -> Result<TerrainGraph, TerrainError> {
-    check_parameters(
-        dem,
-        altitude_m,
-        safety_height_m,
-        clearance_m,
-        wingspan_m,
-        params,
-    )?;
+    let placement = Placement::new(dem.units, frame).ok_or(TerrainError::ProjectedDem)?;
+    check_parameters(altitude_m, safety_height_m, clearance_m, wingspan_m, params)?;
     let mut stats = TerrainStats {
         dem_cells: dem.ncols * dem.nrows,
         ..TerrainStats::default()
@@ -39,7 +33,7 @@ pub fn build_terrain_graph(
 
     // ---- 1. The metric grid.
     let t0 = Instant::now();
-    let grid = metric_grid(dem, frame, params, &mut stats)?;
+    let grid = metric_grid(dem, &placement, params, &mut stats)?;
     // DEM navigability (for the statistics), then each metric cell's highest DEM elevation
     // over the DEM cells its footprint's box meets, encoded rounding up.
     let (nc, nr) = (dem.ncols, dem.nrows);
@@ -48,7 +42,7 @@ pub fn build_terrain_graph(
         .filter(|&i| !dem.is_navigable(i % nc, i / nc, altitude_m, safety_height_m))
         .count();
     let coding = elevation_coding(dem)?;
-    let highest = highest_elevations(dem, frame, &grid, &mut stats);
+    let highest = highest_elevations(dem, &placement, &grid, &mut stats);
     let codes: Vec<u8> = highest
         .iter()
         .map(|h| h.map_or(ELEVATION_BLOCKED, |e| coding.encode(e)))
@@ -121,18 +115,14 @@ pub fn build_terrain_graph(
     })
 }
 
-/// Checks the DEM's units and that every parameter is finite and in range.
+/// Checks that every parameter is finite and in range.
 fn check_parameters(
-    dem: &Dem,
     altitude_m: f64,
     safety_height_m: f64,
     clearance_m: f64,
     wingspan_m: f64,
     params: &TerrainParams,
 ) -> Result<(), TerrainError> {
-    if dem.units != Units::Geographic {
-        return Err(TerrainError::ProjectedDem);
-    }
     let bad = |name: &str, v: f64| Err(TerrainError::InvalidParameter(format!("{name} = {v}")));
     if !altitude_m.is_finite() {
         return bad("altitude_m", altitude_m);

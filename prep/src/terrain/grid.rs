@@ -2,8 +2,7 @@
 //! elevation, encoded.
 
 use super::types::{TerrainError, TerrainParams, TerrainStats};
-use crate::dem::Dem;
-use crate::frame::LocalFrame;
+use crate::dem::{Dem, Placement, Units};
 use rayon::prelude::*;
 use skyroute::geometry::grid::{CellGrid, MAX_CELLS_PER_AXIS};
 use skyroute::network::elevation::{ElevationCoding, ELEVATION_BLOCKED};
@@ -42,13 +41,13 @@ pub fn elevation_coding(dem: &Dem) -> Result<ElevationCoding, TerrainError> {
     Ok(coding)
 }
 
-/// The metric sides of a DEM cell in `frame`, `((min, max) east-west, (min, max) north-south)`,
-/// metres, at the four corners of the DEM and its centre (the sides vary monotonically with
-/// latitude and distance from the central meridian).
-fn dem_cell_sides(dem: &Dem, frame: &LocalFrame) -> ((f64, f64), (f64, f64)) {
-    let (x0, y0, cs) = (dem.xllcorner, dem.yllcorner, dem.cellsize);
+/// The metric sides of a DEM cell in the frame, `((min, max) along the DEM's x, (min, max)
+/// along its y)`, metres, at the four corners of the DEM and its centre (the sides vary
+/// monotonically with latitude and distance from the central meridian).
+fn dem_cell_sides(dem: &Dem, frame: &Placement) -> ((f64, f64), (f64, f64)) {
+    let (x0, y0, csx, csy) = (dem.xllcorner, dem.yllcorner, dem.cell_x, dem.cell_y);
     let (nc, nr) = (dem.ncols, dem.nrows);
-    let dem_corner = |c: usize, r: usize| (x0 + c as f64 * cs, y0 + r as f64 * cs);
+    let dem_corner = |c: usize, r: usize| (x0 + c as f64 * csx, y0 + r as f64 * csy);
     let dist = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).hypot(a.1 - b.1);
     let (mut ew, mut ns) = ((f64::MAX, 0.0f64), (f64::MAX, 0.0f64));
     for (c, r) in [
@@ -60,8 +59,8 @@ fn dem_cell_sides(dem: &Dem, frame: &LocalFrame) -> ((f64, f64), (f64, f64)) {
     ] {
         let (lon, lat) = dem_corner(c, r);
         let p = frame.to_local(lon, lat);
-        let e = dist(p, frame.to_local(lon + cs, lat));
-        let n = dist(p, frame.to_local(lon, lat + cs));
+        let e = dist(p, frame.to_local(lon + csx, lat));
+        let n = dist(p, frame.to_local(lon, lat + csy));
         ew = (ew.0.min(e), ew.1.max(e));
         ns = (ns.0.min(n), ns.1.max(n));
     }
@@ -70,16 +69,21 @@ fn dem_cell_sides(dem: &Dem, frame: &LocalFrame) -> ((f64, f64), (f64, f64)) {
 
 /// The box `[min x, min y, max x, max y]` of the DEM's outline in `frame`; records in `stats`
 /// how far the DEM's corners lie from an axis-aligned grid.
-fn dem_outline(dem: &Dem, frame: &LocalFrame, stats: &mut TerrainStats) -> [f64; 4] {
-    let (x0, y0, cs) = (dem.xllcorner, dem.yllcorner, dem.cellsize);
+fn dem_outline(dem: &Dem, frame: &Placement, stats: &mut TerrainStats) -> [f64; 4] {
+    let (x0, y0, csx, csy) = (dem.xllcorner, dem.yllcorner, dem.cell_x, dem.cell_y);
     let (nc, nr) = (dem.ncols, dem.nrows);
-    let dem_corner = |c: usize, r: usize| (x0 + c as f64 * cs, y0 + r as f64 * cs);
+    let dem_corner = |c: usize, r: usize| (x0 + c as f64 * csx, y0 + r as f64 * csy);
     let dist = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).hypot(a.1 - b.1);
     // The DEM's corners in the frame: its outline for the extent, all of them for the
     // comparison with an axis-aligned grid.
-    let (lon_c, lat_c) = (x0 + 0.5 * nc as f64 * cs, y0 + 0.5 * nr as f64 * cs);
+    let (lon_c, lat_c) = (x0 + 0.5 * nc as f64 * csx, y0 + 0.5 * nr as f64 * csy);
     let (xc, yc) = frame.to_local(lon_c, lat_c);
-    let h = 1e-4;
+    // A step of 1e-4 degrees, or of 1 m in a projected DEM.
+    let h = if dem.units == Units::Geographic {
+        1e-4
+    } else {
+        1.0
+    };
     let sx = (frame.to_local(lon_c + h, lat_c).0 - frame.to_local(lon_c - h, lat_c).0) / (2.0 * h);
     let sy = (frame.to_local(lon_c, lat_c + h).1 - frame.to_local(lon_c, lat_c - h).1) / (2.0 * h);
     let per_row: Vec<(f64, [f64; 4])> = (0..=nr)
@@ -121,7 +125,7 @@ fn dem_outline(dem: &Dem, frame: &LocalFrame, stats: &mut TerrainStats) -> [f64;
 /// metric side); records the cell sides in `stats`.
 pub(super) fn metric_grid(
     dem: &Dem,
-    frame: &LocalFrame,
+    frame: &Placement,
     params: &TerrainParams,
     stats: &mut TerrainStats,
 ) -> Result<CellGrid, TerrainError> {
@@ -159,11 +163,11 @@ pub(super) fn metric_grid(
 /// outside the DEM; records the bow and the pad in `stats`.
 pub(super) fn highest_elevations(
     dem: &Dem,
-    frame: &LocalFrame,
+    frame: &Placement,
     grid: &CellGrid,
     stats: &mut TerrainStats,
 ) -> Vec<Option<f32>> {
-    let (x0, y0, cs) = (dem.xllcorner, dem.yllcorner, dem.cellsize);
+    let (x0, y0, csx, csy) = (dem.xllcorner, dem.yllcorner, dem.cell_x, dem.cell_y);
     let (nc, nr) = (dem.ncols, dem.nrows);
     let (ew, ns) = (stats.dem_cell_ew_m, stats.dem_cell_ns_m);
     let (cols, rows) = (grid.cols as usize, grid.rows as usize);
@@ -171,29 +175,29 @@ pub(super) fn highest_elevations(
     let (gx, gy) = (grid.origin.x as f64, grid.origin.y as f64);
     let vertex_local = |c: usize, r: usize| (gx + c as f64 * cell_f, gy + r as f64 * cell_f);
 
-    // Every grid vertex in (lon, lat).
+    // Every grid vertex in the DEM's coordinates.
     let vertices: Vec<(f64, f64)> = (0..=rows)
         .into_par_iter()
         .flat_map_iter(|r| {
             (0..=cols).map(move |c| {
                 let (x, y) = vertex_local(c, r);
-                frame.to_geo(x, y)
+                frame.to_dem(x, y)
             })
         })
         .collect();
     let vtx = |c: usize, r: usize| vertices[r * (cols + 1) + c];
 
-    // Metres per degree, the smallest on the DEM (to turn metres into degrees conservatively),
-    // and the bow of the metric cell edges along the grid's outline.
-    let m_per_deg_lon = ew.0 / cs;
-    let m_per_deg_lat = ns.0 / cs;
+    // Metres per DEM unit (degree or metre), the smallest on the DEM (to turn metres into DEM
+    // units conservatively), and the bow of the metric cell edges along the grid's outline.
+    let m_per_deg_lon = ew.0 / csx;
+    let m_per_deg_lat = ns.0 / csy;
     let bow = |a: (usize, usize), b: (usize, usize)| {
         let (pa, pb) = (vertex_local(a.0, a.1), vertex_local(b.0, b.1));
-        let mid = frame.to_geo(0.5 * (pa.0 + pb.0), 0.5 * (pa.1 + pb.1));
+        let mid = frame.to_dem(0.5 * (pa.0 + pb.0), 0.5 * (pa.1 + pb.1));
         let (ga, gb) = (vtx(a.0, a.1), vtx(b.0, b.1));
         let chord = (0.5 * (ga.0 + gb.0), 0.5 * (ga.1 + gb.1));
-        // Degrees to metres with the largest metres per degree (an upper bound).
-        let (ml, mp) = (ew.1 / cs, ns.1 / cs);
+        // DEM units to metres with the largest metres per unit (an upper bound).
+        let (ml, mp) = (ew.1 / csx, ns.1 / csy);
         ((mid.0 - chord.0) * ml).hypot((mid.1 - chord.1) * mp)
     };
     let mut edge_bow: f64 = 0.0;
@@ -232,8 +236,8 @@ pub(super) fn highest_elevations(
             let lon_hi = corners.iter().map(|p| p.0).fold(f64::MIN, f64::max) + pad_lon;
             let lat_lo = corners.iter().map(|p| p.1).fold(f64::MAX, f64::min) - pad_lat;
             let lat_hi = corners.iter().map(|p| p.1).fold(f64::MIN, f64::max) + pad_lat;
-            let dc = range((lon_lo - x0) / cs, (lon_hi - x0) / cs, nc);
-            let dr = range((lat_lo - y0) / cs, (lat_hi - y0) / cs, nr);
+            let dc = range((lon_lo - x0) / csx, (lon_hi - x0) / csx, nc);
+            let dr = range((lat_lo - y0) / csy, (lat_hi - y0) / csy, nr);
             match (dc, dr) {
                 (Ok((c0, c1)), Ok((r0, r1))) => Some(
                     (r0..=r1)

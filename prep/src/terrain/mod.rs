@@ -49,6 +49,15 @@
 //!   the meridian convergence changing by about ±0.1° across it and the metres per degree of
 //!   longitude by about ±0.2 % (roughly 28 m each): over half a cell, not negligible, hence
 //!   the back-mapping, whose own error is the sub-millimetre bow, covered by the pad.
+//! * **Other DEMs** ([`crate::dem`]): the same holds for any north-up DEM the frame can be
+//!   reached from, through [`crate::dem::Placement`]. A geographic DEM's cells may be
+//!   non-square in degrees (`cell_x ≠ cell_y`, Copernicus GLO-30 north of 50°): the DEM-cell
+//!   ranges use each axis's side, and the metric cell is the smallest metric side of either. A
+//!   UTM DEM (GeoTIFF) is mapped the same way, its easting/northing to `(lon, lat)` by the
+//!   zone's inverse transverse Mercator (exact to nanometres) and on into the frame; the bow and
+//!   the pad are then measured in the DEM's metres. So no DEM is resampled or interpolated:
+//!   each metric cell takes the highest elevation of every DEM cell its footprint meets,
+//!   whatever the DEM's coordinates.
 //!
 //! # 2. Nodes at the corners of the blocked regions
 //!

@@ -135,8 +135,8 @@ impl TerrainGraph {
 /// Why [`build_terrain_graph`](super::build_terrain_graph) failed.
 #[derive(Clone, Debug, PartialEq)]
 pub enum TerrainError {
-    /// The DEM is projected: the format carries no coordinate system, so it cannot be placed in
-    /// the local frame.
+    /// The DEM is in a projection it does not name (an ASCII grid in metres), so it cannot be
+    /// placed in the local frame.
     ProjectedDem,
     /// A parameter is out of range (named, with the value).
     InvalidParameter(String),
@@ -156,8 +156,9 @@ impl fmt::Display for TerrainError {
         match self {
             TerrainError::ProjectedDem => write!(
                 f,
-                "the DEM is in projected units; only geographic (lon/lat) DEMs can be placed in \
-                 the local frame"
+                "the DEM is in projected units of an unnamed projection (an ASCII grid); only \
+                 geographic (lon/lat) DEMs and GeoTIFFs in a UTM zone can be placed in the local \
+                 frame"
             ),
             TerrainError::InvalidParameter(m) => write!(f, "invalid parameter: {m}"),
             TerrainError::TooLarge { cols, rows } => {

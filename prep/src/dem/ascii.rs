@@ -1,7 +1,6 @@
-//! Digital elevation models in the ESRI ASCII grid format (`.asc`), for the terrain mode
-//! (Medeiros & da Silva).
+//! The ESRI ASCII grid format (`.asc`).
 //!
-//! [`load`] reads a file, [`parse`] takes its text. The format: a header of `key value` lines,
+//! [`parse`] takes a file's text ([`super::load`] reads the file). The format: a header of `key value` lines,
 //! then one line per grid row, **northernmost row first**, `ncols` whitespace-separated
 //! elevations each:
 //!
@@ -30,278 +29,23 @@
 //! scenarios/x.asc: line 8: row 1 (from the north) column 17: "4o2" is not a number
 //! ```
 //!
-//! # Rows, columns, units
+//! # Rows and units
 //!
-//! [`Dem`] stores and indexes rows **from the south** (`row 0` is the file's last data line), the
-//! same convention as [`skyroute::geometry::grid::CellGrid`]: cell `(col, row)` covers
-//! `[x + col·cellsize, x + (col+1)·cellsize] × [y + row·cellsize, y + (row+1)·cellsize]` with
-//! `(x, y) = (xllcorner, yllcorner)`. [`Dem::line_of_row`] gives the file line of a row.
+//! The file's last data line is the DEM's row 0 ([`Dem::line_of_row`] gives the file line of a
+//! row); cells are square (`cell_x = cell_y = cellsize`), the corner is `(xllcorner, yllcorner)`.
 //!
 //! The grid is taken as **geographic** (degrees of longitude/latitude, WGS-84) when `cellsize < 1`
 //! and its whole extent lies within ±180° × ±90°, and as **projected** (metres) otherwise — the
 //! format carries no coordinate system, and a sub-metre projected grid near its projection's
-//! origin would be misread; set [`Dem::units`] to override. Only geographic grids have
-//! [`Dem::cell_centre_lonlat`].
+//! origin would be misread; set [`Dem::units`] to override. A projected ASCII grid is
+//! [`Units::Projected`]: its projection is unknown, so it cannot be placed on the earth.
 //!
 //! # NODATA
 //!
-//! Cells equal to `NODATA_value` are stored as NaN; [`Dem::elevation_at`] returns `None` for
-//! them, [`Dem::nodata_count`] counts them and [`Dem::nodata_cells`] lists them. **A caller must
-//! treat a NODATA cell as not navigable** (the terrain there is unknown), as
-//! [`Dem::is_navigable`] does; [`Dem::min`] and [`Dem::max`] ignore NODATA cells.
+//! Cells equal to `NODATA_value` are NODATA (NaN in the [`Dem`]).
 
-use std::fmt;
-use std::path::{Path, PathBuf};
-
-/// The most cells a DEM may have (2²⁸, 1 GiB of `f32`).
-pub const MAX_CELLS: usize = 1 << 28;
-
-/// How the grid's coordinates are to be read.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Units {
-    /// Degrees: `x` longitude east, `y` latitude north (WGS-84).
-    Geographic,
-    /// A projected frame, metres.
-    Projected,
-}
-
-/// An elevation model read from an ESRI ASCII grid.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Dem {
-    /// The file it was read from.
-    pub path: PathBuf,
-    /// Number of columns.
-    pub ncols: usize,
-    /// Number of rows.
-    pub nrows: usize,
-    /// West edge of the grid (`xllcenter − cellsize/2` when the file gives the centre).
-    pub xllcorner: f64,
-    /// South edge of the grid (`yllcenter − cellsize/2` when the file gives the centre).
-    pub yllcorner: f64,
-    /// Side of a cell, in [`Dem::units`].
-    pub cellsize: f64,
-    /// The file's `NODATA_value`, if it has one.
-    pub nodata: Option<f64>,
-    /// Geographic or projected, by the rule in the module documentation; may be overridden.
-    pub units: Units,
-    /// Elevations, row-major, rows from the south; NaN for NODATA.
-    values: Vec<f32>,
-    /// The file line of each row, rows from the north (as in the file).
-    row_lines: Vec<usize>,
-    nodata_count: usize,
-    min: Option<f32>,
-    max: Option<f32>,
-}
-
-impl Dem {
-    /// The elevations, row-major with row 0 the southernmost, NaN for NODATA cells.
-    pub fn values(&self) -> &[f32] {
-        &self.values
-    }
-
-    /// The elevation of cell `(col, row)` (row 0 southernmost); `None` outside the grid or for a
-    /// NODATA cell — either way a cell to treat as not navigable.
-    pub fn elevation_at(&self, col: usize, row: usize) -> Option<f32> {
-        if col >= self.ncols || row >= self.nrows {
-            return None;
-        }
-        let v = self.values[row * self.ncols + col];
-        (!v.is_nan()).then_some(v)
-    }
-
-    /// Whether an aircraft at `altitude_m` that must keep `safety_height_m` above the terrain
-    /// may fly over cell `(col, row)`: its elevation is below `altitude_m − safety_height_m`.
-    /// `false` for NODATA cells, cells outside the grid, and NaN arguments.
-    pub fn is_navigable(
-        &self,
-        col: usize,
-        row: usize,
-        altitude_m: f64,
-        safety_height_m: f64,
-    ) -> bool {
-        match self.elevation_at(col, row) {
-            Some(e) => (e as f64) < altitude_m - safety_height_m,
-            None => false,
-        }
-    }
-
-    /// The lowest elevation, NODATA cells aside (`None` when every cell is NODATA).
-    pub fn min(&self) -> Option<f32> {
-        self.min
-    }
-
-    /// The highest elevation, NODATA cells aside (`None` when every cell is NODATA).
-    pub fn max(&self) -> Option<f32> {
-        self.max
-    }
-
-    /// How many cells are NODATA.
-    pub fn nodata_count(&self) -> usize {
-        self.nodata_count
-    }
-
-    /// The NODATA cells as `(col, row)`, row 0 southernmost, in storage order.
-    pub fn nodata_cells(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
-        let n = self.ncols;
-        self.values
-            .iter()
-            .enumerate()
-            .filter(|(_, v)| v.is_nan())
-            .map(move |(i, _)| (i % n, i / n))
-    }
-
-    /// The centre of cell `(col, row)` in the grid's own units; `None` outside the grid.
-    pub fn cell_centre(&self, col: usize, row: usize) -> Option<(f64, f64)> {
-        if col >= self.ncols || row >= self.nrows {
-            return None;
-        }
-        Some((
-            self.xllcorner + (col as f64 + 0.5) * self.cellsize,
-            self.yllcorner + (row as f64 + 0.5) * self.cellsize,
-        ))
-    }
-
-    /// The centre of cell `(col, row)` as `(longitude, latitude)` degrees; `None` for a projected
-    /// grid or outside the grid.
-    pub fn cell_centre_lonlat(&self, col: usize, row: usize) -> Option<(f64, f64)> {
-        match self.units {
-            Units::Geographic => self.cell_centre(col, row),
-            Units::Projected => None,
-        }
-    }
-
-    /// The 1-based line of the file that holds row `row` (row 0 southernmost).
-    pub fn line_of_row(&self, row: usize) -> Option<usize> {
-        (row < self.nrows).then(|| self.row_lines[self.nrows - 1 - row])
-    }
-}
-
-/// What is wrong, in a [`DemError`].
-#[derive(Clone, Debug, PartialEq)]
-pub enum DemErrorKind {
-    /// The file could not be read.
-    Io(String),
-    /// A required header key is absent.
-    MissingKey,
-    /// A header key the format does not define (misspelt?).
-    UnknownKey,
-    /// A header key given twice (or both the corner and the centre form of one).
-    DuplicateKey {
-        /// The line of the first.
-        first_line: usize,
-    },
-    /// A header key without a value.
-    MissingValue,
-    /// More than one value after a header key.
-    ExtraValue(String),
-    /// Not a number.
-    NotANumber(String),
-    /// A number that is NaN or infinite (or overflows an `f32`, for elevations).
-    NotFinite(String),
-    /// `ncols`/`nrows` must be a positive integer.
-    NotPositiveInteger(String),
-    /// `cellsize` must be positive.
-    NotPositive(f64),
-    /// More than [`MAX_CELLS`] cells.
-    TooLarge(usize, usize),
-    /// A data line with the wrong number of values.
-    WrongValueCount {
-        /// Values on the line.
-        found: usize,
-        /// `ncols`.
-        expected: usize,
-    },
-    /// Fewer data lines than `nrows`.
-    TooFewRows {
-        /// Data lines found.
-        found: usize,
-        /// `nrows`.
-        expected: usize,
-    },
-    /// More data lines than `nrows`.
-    TooManyRows {
-        /// `nrows`.
-        expected: usize,
-    },
-}
-
-impl fmt::Display for DemErrorKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            DemErrorKind::Io(m) => write!(f, "cannot read: {m}"),
-            DemErrorKind::MissingKey => write!(f, "missing from the header"),
-            DemErrorKind::UnknownKey => write!(
-                f,
-                "unknown header key (expected ncols, nrows, xllcorner/xllcenter, \
-                 yllcorner/yllcenter, cellsize, NODATA_value)"
-            ),
-            DemErrorKind::DuplicateKey { first_line } => {
-                write!(f, "given twice (first on line {first_line})")
-            }
-            DemErrorKind::MissingValue => write!(f, "has no value"),
-            DemErrorKind::ExtraValue(t) => write!(f, "unexpected {t:?} after the value"),
-            DemErrorKind::NotANumber(t) => write!(f, "{t:?} is not a number"),
-            DemErrorKind::NotFinite(t) => write!(f, "{t:?} is not a finite number"),
-            DemErrorKind::NotPositiveInteger(t) => write!(f, "{t:?} is not a positive integer"),
-            DemErrorKind::NotPositive(v) => write!(f, "{v} is not positive"),
-            DemErrorKind::TooLarge(c, r) => {
-                write!(f, "{c} x {r} cells is more than {MAX_CELLS}")
-            }
-            DemErrorKind::WrongValueCount { found, expected } => {
-                write!(f, "has {found} values, expected ncols = {expected}")
-            }
-            DemErrorKind::TooFewRows { found, expected } => {
-                write!(
-                    f,
-                    "the file ends after {found} rows, expected nrows = {expected}"
-                )
-            }
-            DemErrorKind::TooManyRows { expected } => {
-                write!(f, "a row beyond nrows = {expected}")
-            }
-        }
-    }
-}
-
-/// Why a DEM could not be loaded: the file, the line (1-based; absent for I/O errors), the field
-/// (`cellsize`, `row 12 (from the north) column 17`, …) and what is wrong.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DemError {
-    /// The file.
-    pub path: PathBuf,
-    /// The line, 1-based.
-    pub line: Option<usize>,
-    /// The header key or the data row and column; empty for errors about the whole file.
-    pub field: String,
-    /// What is wrong.
-    pub kind: DemErrorKind,
-}
-
-impl fmt::Display for DemError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: ", self.path.display())?;
-        if let Some(line) = self.line {
-            write!(f, "line {line}: ")?;
-        }
-        if !self.field.is_empty() {
-            write!(f, "{}: ", self.field)?;
-        }
-        write!(f, "{}", self.kind)
-    }
-}
-
-impl std::error::Error for DemError {}
-
-/// Reads and checks the DEM at `path`.
-pub fn load(path: &Path) -> Result<Dem, DemError> {
-    let text = std::fs::read_to_string(path).map_err(|e| DemError {
-        path: path.to_path_buf(),
-        line: None,
-        field: String::new(),
-        kind: DemErrorKind::Io(e.to_string()),
-    })?;
-    parse(&text, path)
-}
+use super::{Dem, DemError, DemErrorKind, GridSpec, Units, MAX_CELLS};
+use std::path::Path;
 
 /// The header keys, in the canonical order.
 const KEYS: [&str; 6] = ["ncols", "nrows", "xll", "yll", "cellsize", "NODATA_value"];
@@ -397,20 +141,17 @@ pub fn parse(text: &str, path: &Path) -> Result<Dem, DemError> {
         Some((n, key, value, _)) => Some(number(*n, key, value)?),
         None => None,
     };
-    let cells = ncols.checked_mul(nrows).filter(|&c| c <= MAX_CELLS);
-    let Some(cells) = cells else {
+    if ncols
+        .checked_mul(nrows)
+        .filter(|&c| c <= MAX_CELLS)
+        .is_none()
+    {
         let (n, key, ..) = field_of(1)?;
         return Err(err(n, &key, DemErrorKind::TooLarge(ncols, nrows)));
-    };
+    }
 
     // Data: one line per row, northernmost first.
-    let Rows {
-        values,
-        row_lines,
-        nodata_count,
-        min,
-        max,
-    } = read_rows(lines, path, (ncols, nrows), nodata)?;
+    let Rows { values, row_lines } = read_rows(lines, path, (ncols, nrows), nodata)?;
     if row_lines.len() < nrows {
         let (n, key, ..) = field_of(1)?;
         let kind = DemErrorKind::TooFewRows {
@@ -422,31 +163,29 @@ pub fn parse(text: &str, path: &Path) -> Result<Dem, DemError> {
 
     let east = xllcorner + ncols as f64 * cellsize;
     let north = yllcorner + nrows as f64 * cellsize;
-    let geographic = cellsize < 1.0
-        && (-180.0..=180.0).contains(&xllcorner)
+    let units = units_by_extent(xllcorner, yllcorner, east, north, cellsize);
+    let grid = GridSpec {
+        size: (ncols, nrows),
+        corner: (xllcorner, yllcorner),
+        cell: (cellsize, cellsize),
+        units,
+    };
+    Ok(Dem::new(path, grid, nodata, values, row_lines))
+}
+
+/// The units of a grid that does not name them, by the rule in the module documentation: its
+/// extent (`west`, `south`, `east`, `north`) and largest cell side `cell`.
+pub(super) fn units_by_extent(west: f64, south: f64, east: f64, north: f64, cell: f64) -> Units {
+    let geographic = cell < 1.0
+        && (-180.0..=180.0).contains(&west)
         && (-180.0..=180.0).contains(&east)
-        && (-90.0..=90.0).contains(&yllcorner)
+        && (-90.0..=90.0).contains(&south)
         && (-90.0..=90.0).contains(&north);
-    let any = nodata_count < cells;
-    Ok(Dem {
-        path: path.to_path_buf(),
-        ncols,
-        nrows,
-        xllcorner,
-        yllcorner,
-        cellsize,
-        nodata,
-        units: if geographic {
-            Units::Geographic
-        } else {
-            Units::Projected
-        },
-        values,
-        row_lines,
-        nodata_count,
-        min: any.then_some(min),
-        max: any.then_some(max),
-    })
+    if geographic {
+        Units::Geographic
+    } else {
+        Units::Projected
+    }
 }
 
 /// The data rows of a DEM, as [`read_rows`] reads them.
@@ -455,16 +194,12 @@ struct Rows {
     values: Vec<f32>,
     /// The file line of each row read, northernmost first.
     row_lines: Vec<usize>,
-    /// Cells equal to the NODATA value.
-    nodata_count: usize,
-    /// Smallest and largest elevation of the other cells (infinite when there is none).
-    min: f32,
-    max: f32,
 }
 
 /// Reads the data lines (`(line number, text)`, one per row, northernmost first) of a DEM of
 /// `(ncols, nrows)` cells: every value a finite number, `nodata` stored as NaN. Fewer than
-/// `nrows` rows is left to the caller.
+/// `nrows` rows is left to the caller. The values grow with the rows read, so a header that
+/// claims more rows than the file holds allocates no more than the file's rows take.
 fn read_rows<'t>(
     lines: impl Iterator<Item = (usize, &'t str)>,
     path: &Path,
@@ -477,11 +212,8 @@ fn read_rows<'t>(
         field: field.to_string(),
         kind,
     };
-    let cells = ncols * nrows;
-    let mut values = vec![f32::NAN; cells];
-    let mut row_lines = Vec::with_capacity(nrows);
-    let mut nodata_count = 0;
-    let (mut min, mut max) = (f32::INFINITY, f32::NEG_INFINITY);
+    let mut values = Vec::new();
+    let mut row_lines = Vec::new();
     for (n, line) in lines {
         let file_row = row_lines.len();
         let row_field = format!("row {} (from the north)", file_row + 1);
@@ -497,9 +229,8 @@ fn read_rows<'t>(
             };
             return Err(err(n, &row_field, kind));
         }
-        let south_row = nrows - 1 - file_row;
-        let out = &mut values[south_row * ncols..(south_row + 1) * ncols];
-        for (col, (token, slot)) in line.split_ascii_whitespace().zip(out).enumerate() {
+        values.reserve(ncols);
+        for (col, token) in line.split_ascii_whitespace().enumerate() {
             let field = || format!("{row_field} column {}", col + 1);
             let v = match token.parse::<f64>() {
                 Ok(v) if v.is_finite() => v,
@@ -507,26 +238,29 @@ fn read_rows<'t>(
                 Err(_) => return Err(err(n, &field(), DemErrorKind::NotANumber(token.into()))),
             };
             if Some(v) == nodata {
-                nodata_count += 1;
-                continue; // stays NaN
+                values.push(f32::NAN);
+                continue;
             }
             let e = v as f32;
             if !e.is_finite() {
                 return Err(err(n, &field(), DemErrorKind::NotFinite(token.into())));
             }
-            *slot = e;
-            min = min.min(e);
-            max = max.max(e);
+            values.push(e);
         }
         row_lines.push(n);
     }
-    Ok(Rows {
-        values,
-        row_lines,
-        nodata_count,
-        min,
-        max,
-    })
+    // Read northernmost first; stored southernmost first.
+    reverse_rows(&mut values, ncols);
+    Ok(Rows { values, row_lines })
+}
+
+/// Reverses the order of the rows of `ncols` values each in `values`, in place.
+pub(super) fn reverse_rows(values: &mut [f32], ncols: usize) {
+    let rows = values.len() / ncols.max(1);
+    for r in 0..rows / 2 {
+        let (top, bottom) = values.split_at_mut((rows - 1 - r) * ncols);
+        top[r * ncols..(r + 1) * ncols].swap_with_slice(&mut bottom[..ncols]);
+    }
 }
 
 #[cfg(test)]
@@ -552,7 +286,10 @@ mod tests {
     fn small_grid_rows_from_the_south() {
         let text = format!("{HEADER}NODATA_value -1\n1 2 3\n4 -1 6.5\n");
         let dem = parse(&text, Path::new("t/x.asc")).unwrap();
-        assert_eq!((dem.ncols, dem.nrows, dem.cellsize), (3, 2, 5.0));
+        assert_eq!(
+            (dem.ncols, dem.nrows, dem.cell_x, dem.cell_y),
+            (3, 2, 5.0, 5.0)
+        );
         assert_eq!((dem.xllcorner, dem.yllcorner), (10.0, 20.0));
         assert_eq!(dem.units, Units::Projected);
         // The file's last line is row 0.
@@ -707,7 +444,7 @@ mod tests {
 
     #[test]
     fn io_error_names_the_file() {
-        let e = load(Path::new("t/definitely-missing.asc")).unwrap_err();
+        let e = super::super::load(Path::new("t/definitely-missing.asc")).unwrap_err();
         assert!(e
             .to_string()
             .starts_with("t/definitely-missing.asc: cannot read"));
