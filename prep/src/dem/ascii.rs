@@ -452,6 +452,20 @@ mod tests {
     }
 
     #[test]
+    fn a_large_header_over_a_short_file_fails_at_its_first_row() {
+        // 16384 × 16384 cells claimed, three values given: the grid grows a row at a time, so
+        // this fails having reserved one row (`skyroute build` on it peaks at 5 MB).
+        let text = "ncols 16384\nnrows 16384\nxllcorner 0\nyllcorner 0\ncellsize 30\n\
+                    NODATA_value -9999\n1 2 3\n";
+        expect(
+            text,
+            7,
+            "row 1 (from the north)",
+            "has 3 values, expected ncols = 16384",
+        );
+    }
+
+    #[test]
     fn too_large() {
         let text = "ncols 100000\nnrows 100000\nxllcorner 0\nyllcorner 0\ncellsize 1\n";
         expect(text, 2, "nrows", "cells is more than");
