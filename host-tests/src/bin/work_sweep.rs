@@ -3,7 +3,7 @@
 //! below its work, which must be refused with the previous route kept.
 //!
 //! ```text
-//! work_sweep [--queries N]      # N per mode, default 100 000
+//! work_sweep [--queries N] [--mode roadmap|terrain|landmark|voronoi]   # N per mode, default 100 000
 //! ```
 //!
 //! Roadmap (niendorf-urban): random start and goal poses, 0–3 circular pop-ups, Dijkstra or A*.
@@ -40,37 +40,64 @@ struct Sweep {
 
 /// The invariants of a route of Dubins pieces (roadmap and terrain): it starts at the start
 /// pose and ends at the goal (and its heading, when fixed); each primitive starts where the
-/// previous ends (within 1 cm) with the same heading (within 10⁻³ rad); every arc's radius is
-/// at least the network's turn radius (less 10⁻⁴ relative).
-fn route_is_flyable(route: &[skyroute::Primitive], q: &Query, turn_radius: f32) -> bool {
+/// previous ends with the same heading (within 10⁻³ rad); every arc's radius is at least the
+/// network's turn radius (less 10⁻⁴ relative). Positions agree within 1 cm plus 2·10⁻⁶ of the
+/// primitive's length and of the point's distance from the origin: the f32 rounding of a
+/// primitive computed tens of kilometres long and away (a 20 km straight ends 4 cm off).
+/// `Err` says which failed.
+fn route_is_flyable(
+    route: &[skyroute::Primitive],
+    q: &Query,
+    turn_radius: f32,
+) -> Result<(), String> {
     let (Some(first), Some(last)) = (route.first(), route.last()) else {
-        return false;
+        return Err("empty route".into());
     };
     let heading_gap = |a: f32, b: f32| {
         let d = (a - b).rem_euclid(std::f32::consts::TAU);
         d.min(std::f32::consts::TAU - d)
     };
+    let tolerance = |p: &skyroute::Primitive, at: Vec2| 0.01 + 2e-6 * (p.length() + at.norm());
     let start = first.pose_at(0.0);
     let end = last.pose_at(last.length());
-    let mut ok = start.position.distance(q.start.position) <= 0.01
-        && heading_gap(start.heading, q.start.heading) <= 1e-3
-        && end.position.distance(q.goal.position) <= 0.01
-        && q.goal
+    if start.position.distance(q.start.position) > tolerance(first, start.position)
+        || heading_gap(start.heading, q.start.heading) > 1e-3
+    {
+        return Err(format!("starts at {start:?}, not {:?}", q.start));
+    }
+    if end.position.distance(q.goal.position) > tolerance(last, end.position)
+        || q.goal
             .heading
-            .is_none_or(|h| heading_gap(end.heading, h) <= 1e-3);
-    for pair in route.windows(2) {
+            .is_some_and(|h| heading_gap(end.heading, h) > 1e-3)
+    {
+        return Err(format!("ends at {end:?}, not {:?}", q.goal));
+    }
+    for (i, pair) in route.windows(2).enumerate() {
         let (a, b) = (&pair[0], &pair[1]);
         let (a_end, b_start) = (a.pose_at(a.length()), b.pose_at(0.0));
-        ok &= a_end.position.distance(b_start.position) <= 0.01;
-        // A zero-length line has no heading of its own.
-        if a.length() > 0.0 && b.length() > 0.0 {
-            ok &= heading_gap(a_end.heading, b_start.heading) <= 1e-3;
+        let gap = a_end.position.distance(b_start.position);
+        // A zero-length primitive has no heading of its own.
+        let turn = if a.length() > 0.0 && b.length() > 0.0 {
+            heading_gap(a_end.heading, b_start.heading)
+        } else {
+            0.0
+        };
+        let allowed = tolerance(a, a_end.position).max(tolerance(b, b_start.position));
+        if gap > allowed || turn > 1e-3 {
+            return Err(format!(
+                "primitives {i} and {}: {gap} m apart, headings {turn} rad apart ({a:?} then {b:?})",
+                i + 1
+            ));
         }
     }
-    ok && route.iter().all(|p| match p {
-        skyroute::Primitive::Arc(a) => a.radius >= turn_radius * (1.0 - 1e-4),
-        skyroute::Primitive::Line(_) => true,
-    })
+    for p in route {
+        if let skyroute::Primitive::Arc(a) = p {
+            if a.radius < turn_radius * (1.0 - 1e-4) {
+                return Err(format!("an arc of radius {} < {turn_radius}", a.radius));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Uniform in the network's extent.
@@ -111,8 +138,13 @@ fn sweep<'n>(
             if used > bound {
                 s.over_bound += 1;
             }
-            if dubins_routes && !route_is_flyable(p.route(), &q, p.network().turn_radius()) {
-                s.not_flyable += 1;
+            if dubins_routes {
+                if let Err(why) = route_is_flyable(p.route(), &q, p.network().turn_radius()) {
+                    if s.not_flyable == 0 {
+                        eprintln!("work_sweep: query {i} {q:?}: the route is not flyable: {why}");
+                    }
+                    s.not_flyable += 1;
+                }
             }
             if used > s.worst_work {
                 // The new worst, at once in the state it ran in: one unit short is refused,
@@ -280,6 +312,10 @@ fn main() -> ExitCode {
         },
         None => 100_000,
     };
+    let only = args
+        .iter()
+        .position(|a| a == "--mode")
+        .and_then(|i| args.get(i + 1));
     let modes: [(&str, fn(u64) -> Sweep); 4] = [
         ("roadmap niendorf-urban", roadmap),
         ("terrain medeiros-jacksboro", terrain),
@@ -289,6 +325,7 @@ fn main() -> ExitCode {
     let results: Vec<(&str, Sweep, f64)> = std::thread::scope(|scope| {
         let handles: Vec<_> = modes
             .iter()
+            .filter(|(name, _)| only.is_none_or(|m| name.starts_with(m.as_str())))
             .map(|&(name, run)| {
                 scope.spawn(move || {
                     let t = Instant::now();
