@@ -137,10 +137,13 @@ install_missing() {
             rustup component add "$c"
         fi
     done
-    # Debian packages: QEMU for the firmware, GDAL's ogrinfo for the GeoJSON route check.
+    # Debian packages: QEMU for the firmware, GDAL for the GeoJSON route and GeoTIFF checks,
+    # llvm-objdump for the firmware call graphs (no recursion).
     local packages=()
     command -v qemu-system-arm >/dev/null || packages+=(qemu-system-arm)
     command -v ogrinfo >/dev/null || packages+=(gdal-bin)
+    command -v llvm-objdump >/dev/null || command -v arm-none-eabi-objdump >/dev/null ||
+        packages+=(llvm)
     if [[ ${#packages[@]} -gt 0 ]]; then
         as_root apt-get update
         as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y "${packages[@]}"
@@ -339,6 +342,7 @@ step "ruz decision firmware build (release, bin ruz)" firmware_build ruz
 step "ruz decision firmware clippy (bin ruz)" firmware_clippy ruz
 step "ruz decision firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/ruz"
 step "ruz decision firmware size" firmware_size "$firmware_release/ruz"
+step "no recursion in the core (the five firmware binaries' call graphs)" scripts/no-recursion.sh
 
 step "fuzz smoke run (each cargo-fuzz target for FUZZ_SECONDS, default 20 s)" \
     scripts/fuzz-smoke.sh

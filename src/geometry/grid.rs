@@ -659,7 +659,7 @@ pub fn arc_cells<F: FnMut(u32, u32) -> bool>(
             push(disc_in_band(p1, rho, ya, yb), 0.0);
         }
         let runs = runs.get_mut(..n).unwrap_or(&mut []);
-        runs.sort_unstable_by_key(|run| run.0);
+        super::insertion_sort_by(runs, |run| run.0);
         let mut i = 0;
         while i < runs.len() {
             let (lo, mut hi) = runs[i];

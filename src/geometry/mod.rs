@@ -443,3 +443,47 @@ impl Primitive {
         }
     }
 }
+
+/// Sorts a short slice by `key` (ascending, stable) by insertion: O(n²) comparisons, no
+/// recursion and no allocation. The core's few sorts are of at most a few dozen items (the
+/// exit's trace intervals, a grid band's runs), where this is as fast as `sort_unstable` and
+/// keeps the firmware's call graph free of `core`'s recursive quicksort.
+/// Keys that do not compare (a NaN) are left in place relative to each other.
+pub fn insertion_sort_by<T: Copy, K: PartialOrd>(items: &mut [T], key: impl Fn(&T) -> K) {
+    for i in 1..items.len() {
+        let mut j = i;
+        while j > 0 {
+            let (Some(a), Some(b)) = (items.get(j - 1), items.get(j)) else {
+                break;
+            };
+            if !(key(a) > key(b)) {
+                break;
+            }
+            items.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod sort_tests {
+    use super::insertion_sort_by;
+
+    #[test]
+    fn insertion_sort_matches_the_standard_stable_sort() {
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        for n in 0..40 {
+            let mut items: [(u32, u32); 40] = [(0, 0); 40];
+            for (i, item) in items.iter_mut().enumerate().take(n) {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                *item = ((state % 7) as u32, i as u32);
+            }
+            let mut expected = items;
+            expected[..n].sort_by_key(|p| p.0);
+            insertion_sort_by(&mut items[..n], |p| p.0);
+            assert_eq!(items[..n], expected[..n]);
+        }
+    }
+}

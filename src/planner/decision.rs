@@ -149,19 +149,53 @@ fn key(a: &Alternative, objective: usize) -> f32 {
 }
 
 impl Search<'_> {
-    /// Visits the choices for pop-ups `d..` after a prefix of `value`, `time` and `fuel`.
-    /// Recursion depth ≤ [`MAX_DECISION_POPUPS`].
-    fn visit(&mut self, d: usize, value: f32, time: f32, fuel: f32) {
-        let Some(alts) = self.alts.get(d) else {
-            if self.best.is_none_or(|(b, _)| value < b) {
-                self.best = Some((value, self.path));
+    /// Visits every choice for the pop-ups that the bounds do not prune, depth first and in
+    /// alternative order, keeping the best complete one. An explicit stack of one frame per
+    /// pop-up (its next alternative and the prefix's value, time and fuel) replaces recursion:
+    /// at most [`MAX_DECISION_POPUPS`] + 1 frames.
+    fn visit(&mut self) {
+        /// A pop-up's frame: its index, the next alternative to try, the prefix's sums.
+        #[derive(Clone, Copy, Default)]
+        struct Frame {
+            d: usize,
+            next: usize,
+            value: f32,
+            time: f32,
+            fuel: f32,
+        }
+        let mut frames = [Frame::default(); MAX_DECISION_POPUPS + 1];
+        let mut len = 1usize;
+        while let Some(top) = len.checked_sub(1) {
+            let Some(&frame) = frames.get(top) else {
+                break;
+            };
+            let Some(alts) = self.alts.get(frame.d) else {
+                // Every pop-up has its alternative: a complete choice.
+                if self.best.is_none_or(|(b, _)| frame.value < b) {
+                    self.best = Some((frame.value, self.path));
+                }
+                len -= 1;
+                continue;
+            };
+            let Some(a) = alts.get(frame.next) else {
+                len -= 1; // every alternative of this pop-up tried
+                continue;
+            };
+            let k = frame.next;
+            if let Some(f) = frames.get_mut(top) {
+                f.next += 1;
             }
-            return;
-        };
-        let rest = self.rest.get(d + 1).copied().unwrap_or((0.0, 0.0, 0.0));
-        for (k, a) in alts.iter().enumerate() {
             self.work += 1;
-            let (v, t, f) = (value + key(a, self.objective), time + a.time, fuel + a.fuel);
+            let rest = self
+                .rest
+                .get(frame.d + 1)
+                .copied()
+                .unwrap_or((0.0, 0.0, 0.0));
+            let (v, t, f) = (
+                frame.value + key(a, self.objective),
+                frame.time + a.time,
+                frame.fuel + a.fuel,
+            );
             let rest_value = match self.objective {
                 0 => rest.0,
                 1 => rest.1,
@@ -173,10 +207,19 @@ impl Search<'_> {
             {
                 continue;
             }
-            if let Some(p) = self.path.get_mut(d) {
+            if let Some(p) = self.path.get_mut(frame.d) {
                 *p = k as u8;
             }
-            self.visit(d + 1, v, t, f);
+            if let Some(child) = frames.get_mut(len) {
+                *child = Frame {
+                    d: frame.d + 1,
+                    next: 0,
+                    value: v,
+                    time: t,
+                    fuel: f,
+                };
+                len += 1;
+            }
         }
     }
 }
@@ -184,8 +227,8 @@ impl Search<'_> {
 /// Picks one alternative per pop-up (`alternatives[u]` are pop-up `u`'s) with the least total
 /// risk whose mean time and fuel factors are within `limits`. Exact (module documentation).
 /// Work: at most [`decision_work_bound`] nodes; an infeasible instance takes two more
-/// searches of as many to name its tightest limit (three in all). Recursion depth at most
-/// [`MAX_DECISION_POPUPS`]. No pop-ups: the empty choice, whatever the limits (a mean over no
+/// searches of as many to name its tightest limit (three in all). No recursion: an explicit
+/// stack of at most [`MAX_DECISION_POPUPS`] + 1 frames. No pop-ups: the empty choice, whatever the limits (a mean over no
 /// pop-ups constrains nothing).
 pub fn decide(
     alternatives: &[&[Alternative]],
@@ -237,7 +280,7 @@ pub fn decide(
         best: None,
         work: 0,
     };
-    search.visit(0, 0.0, 0.0, 0.0);
+    search.visit();
     let work = search.work;
     let Some((_, path)) = search.best else {
         return Err(infeasible(&mut search, limits));
@@ -274,7 +317,7 @@ fn infeasible(search: &mut Search<'_>, limits: &DecisionLimits) -> DecisionError
         search.use_time = use_time;
         search.use_fuel = use_fuel;
         search.best = None;
-        search.visit(0, 0.0, 0.0, 0.0);
+        search.visit();
         search.best.map_or(f32::INFINITY, |(v, _)| v / n)
     };
     let time = least(1, false, true);

@@ -27,7 +27,7 @@ use super::popup::Popup;
 use super::{Meter, PlanError, Planner, QueryField};
 use crate::geometry::line_cover::{capsule_interval, disc_interval, for_each_crossing};
 use crate::geometry::predicates::{point_in_polygon, point_segment_distance, PolygonView};
-use crate::geometry::{DubinsPath, DubinsWord, Pose, Vec2};
+use crate::geometry::{insertion_sort_by, DubinsPath, DubinsWord, Pose, Vec2};
 use crate::network::Obstacle;
 use core::f32::consts::PI;
 use heapless::Vec;
@@ -226,7 +226,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         meter.work.collision_tests += intervals.len() as u64 * intervals.len() as u64;
         // Sorted by start, the intervals that overlap the reach so far extend it.
-        intervals.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        insertion_sort_by(&mut intervals, |i| i.0);
         let mut reach = 0.0f32;
         for &(from, to) in &intervals {
             if from > reach {
@@ -312,7 +312,7 @@ fn trace_polygon(
     if !readable || overflow {
         return None;
     }
-    crossings.sort_unstable_by(f32::total_cmp);
+    insertion_sort_by(&mut crossings, |&t| t);
     for pair in crossings.chunks_exact(2) {
         if let [from, to] = *pair {
             intervals.push((from, to)).ok()?;

@@ -112,7 +112,9 @@ pub(super) fn integrate(f: &impl Fn(f32) -> [f32; 2]) -> Quadrature {
     q
 }
 
-/// Compares `[a, b]`'s rule `whole` with its halves; keeps the halves or splits further.
+/// Compares `[a, b]`'s rule `whole` with its halves; keeps the halves or splits further,
+/// depth first and left half first, with an explicit stack rather than recursion: each level
+/// leaves at most its right half pending, so [`QUADRATURE_MAX_DEPTH`] + 1 entries suffice.
 pub(super) fn refine(
     f: &impl Fn(f32) -> [f32; 2],
     a: f32,
@@ -122,20 +124,40 @@ pub(super) fn refine(
     depth: u32,
     q: &mut Quadrature,
 ) {
-    let mid = 0.5 * (a + b);
-    let l = gl5(f, a, mid);
-    let r = gl5(f, mid, b);
-    let diff = libm::fabsf(l[0] + r[0] - whole[0]);
-    // `!(diff > …)`: a NaN difference is kept (and propagates to the value) rather than split.
-    if !(diff > density * (b - a)) || depth >= QUADRATURE_MAX_DEPTH || q.splits_left == 0 {
-        q.value += l[0] + r[0];
-        q.second += l[1] + r[1];
-        q.error += diff;
-        return;
+    const PENDING: usize = QUADRATURE_MAX_DEPTH as usize + 2;
+    let mut pending = [(0.0f32, 0.0f32, [0.0f32; 2], 0u32); PENDING];
+    let mut len = 0usize;
+    if let Some(slot) = pending.get_mut(len) {
+        *slot = (a, b, whole, depth);
+        len += 1;
     }
-    q.splits_left -= 1;
-    refine(f, a, mid, l, density, depth + 1, q);
-    refine(f, mid, b, r, density, depth + 1, q);
+    while let Some(&(a, b, whole, depth)) = len.checked_sub(1).and_then(|i| pending.get(i)) {
+        len -= 1;
+        let mid = 0.5 * (a + b);
+        let l = gl5(f, a, mid);
+        let r = gl5(f, mid, b);
+        let diff = libm::fabsf(l[0] + r[0] - whole[0]);
+        // `!(diff > …)`: a NaN difference is kept (and propagates to the value) rather than
+        // split. A full stack (unreachable: see above) keeps the halves too.
+        if !(diff > density * (b - a))
+            || depth >= QUADRATURE_MAX_DEPTH
+            || q.splits_left == 0
+            || len + 2 > PENDING
+        {
+            q.value += l[0] + r[0];
+            q.second += l[1] + r[1];
+            q.error += diff;
+            continue;
+        }
+        q.splits_left -= 1;
+        // The right half below the left: the left is refined first, as a recursion would.
+        for half in [(mid, b, r, depth + 1), (a, mid, l, depth + 1)] {
+            if let Some(slot) = pending.get_mut(len) {
+                *slot = half;
+                len += 1;
+            }
+        }
+    }
 }
 
 /// Solves `M x = rhs` for the normalised Hermite matrix `M = [[1, 1, 1], [3, 4, 5], [6, 12,
