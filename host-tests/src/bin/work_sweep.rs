@@ -40,7 +40,8 @@ struct Sweep {
 
 /// The invariants of a route of Dubins pieces (roadmap and terrain): it starts at the start
 /// pose and ends at the goal (and its heading, when fixed); each primitive starts where the
-/// previous ends with the same heading (within 10⁻³ rad); every arc's radius is at least the
+/// previous ends with the same heading (within 10⁻³ rad, plus for a line the rounding of the
+/// direction between its f32 ends: 4ε·|start| / length); every arc's radius is at least the
 /// network's turn radius (less 10⁻⁴ relative). Positions agree within 1 cm plus 2·10⁻⁶ of the
 /// primitive's length and of the point's distance from the origin: the f32 rounding of a
 /// primitive computed tens of kilometres long and away (a 20 km straight ends 4 cm off).
@@ -76,14 +77,19 @@ fn route_is_flyable(
         let (a, b) = (&pair[0], &pair[1]);
         let (a_end, b_start) = (a.pose_at(a.length()), b.pose_at(0.0));
         let gap = a_end.position.distance(b_start.position);
-        // A zero-length primitive has no heading of its own.
+        // A zero-length primitive has no heading of its own; a line's heading is that of the
+        // difference of its ends, off by up to 2 ulp of their coordinates over its length.
         let turn = if a.length() > 0.0 && b.length() > 0.0 {
             heading_gap(a_end.heading, b_start.heading)
         } else {
             0.0
         };
+        let line_slack = |p: &skyroute::Primitive| match p {
+            skyroute::Primitive::Line(l) => 4.0 * f32::EPSILON * l.start.norm() / l.length(),
+            skyroute::Primitive::Arc(_) => 0.0,
+        };
         let allowed = tolerance(a, a_end.position).max(tolerance(b, b_start.position));
-        if gap > allowed || turn > 1e-3 {
+        if gap > allowed || turn > 1e-3 + line_slack(a) + line_slack(b) {
             return Err(format!(
                 "primitives {i} and {}: {gap} m apart, headings {turn} rad apart ({a:?} then {b:?})",
                 i + 1

@@ -71,10 +71,49 @@ impl Parser<'_> {
         self.position(at, c, "geometry.coordinates")
     }
 
-    pub(super) fn polygon(&mut self, at: &At, g: &Map<String, Value>) -> R<Vec<(f64, f64)>> {
-        self.geometry_type(at, g, "Polygon")?;
+    /// The rings of a no-fly geometry: a `Polygon` gives one, a `MultiPolygon` one per member
+    /// polygon (each becomes its own zone). Each polygon has exactly one ring: holes are
+    /// refused by name.
+    pub(super) fn polygons(&mut self, at: &At, g: &Map<String, Value>) -> R<Vec<Vec<(f64, f64)>>> {
+        let t = self.req(at, g, "type", "geometry.type")?;
+        let t = self.string(at, t, "geometry.type")?.to_owned();
         let field = "geometry.coordinates";
         let c = self.req(at, g, "coordinates", field)?;
+        match t.as_str() {
+            "Polygon" => Ok(vec![self.polygon(at, c, field)?]),
+            "MultiPolygon" => {
+                let members = c.as_array().ok_or_else(|| {
+                    self.err(
+                        at,
+                        field,
+                        ErrorKind::WrongType {
+                            expected: "an array of polygons",
+                            found: describe(c),
+                        },
+                    )
+                })?;
+                if members.is_empty() {
+                    return Err(self.err(at, field, ErrorKind::TooFewPoints(0)));
+                }
+                members
+                    .iter()
+                    .enumerate()
+                    .map(|(k, m)| self.polygon(at, m, &format!("{field}[{k}]")))
+                    .collect()
+            }
+            _ => Err(self.err(
+                at,
+                "geometry.type",
+                ErrorKind::WrongGeometry {
+                    expected: "Polygon or MultiPolygon",
+                    found: t,
+                },
+            )),
+        }
+    }
+
+    /// One polygon's coordinates `c` (at `field`): its single ring, checked.
+    fn polygon(&mut self, at: &At, c: &Value, field: &str) -> R<Vec<(f64, f64)>> {
         let rings = c.as_array().ok_or_else(|| {
             self.err(
                 at,

@@ -361,9 +361,17 @@ impl Parser<'_> {
         let geometry = self.object(&at, geometry, "geometry")?;
         match kind {
             "no_fly" => {
-                let ring = self.polygon(&at, geometry)?;
-                s.no_fly.push(NoFly { name, ring });
-                seen.no_fly.push(me);
+                // A MultiPolygon's members become zones named "NAME[k]".
+                let rings = self.polygons(&at, geometry)?;
+                let parts = rings.len();
+                for (k, ring) in rings.into_iter().enumerate() {
+                    let name = match parts {
+                        1 => name.clone(),
+                        _ => format!("{name}[{k}]"),
+                    };
+                    s.no_fly.push(NoFly { name, ring });
+                    seen.no_fly.push(me.clone());
+                }
             }
             "landmark" => {
                 let (lon, lat) = self.point(&at, geometry)?;

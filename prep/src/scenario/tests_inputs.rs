@@ -277,3 +277,47 @@ fn a_file_that_is_not_utf8_names_the_first_bad_byte() {
         "{e}"
     );
 }
+
+#[test]
+fn a_multipolygon_no_fly_zone_becomes_one_zone_per_member() {
+    let square = |x: f64| {
+        format!(
+            "[[[{x}, 48.0], [{}, 48.0], [{}, 48.1], [{x}, 48.1], [{x}, 48.0]]]",
+            x + 0.1,
+            x + 0.1
+        )
+    };
+    let zone = format!(
+        r#"{{"type": "Feature", "properties": {{"kind": "no_fly", "name": "Z"}},
+            "geometry": {{"type": "MultiPolygon", "coordinates": [{}, {}]}}}}"#,
+        square(10.0),
+        square(10.5)
+    );
+    let s = parse(&doc("roadmap", &zone), Path::new(FILE)).expect("parses");
+    let names: Vec<&str> = s.no_fly.iter().map(|z| z.name.as_str()).collect();
+    assert_eq!(names, ["Z[0]", "Z[1]"]);
+    assert_eq!(s.no_fly[1].ring[0], (10.5, 48.0));
+    // A member with a hole is refused at its own index.
+    let holed = format!(
+        r#"{{"type": "Feature", "properties": {{"kind": "no_fly", "name": "H"}},
+            "geometry": {{"type": "MultiPolygon", "coordinates": [{}, [{}, {}]]}}}}"#,
+        square(10.0),
+        &square(10.5)[1..square(10.5).len() - 1],
+        &square(10.52)[1..square(10.52).len() - 1]
+    );
+    let m = message(&doc("roadmap", &holed));
+    assert!(
+        m.contains("feature 0 (H): geometry.coordinates[1]: polygon has 2 rings"),
+        "{m}"
+    );
+    // A start inside the second member is refused naming the feature.
+    let start =
+        point("start", "S", r#", "heading_deg": 90"#).replace("[10.0, 48.0]", "[10.55, 48.05]");
+    let m = message(&doc("roadmap", &format!("{zone}, {start}")));
+    assert!(m.contains("inside no-fly feature 0 (Z)"), "{m}");
+    // Other geometries are refused by name.
+    let line = zone.replace("MultiPolygon", "LineString");
+    let m = message(&doc("roadmap", &line));
+    assert!(m.contains("geometry.type"), "{m}");
+    assert!(m.contains("Polygon or MultiPolygon"), "{m}");
+}
