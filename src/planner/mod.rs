@@ -2,9 +2,11 @@
 //!
 //! `Planner<'n, V, E, P, R>` holds all mutable state in arrays sized by its const generics:
 //! `V` search states, `E` edges, `P` pop-ups (at most 16) and `R` route primitives. A search
-//! state is a vertex of a roadmap, or — in terrain mode, whose search runs over (previous node,
-//! node) pairs — a directed edge or one of the [`MAX_LINKS`] start links, so a terrain planner
-//! needs `V ≥ |E| + MAX_LINKS`. Its size is
+//! state is a vertex of a roadmap, or — in terrain mode, whose search runs over the route's
+//! straights — a directed edge or one of the [`MAX_LINKS`] start links, so a terrain planner
+//! needs `V ≥ |E| + MAX_LINKS`; under the paper's [`TurnRule`] a state is a (straight before,
+//! edge) pair, and a query with `Ks` start links needs `|E| + T + 2·Ks + 1 + Σₖ outdeg(vₖ)`
+//! (`T = Σ_v indeg(v)·outdeg(v)`, `vₖ` the start links' nodes; `planner/terrain`). Its size is
 //! about `20·V + 2·E + 140·P + 56·R + 1.5 KiB` bytes (`core::mem::size_of` gives the exact
 //! figure); place it in a `static` so the linker rejects a build whose RAM does not suffice.
 //! A new planner is all-zero, so such a `static` lands in `.bss` and costs no flash.
@@ -73,15 +75,34 @@ pub struct PlannerConfig {
     pub connect_radius_m: f32,
     /// Headings tried for a goal without one, evenly spaced (36: every 10°).
     pub free_goal_headings: u16,
+    /// Terrain mode: how consecutive turns share the straight between them.
+    pub turn_rule: TurnRule,
+}
+
+/// Terrain mode: how the turns at the two ends of a straight of length `ℓ` share it, with the
+/// cuts `c = r·tan(θ/2)` of their 1-trajectories (`planner/terrain`'s module doc).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum TurnRule {
+    /// The paper's equations 1–2 (Medeiros & da Silva): `cᵢ₋₁ + cᵢ ≤ ℓ`. Exact, over
+    /// (straight before, edge) states: a query with `Ks` start links needs
+    /// `V ≥ |E| + T + 2·Ks + 1 + Σₖ outdeg(vₖ)` (`T = Σ_v indeg(v)·outdeg(v)`), and is refused
+    /// with [`PlanError::TooManySearchStates`] otherwise.
+    Paper,
+    /// Each straight split equally: `cᵢ₋₁ ≤ ℓ/2` and `cᵢ ≤ ℓ/2`. Stricter (it loses routes the
+    /// paper's rule finds), over the directed edges alone (`V ≥ |E| + MAX_LINKS`).
+    SharedEqually,
 }
 
 impl PlannerConfig {
-    /// 8 start and 8 goal candidates within 1 km, 36 free goal headings.
+    /// 8 start and 8 goal candidates within 1 km, 36 free goal headings, the paper's turn
+    /// rule (a planner too small for its states plans with [`TurnRule::SharedEqually`] set).
     pub const DEFAULT: PlannerConfig = PlannerConfig {
         start_candidates: 8,
         goal_candidates: 8,
         connect_radius_m: 1000.0,
         free_goal_headings: 36,
+        turn_rule: TurnRule::Paper,
     };
 
     fn start_links(&self) -> usize {

@@ -193,7 +193,7 @@ fn corridor(strip_end: f32) -> Terrain {
     t
 }
 
-/// Finding: `Fillet::new` (src/planner/terrain.rs) takes `cut = r·|u_in × u_out| / (1 + u_in·u_out)`
+/// Finding: `Fillet::new` (src/planner/terrain/fillet.rs) takes `cut = r·|u_in × u_out| / (1 + u_in·u_out)`
 /// and only treats `dot == −1` as infeasible. For exactly opposite directions whose computed
 /// dot product rounds to just above −1 (a direction `d·(1/ℓ)` one ulp short of unit length, the
 /// normal case for nodes on a grid line), the cross product is 0, so the cut is 0: a U-turn of
