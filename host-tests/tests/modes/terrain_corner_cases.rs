@@ -8,7 +8,7 @@
 use skyroute::geometry::grid::CellGrid;
 use skyroute::network::elevation::ElevationCoding;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec};
-use skyroute::planner::{Goal, PlanError, PlannerConfig, Popup, Query, Search};
+use skyroute::planner::{Goal, PlanError, PlannerConfig, Popup, Query, Search, TurnRule};
 use skyroute::{Planner, Pose, Primitive, Vec2};
 
 /// Codes of free and high cells; with base 0, step 1, altitude 150 and safety height 0 every
@@ -19,7 +19,7 @@ const ALTITUDE: f32 = 150.0;
 const BLOCKING: u8 = 150;
 
 type SmallPlanner<'n> = Planner<'n, 4096, 4096, 4, 256>;
-type RingPlanner<'n> = Planner<'n, 8192, 8192, 16, 512>;
+type RingPlanner<'n> = Planner<'n, 32768, 8192, 16, 512>;
 
 struct Terrain {
     grid: CellGrid,
@@ -346,17 +346,24 @@ fn turn_arc_popup_tests_are_within_the_work_bound() {
             let start = Pose::new(8000.0, 4990.0, std::f32::consts::FRAC_PI_2);
             let goal = Vec2::new(1000.0, 1000.0);
             let q = query(start, goal);
-            assert_eq!(p.plan(&q, u64::MAX), Err(PlanError::NoRoute));
-            let stats = p.arc_check_stats();
-            let bound = p.worst_case_work();
-            let r = p.plan(&q, bound);
-            assert_eq!(
-                r,
-                Err(PlanError::NoRoute),
-                "budget worst_case_work() = {bound}; {} turn arcs checked, each against 16 \
-                 pop-ups of 16 vertices",
-                stats.arcs
-            );
+            for turn_rule in [TurnRule::Paper, TurnRule::SharedEqually] {
+                p.set_config(PlannerConfig {
+                    goal_candidates: 1,
+                    turn_rule,
+                    ..PlannerConfig::DEFAULT
+                });
+                assert_eq!(p.plan(&q, u64::MAX), Err(PlanError::NoRoute));
+                let stats = p.arc_check_stats();
+                let bound = p.worst_case_work();
+                let r = p.plan(&q, bound);
+                assert_eq!(
+                    r,
+                    Err(PlanError::NoRoute),
+                    "{turn_rule:?}: budget worst_case_work() = {bound}; {} turn arcs checked, \
+                     each against 16 pop-ups of 16 vertices",
+                    stats.arcs
+                );
+            }
         })
         .unwrap()
         .join()
