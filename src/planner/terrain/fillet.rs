@@ -47,9 +47,9 @@ impl Fillet {
         Fillet { cut, angle, turn }
     }
 
-    /// The length of its arc, `r·θ`.
-    pub(super) fn arc_length(&self, r: f32) -> f32 {
-        r * self.angle
+    /// What the fillet changes in the length flown: `r·θ − 2c` (never positive).
+    pub(super) fn saving(&self, r: f32) -> f32 {
+        r * self.angle - 2.0 * self.cut
     }
 
     /// The arc at node `v` entered along `u_in`, or `None` for a straight pass.

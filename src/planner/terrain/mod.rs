@@ -47,20 +47,22 @@
 //! [`PlanError::TooManySearchStates`](crate::planner::PlanError::TooManySearchStates).
 //!
 //! # Costs, and why every step is non-negative
-//! A state's key is the length flown from the start to the point at `sᵢ` along its straight
-//! (the end of the turn at `u` under the paper's rule). A transition to the edge `(v → w)` of
-//! length `ℓₒ` with the turn of cut `c` at `v` and start share `sₒ` (`ℓₒ/2`, or `c` under the
-//! paper's rule) adds
+//! A state's key is the length flown from the start to the point at `kᵢ` along its straight
+//! from `u`: under the equal split its end (`kᵢ = ℓᵢ`, the straight counted whole to `v`),
+//! under the paper's rule the end of the turn at `u` (`kᵢ = cᵢ₋₁`). A transition to the edge
+//! `(v → w)` of length `ℓₒ`, with the turn of cut `c` and angle `θ` at `v`, adds
 //!
-//! `(ℓᵢ − sᵢ − c) + r·θ + (sₒ − c)`:
+//! `(ℓᵢ − kᵢ) + kₒ + r·θ − 2c`,
 //!
-//! the straight between the two turns, the arc, and the part of the next straight up to its
-//! share. Each term is non-negative exactly when the turn fits: `c ≤ ℓᵢ − sᵢ` on the straight
-//! before (both rules), and `c ≤ sₒ` (the equal split: `c ≤ ℓₒ/2`; the paper's rule: `sₒ = c`).
-//! A goal link adds `(ℓᵢ − sᵢ − c) + r·θ + (ℓ_goal − c) + final arc ≥ 0` likewise, so no route
-//! through a state is shorter than its key, as Dijkstra's stopping rule needs. (Counting each
-//! straight whole to its end instead would add `ℓₒ − 2c + r·θ`, negative under the paper's
-//! rule once `c > ℓₒ/2`.)
+//! never negative when the turn fits, as Dijkstra's stopping rule needs (no route through a
+//! state is shorter than its key): under the equal split it is `ℓₒ − 2c + r·θ ≥ ℓₒ − 2c ≥ 0`
+//! (`c ≤ ℓₒ/2`); under the paper's rule `(ℓᵢ − cᵢ₋₁ − c) + r·θ ≥ 0` (`c ≤ ℓᵢ − cᵢ₋₁`, eq. 1–2),
+//! the straight flown between the two turns and the arc. A goal link of length `L` (its
+//! straight and final arc) adds `(ℓᵢ − kᵢ) + L + r·θ − 2c ≥ 0` likewise. The equal split's
+//! accounting would not do for the paper's rule: `ℓₒ − 2c + r·θ` is negative once
+//! `c > ℓₒ/2`. The paper's accounting would do for the equal split, but its keys are lower
+//! (a weaker stopping bound): on the full Jacksboro network's P → Q it counted 702 820 units
+//! of work where the equal split's keys count 388 396.
 //!
 //! A transition is kept only if the edge is enabled (no pop-up, its highest elevation code
 //! below the altitude's blocking code), `w ≠ u`, the turn fits, and the arc — within the

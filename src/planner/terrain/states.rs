@@ -58,13 +58,15 @@ impl Layout {
 }
 
 impl TurnRule {
-    /// The share `sₒ` of a next straight of length `length` that a turn of cut `cut` at its
-    /// start takes, or `None` if the turn does not fit that straight: the equal split gives
-    /// it half, the paper's rule the cut itself (then the straight's far end has `ℓ − c`).
-    fn start_share(self, cut: f32, length: f32) -> Option<f32> {
+    /// For a turn of cut `cut` at the start of a next straight of length `length`: the share
+    /// `sₒ` of the straight it takes and the key point `kₒ` (the module doc), or `None` if the
+    /// turn does not fit that straight. The equal split gives the turn half and counts the
+    /// straight whole (`ℓ/2`, `ℓ`); the paper's rule gives it the cut itself, leaving `ℓ − c`
+    /// to the far end, and counts up to the cut (`c`, `c`).
+    fn start_share(self, cut: f32, length: f32) -> Option<(f32, f32)> {
         match self {
-            TurnRule::SharedEqually => (cut <= 0.5 * length).then_some(0.5 * length),
-            TurnRule::Paper => (cut <= length).then_some(cut),
+            TurnRule::SharedEqually => (cut <= 0.5 * length).then_some((0.5 * length, length)),
+            TurnRule::Paper => (cut <= length).then_some((cut, cut)),
         }
     }
 
@@ -94,6 +96,9 @@ pub(super) struct Arrived {
     pub(super) length: f32,
     /// `s`: the equal split's `ℓ/2`, the paper's rule's cut at the start, 0 for a start link.
     pub(super) start_share: f32,
+    /// `k`: the state's key counts the straight up to this far from its start (the equal
+    /// split's `ℓ`; the paper's rule's cut at the start, 0 for a start link).
+    pub(super) key_point: f32,
     /// The straight's start node (`None` for a start link).
     pub(super) from: Option<u32>,
 }
@@ -109,9 +114,9 @@ impl Arrived {
         }
     }
 
-    /// The straight flown between the turn at the start and a turn of cut `cut` at the end.
-    fn between(&self, cut: f32) -> f32 {
-        (self.length - self.start_share - cut).max(0.0)
+    /// What the state's key leaves out of the straight: `ℓ − k`.
+    fn uncounted(&self) -> f32 {
+        self.length - self.key_point
     }
 }
 
@@ -213,12 +218,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         })
     }
 
-    /// Straight `p` arrived along with start share `start_share` (`from`: its start node).
+    /// Straight `p` arrived along, with the start share and key point `shares` gives for its
+    /// length.
     fn arrived_on(
         &self,
         layout: Layout,
         p: u32,
-        start_share: impl FnOnce(f32) -> f32,
+        shares: impl FnOnce(f32) -> (f32, f32),
     ) -> Result<Arrived, PlanError> {
         if p < layout.edges {
             let from = self.network.edge_source(p).ok_or(PlanError::Internal)?;
@@ -226,13 +232,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             if !(st.length > 0.0) {
                 return Err(PlanError::Internal);
             }
+            let (start_share, key_point) = shares(st.length);
             Ok(Arrived {
                 straight: p,
                 node: st.to,
                 position: st.position,
                 direction: st.direction,
                 length: st.length,
-                start_share: start_share(st.length),
+                start_share,
+                key_point,
                 from: Some(from),
             })
         } else {
@@ -245,13 +253,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 .vertex(link.vertex)
                 .ok_or(PlanError::Internal)?
                 .position;
+            let (start_share, key_point) = shares(link.path.lengths[1]);
             Ok(Arrived {
                 straight: p,
                 node: link.vertex,
                 position,
                 direction: Vec2::from_angle(link.path.end().heading),
                 length: link.path.lengths[1],
-                start_share: 0.0,
+                start_share,
+                key_point,
                 from: None,
             })
         }
@@ -262,10 +272,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     pub(super) fn arrived(&self, s: u32, reads: &mut u64) -> Result<Arrived, PlanError> {
         let layout = self.terrain_layout();
         if let Some(k) = layout.link_of(s) {
-            return self.arrived_on(layout, layout.edges + k, |_| 0.0);
+            // No turn at its start: share 0; the equal split counts it whole.
+            let key_point = |l| match layout.rule {
+                TurnRule::SharedEqually => l,
+                TurnRule::Paper => 0.0,
+            };
+            return self.arrived_on(layout, layout.edges + k, |l| (0.0, key_point(l)));
         }
         match layout.rule {
-            TurnRule::SharedEqually => self.arrived_on(layout, s, |l| 0.5 * l),
+            TurnRule::SharedEqually => self.arrived_on(layout, s, |l| (0.5 * l, l)),
             TurnRule::Paper => {
                 let x = s
                     .checked_sub(layout.pair_base())
@@ -283,13 +298,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     }
                 }
                 let first = *self.via.get(lo as usize).ok_or(PlanError::Internal)?;
-                let before = self.arrived_on(layout, lo, |_| 0.0)?;
+                let before = self.arrived_on(layout, lo, |_| (0.0, 0.0))?;
                 let e = self.network.out_edges(before.node).start + (x - first);
-                let at = self.arrived_on(layout, e, |_| 0.0)?;
+                let at = self.arrived_on(layout, e, |_| (0.0, 0.0))?;
                 let r = self.network.turn_radius();
                 let cut = Fillet::new(before.direction, at.direction, r).cut;
                 Ok(Arrived {
                     start_share: cut,
+                    key_point: cut,
                     ..at
                 })
             }
@@ -307,8 +323,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// Queues the start links' states at their keys (the length of their initial arc: a start
-    /// link's straight has share 0).
+    /// Queues the start links' states at their keys: the link's length (the equal split), or
+    /// its initial arc (the paper's rule: key point 0).
     #[inline(never)]
     pub(in crate::planner) fn seed_edge_states(
         &mut self,
@@ -317,11 +333,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let layout = self.terrain_layout();
         for k in 0..self.start_links.len() {
             let s = layout.link_state(k as u32);
-            let Some(key) = self
-                .start_links
-                .get(k)
-                .map(|link| link.path.lengths[0] + link.path.lengths[2])
-            else {
+            let Some(key) = self.start_links.get(k).map(|link| match layout.rule {
+                TurnRule::SharedEqually => link.path.length(),
+                TurnRule::Paper => link.path.lengths[0] + link.path.lengths[2],
+            }) else {
                 return Err(PlanError::Internal);
             };
             let (Some(d), Some(via)) =
@@ -367,10 +382,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             {
                 continue;
             }
-            let total = ds
-                + at.between(fillet.cut)
-                + fillet.arc_length(r)
-                + (link.path.length() - fillet.cut);
+            let total = ds + at.uncounted() + link.path.length() + fillet.saving(r);
             if best.is_none_or(|(b, _)| total < b) && self.fillet_is_clear(&at, &fillet, meter) {
                 *best = Some((total, Arrival::FromState { state: s, link: k }));
             }
@@ -386,16 +398,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 continue;
             }
             let fillet = Fillet::new(at.direction, next.direction, r);
-            let Some(share) = layout.rule.start_share(fillet.cut, next.length) else {
+            let Some((_, key_point)) = layout.rule.start_share(fillet.cut, next.length) else {
                 continue;
             };
             if fillet.cut > room {
                 continue;
             }
-            // The step: the straight between the turns, the arc, the next straight's share
-            // beyond the cut (each ≥ 0: the module doc).
-            let candidate =
-                ds + at.between(fillet.cut) + fillet.arc_length(r) + (share - fillet.cut);
+            // The step `(ℓᵢ − kᵢ) + kₒ + r·θ − 2c`, never negative (the module doc).
+            let candidate = ds + at.uncounted() + key_point + fillet.saving(r);
             let t = self
                 .next_state(layout, &at, e, e - out_edges.start)
                 .ok_or(PlanError::Internal)?;
