@@ -42,8 +42,9 @@ pub fn needs(network: &Network) -> Needs {
 /// and `max_out` the largest out-degree (`planner/terrain`'s state layout); `None` for other
 /// modes.
 pub fn paper_turn_states(network: &Network) -> Option<usize> {
-    if network.mode() != Mode::Terrain {
-        return None;
+    match network.mode() {
+        Mode::Terrain => {}
+        Mode::Roadmap | Mode::Landmark | Mode::Voronoi | Mode::Unknown(_) => return None,
     }
     let mut transitions = 0usize;
     for e in 0..network.edge_count() {
