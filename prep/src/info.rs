@@ -158,9 +158,13 @@ fn onboard(w: &mut String, bytes: &[u8], net: &Network) {
     if loaded {
         let _ = writeln!(
             w,
-            "  worst-case work: a query {}, adding a pop-up {} (counted units, docs/BENCHMARKS.md)",
+            "  worst-case work: a query {}, adding a pop-up {} (counted units, docs/BENCHMARKS.md){}",
             p.worst_case_work(),
-            p.worst_case_popup_work()
+            p.worst_case_popup_work(),
+            match net.mode() {
+                Mode::Terrain => "; a terrain query under the paper's turn rule",
+                Mode::Roadmap | Mode::Landmark | Mode::Voronoi | Mode::Unknown(_) => "",
+            }
         );
     }
 }
