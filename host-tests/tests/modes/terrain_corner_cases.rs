@@ -364,6 +364,27 @@ fn turn_arc_popup_tests_are_within_the_work_bound() {
                     stats.arcs
                 );
             }
+            // A planner whose `V` holds the edges but not the transitions plans with the equal
+            // split and refuses the paper's rule by name (needs |E| + T + 2·Ks + 1 + Σ outdeg).
+            let mut small: Box<Planner<'_, 8192, 8192, 16, 512>> = Box::new(Planner::new());
+            small.load(&bytes).unwrap();
+            for (turn_rule, expected) in [
+                (TurnRule::SharedEqually, Err(PlanError::NoRoute)),
+                (
+                    TurnRule::Paper,
+                    Err(PlanError::TooManySearchStates {
+                        needed: 6000 + 12000 + 2 * 8 + 1 + 8 * 2,
+                        capacity: 8192,
+                    }),
+                ),
+            ] {
+                small.set_config(PlannerConfig {
+                    goal_candidates: 1,
+                    turn_rule,
+                    ..PlannerConfig::DEFAULT
+                });
+                assert_eq!(small.plan(&q, u64::MAX), expected, "{turn_rule:?}");
+            }
         })
         .unwrap()
         .join()
