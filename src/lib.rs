@@ -38,5 +38,5 @@ pub use geometry::{Arc, DubinsPath, DubinsWord, Pose, Primitive, Segment, Turn, 
 pub use network::{LoadError, Network};
 pub use planner::{
     Goal, Phase, PlanError, Planner, PlannerConfig, Popup, PopupError, PopupSummary, Query,
-    RouteSummary, Search, SmoothSummary, Work,
+    RouteSummary, Search, SmoothSummary, TurnRule, Work,
 };

@@ -178,10 +178,14 @@ fn jacksboro(c: &mut Criterion) {
     let built =
         skyroute_prep::build::build(&scenario, &Default::default(), &|_, _| {}).expect("network");
     let bytes: &'static [u8] = Box::leak(built.bytes.into_boxed_slice());
-    // Search states: the network's directed edges and the start links.
+    // Search states: the network's directed edges and the start links (the equal split of
+    // each straight between its turns; the paper's rule needs one state per transition).
     let mut planner: Box<Planner<'static, 65536, 65536, 8, 1024>> = Box::new(Planner::new());
     planner.load(bytes).expect("loads");
-    planner.set_config(skyroute_prep::mission::TERRAIN_CONFIG);
+    planner.set_config(skyroute::PlannerConfig {
+        turn_rule: skyroute::TurnRule::SharedEqually,
+        ..skyroute_prep::mission::TERRAIN_CONFIG
+    });
     let frame = &built.frame;
     let start = scenario.start.as_ref().expect("start");
     let goal = scenario.goal.as_ref().expect("goal");

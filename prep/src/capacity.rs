@@ -36,6 +36,28 @@ pub fn needs(network: &Network) -> Needs {
     Needs { states, edges: e }
 }
 
+/// The search states a terrain query under the paper's turn rule
+/// ([`TurnRule::Paper`](skyroute::TurnRule::Paper)) may need, whatever its start links:
+/// `|E| + T + 2·Ks + 1 + Ks·max_out` with `Ks` = [`MAX_LINKS`], `T = Σ_v indeg(v)·outdeg(v)`
+/// and `max_out` the largest out-degree (`planner/terrain`'s state layout); `None` for other
+/// modes.
+pub fn paper_turn_states(network: &Network) -> Option<usize> {
+    match network.mode() {
+        Mode::Terrain => {}
+        Mode::Roadmap | Mode::Landmark | Mode::Voronoi | Mode::Unknown(_) => return None,
+    }
+    let mut transitions = 0usize;
+    for e in 0..network.edge_count() {
+        let (_, target) = network.edge_cost_target(e)?;
+        transitions += network.out_edges(target).len();
+    }
+    let max_out = (0..network.vertex_count())
+        .map(|v| network.out_edges(v).len())
+        .max()
+        .unwrap_or(0);
+    Some(network.edge_count() as usize + transitions + 2 * MAX_LINKS + 1 + MAX_LINKS * max_out)
+}
+
 /// The bytes of a `Planner<V = v, E = e, P, R>`, from the sizes of three instances (a planner
 /// grows linearly in `V` and `E`): exact up to alignment padding.
 pub fn planner_bytes<const P: usize, const R: usize>(v: usize, e: usize) -> usize {

@@ -2,8 +2,10 @@
 //! bytes, the provenance it records, the planner capacities and RAM, the worst-case work of a
 //! query and of a pop-up.
 
-use crate::capacity::{needs, planner_bytes, with_headroom, FIRMWARE_POPUPS, FIRMWARE_ROUTE};
-use crate::mission::HostPlanner;
+use crate::capacity::{
+    needs, paper_turn_states, planner_bytes, with_headroom, FIRMWARE_POPUPS, FIRMWARE_ROUTE,
+};
+use crate::mission::CompactHostPlanner;
 use skyroute::network::format::FORMAT_VERSION;
 use skyroute::network::Mode;
 use skyroute::{Network, Planner};
@@ -127,8 +129,17 @@ fn onboard(w: &mut String, bytes: &[u8], net: &Network) {
         planner_bytes::<P, R>(n.states, n.edges),
         planner_bytes::<P, R>(v, e)
     );
+    if let Some(states) = paper_turn_states(net) {
+        let _ = writeln!(
+            w,
+            "  the paper's turn rule (the default, `plan --turn-rule paper`) needs V >= {states} \
+             search states (one per transition), about {} bytes of RAM; the figures above are \
+             the equal split's (`--turn-rule shared-equally`)",
+            planner_bytes::<P, R>(states, n.edges)
+        );
+    }
     let mut storage = Box::new(skyroute::planner::VoronoiStorage::new());
-    let mut p: Box<HostPlanner> = Box::new(Planner::new());
+    let mut p: Box<CompactHostPlanner> = Box::new(Planner::new());
     let loaded = match net.mode() {
         Mode::Voronoi => {
             let _ = writeln!(
@@ -147,9 +158,13 @@ fn onboard(w: &mut String, bytes: &[u8], net: &Network) {
     if loaded {
         let _ = writeln!(
             w,
-            "  worst-case work: a query {}, adding a pop-up {} (counted units, docs/BENCHMARKS.md)",
+            "  worst-case work: a query {}, adding a pop-up {} (counted units, docs/BENCHMARKS.md){}",
             p.worst_case_work(),
-            p.worst_case_popup_work()
+            p.worst_case_popup_work(),
+            match net.mode() {
+                Mode::Terrain => "; a terrain query under the paper's turn rule",
+                Mode::Roadmap | Mode::Landmark | Mode::Voronoi | Mode::Unknown(_) => "",
+            }
         );
     }
 }

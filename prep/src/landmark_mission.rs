@@ -4,7 +4,7 @@
 //! `skyroute plan` route file.
 
 use crate::frame::LocalFrame;
-use crate::mission::{HostPlanner, LocalPopup};
+use crate::mission::{CompactHostPlanner, LocalPopup};
 use crate::scenario::Scenario;
 use serde_json::{json, Value};
 use skyroute::geometry::compass_deg_from_heading;
@@ -105,7 +105,7 @@ pub fn plan_landmark(
         })?,
     } as u32;
     // About 4 MiB: on the heap.
-    let mut p: Box<HostPlanner> = Box::new(Planner::new());
+    let mut p: Box<CompactHostPlanner> = Box::new(Planner::new());
     p.load(bytes).map_err(LandmarkPlanError::Load)?;
     p.set_weather(w).map_err(LandmarkPlanError::Plan)?;
     for pop in popups {

@@ -158,6 +158,13 @@ enum Command {
         /// widened to the 32 nearest vertices however far when an end does not connect.
         #[arg(long, value_parser = parse_radius)]
         connect_radius: Option<f32>,
+        /// Terrain networks: how the turns at the two ends of a straight share it. `paper`
+        /// (the default): the paper's equations 1–2, the two cuts together within the
+        /// straight's length (exact; the search needs one state per transition of the graph,
+        /// `skyroute info`); `shared-equally`: each cut within half of it (stricter: fewer
+        /// routes; one state per edge, what the small firmware runs).
+        #[arg(long, value_parser = parse_turn_rule)]
+        turn_rule: Option<skyroute::TurnRule>,
         /// Weather for landmark networks, a name from the scenario's `weather` (default: its
         /// first); roadmap and terrain networks have none.
         #[arg(long)]
@@ -360,6 +367,14 @@ fn parse_weight(s: &str) -> Result<f32, String> {
     }
 }
 
+fn parse_turn_rule(s: &str) -> Result<skyroute::TurnRule, String> {
+    match s.trim() {
+        "paper" => Ok(skyroute::TurnRule::Paper),
+        "shared-equally" => Ok(skyroute::TurnRule::SharedEqually),
+        _ => Err(format!("expected paper or shared-equally, got {s:?}")),
+    }
+}
+
 fn limits(time_max: f32, fuel_max: f32) -> DecisionLimits {
     DecisionLimits { time_max, fuel_max }
 }
@@ -548,6 +563,7 @@ fn demo_command(dir: &Path) -> CliResult {
         popups: &[],
         scenario_popups: true,
         connect_radius_m: None,
+        turn_rule: None,
         weather: None,
         hull_repair: false,
         output: &route,
@@ -612,6 +628,7 @@ fn run(cli: Cli) -> CliResult {
             popup,
             no_scenario_popups,
             connect_radius,
+            turn_rule,
             weather,
             hull_repair,
             output,
@@ -630,6 +647,7 @@ fn run(cli: Cli) -> CliResult {
                 popups: &popup,
                 scenario_popups: !no_scenario_popups,
                 connect_radius_m: connect_radius,
+                turn_rule,
                 weather: weather.as_deref(),
                 hull_repair,
                 output: &output,

@@ -13,17 +13,24 @@ use crate::scenario::{Endpoint, Scenario};
 use rayon::prelude::*;
 use skyroute::network::Mode;
 use skyroute::planner::{
-    Goal, PlanError, PlannerConfig, Query, QueryField, RouteSummary, Search, Violation, Work,
+    Goal, PlanError, PlannerConfig, Query, QueryField, RouteSummary, Search, TurnRule, Violation,
+    Work,
 };
 use skyroute::{Planner, Pose, Primitive, Vec2};
 use std::fmt;
 
-/// The planner used on the host: large enough for any network the ground tool builds.
-/// Its `V` (search states) also holds a terrain network's directed edges.
-pub type HostPlanner<'n> = Planner<'n, 131072, 262144, 16, 4096>;
+/// The planner used on the host for missions: large enough for any network the ground tool
+/// builds. Its `V` (search states) also holds a terrain query's states under the paper's turn
+/// rule, one per transition (1 727 995 on medeiros-jacksboro with a 700 m level): about 43 MB,
+/// built on a thread of [`PLANNER_STACK`].
+pub type HostPlanner<'n> = Planner<'n, 2097152, 262144, 16, 4096>;
 
-/// Stack for threads that hold a [`HostPlanner`] (about 1 MiB) by value.
-pub const PLANNER_STACK: usize = 64 << 20;
+/// The host planner where no terrain query runs under the paper's turn rule (`skyroute info`,
+/// landmark plans): `V` for a terrain network's directed edges; about 3 MB.
+pub type CompactHostPlanner<'n> = Planner<'n, 131072, 262144, 16, 4096>;
+
+/// Stack for threads that hold a [`HostPlanner`] by value while it is built.
+pub const PLANNER_STACK: usize = 256 << 20;
 
 /// The connection settings for terrain networks: 16 links to the 32 nearest nodes however far
 /// (where the terrain is low, the nearest region corner may be far away; every connection's
@@ -33,6 +40,7 @@ pub const TERRAIN_CONFIG: PlannerConfig = PlannerConfig {
     goal_candidates: 16,
     connect_radius_m: f32::INFINITY,
     free_goal_headings: 36,
+    turn_rule: TurnRule::Paper,
 };
 
 /// Headings tried per junction by the heading smoothing (±90° about the current one).
@@ -160,6 +168,9 @@ pub struct MissionOptions {
     /// to the nearest [`skyroute::planner::MAX_CANDIDATES`] vertices however far for a leg
     /// whose start or goal does not connect within it.
     pub connect_radius_m: Option<f32>,
+    /// Terrain networks: how consecutive turns share a straight (`None`: the planner's
+    /// default, the paper's rule, [`TurnRule::Paper`]).
+    pub turn_rule: Option<TurnRule>,
 }
 
 /// Plans `q`, and when `adaptive` and an end did not connect, plans it again with the connect
@@ -283,6 +294,13 @@ fn planner<'n>(
         Mode::Roadmap | Mode::Landmark | Mode::Voronoi | Mode::Unknown(_) => PlannerConfig::DEFAULT,
     };
     p.set_config(config);
+    if let Some(turn_rule) = options.turn_rule {
+        let config = p.config();
+        p.set_config(PlannerConfig {
+            turn_rule,
+            ..config
+        });
+    }
     if let Some(r) = options.connect_radius_m {
         let config = p.config();
         p.set_config(PlannerConfig {

@@ -39,6 +39,8 @@ pub struct PlanRequest<'a> {
     pub popups: &'a [(f64, f64, f64)],
     pub scenario_popups: bool,
     pub connect_radius_m: Option<f32>,
+    /// `--turn-rule`: terrain networks' turn rule (`None`: the paper's).
+    pub turn_rule: Option<skyroute::TurnRule>,
     pub weather: Option<&'a str>,
     pub hull_repair: bool,
     pub output: &'a Path,
@@ -259,6 +261,7 @@ fn plan_mission_route(
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
     let options = MissionOptions {
         connect_radius_m: req.connect_radius_m,
+        turn_rule: req.turn_rule,
     };
     let m = plan_mission_with(bytes, s, frame, popups, &options)
         .map_err(|e| planning_error(req.scenario, &e, e.is_bad_input()))?;

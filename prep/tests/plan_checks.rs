@@ -179,6 +179,36 @@ fn a_changed_dem_is_refused_and_a_terrain_scenario_with_zones_is_not_built() {
         "plan terrain",
     );
     std::fs::remove_file(&out).unwrap();
+    // Either turn rule by name; anything else is refused before planning.
+    ok(
+        skyroute(&[
+            "plan",
+            &net,
+            "--scenario",
+            &sc,
+            "--turn-rule",
+            "shared-equally",
+            "-o",
+            &out,
+        ]),
+        "plan terrain with the equal split",
+    );
+    std::fs::remove_file(&out).unwrap();
+    refused(
+        &[
+            "plan",
+            &net,
+            "--scenario",
+            &sc,
+            "--turn-rule",
+            "half",
+            "-o",
+            &out,
+        ],
+        &out,
+        2,
+        &["expected paper or shared-equally"],
+    );
     // One elevation raised by a metre, far down the file.
     let text = std::fs::read_to_string(&dem).unwrap();
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();

@@ -116,6 +116,15 @@ pub enum PlanError {
         /// The corner.
         corner: u32,
     },
+    /// Terrain mode: the query's search states (under the paper's
+    /// [`TurnRule`](super::TurnRule), one per transition of the graph) exceed the planner's
+    /// state capacity `V`.
+    TooManySearchStates {
+        /// States the query needs.
+        needed: u32,
+        /// The capacity `V`.
+        capacity: u32,
+    },
     /// An internal invariant failed (a bug; reported instead of panicking).
     Internal,
 }
@@ -173,6 +182,10 @@ impl fmt::Display for PlanError {
                 f,
                 "the route cannot be smoothed within the curvature limit clear of zones at \
                  corner {corner}"
+            ),
+            TooManySearchStates { needed, capacity } => write!(
+                f,
+                "the turn rule needs {needed} search states, capacity is {capacity}"
             ),
             Internal => write!(f, "internal planner invariant failed"),
         }

@@ -2,9 +2,11 @@
 //!
 //! `Planner<'n, V, E, P, R>` holds all mutable state in arrays sized by its const generics:
 //! `V` search states, `E` edges, `P` pop-ups (at most 16) and `R` route primitives. A search
-//! state is a vertex of a roadmap, or — in terrain mode, whose search runs over (previous node,
-//! node) pairs — a directed edge or one of the [`MAX_LINKS`] start links, so a terrain planner
-//! needs `V ≥ |E| + MAX_LINKS`. Its size is
+//! state is a vertex of a roadmap, or — in terrain mode, whose search runs over the route's
+//! straights — a directed edge or one of the [`MAX_LINKS`] start links, so a terrain planner
+//! needs `V ≥ |E| + MAX_LINKS`; under the paper's [`TurnRule`] a state is a (straight before,
+//! edge) pair, and a query with `Ks` start links needs `|E| + T + 2·Ks + 1 + Σₖ outdeg(vₖ)`
+//! (`T = Σ_v indeg(v)·outdeg(v)`, `vₖ` the start links' nodes; `planner/terrain`). Its size is
 //! about `20·V + 2·E + 140·P + 56·R + 1.5 KiB` bytes (`core::mem::size_of` gives the exact
 //! figure); place it in a `static` so the linker rejects a build whose RAM does not suffice.
 //! A new planner is all-zero, so such a `static` lands in `.bss` and costs no flash.
@@ -77,15 +79,35 @@ pub struct PlannerConfig {
     pub connect_radius_m: f32,
     /// Headings tried for a goal without one, evenly spaced (36: every 10°).
     pub free_goal_headings: u16,
+    /// Terrain mode: how consecutive turns share the straight between them.
+    pub turn_rule: TurnRule,
+}
+
+/// Terrain mode: how the turns at the two ends of a straight of length `ℓ` share it, with the
+/// cuts `c = r·tan(θ/2)` of their 1-trajectories (`planner/terrain`'s module doc).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(u8)]
+pub enum TurnRule {
+    /// The paper's equations 1–2 (Medeiros & da Silva): `cᵢ₋₁ + cᵢ ≤ ℓ`. Exact, over
+    /// (straight before, edge) states: a query with `Ks` start links needs
+    /// `V ≥ |E| + T + 2·Ks + 1 + Σₖ outdeg(vₖ)` (`T = Σ_v indeg(v)·outdeg(v)`), and is refused
+    /// with [`PlanError::TooManySearchStates`] otherwise.
+    Paper = 0,
+    /// Each straight split equally: `cᵢ₋₁ ≤ ℓ/2` and `cᵢ ≤ ℓ/2`. Stricter (it loses routes the
+    /// paper's rule finds), over the directed edges alone (`V ≥ |E| + MAX_LINKS`).
+    SharedEqually = 1,
 }
 
 impl PlannerConfig {
-    /// 8 start and 8 goal candidates within 1 km, 36 free goal headings.
+    /// 8 start and 8 goal candidates within 1 km, 36 free goal headings, the paper's turn
+    /// rule (a planner too small for its states plans with [`TurnRule::SharedEqually`] set).
     pub const DEFAULT: PlannerConfig = PlannerConfig {
         start_candidates: 8,
         goal_candidates: 8,
         connect_radius_m: 1000.0,
         free_goal_headings: 36,
+        turn_rule: TurnRule::Paper,
     };
 
     fn start_links(&self) -> usize {
@@ -201,10 +223,14 @@ struct Link {
 /// The planner. See the module documentation for its memory.
 pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: usize> {
     network: Network<'n>,
-    /// `None` until [`Planner::set_config`]: [`PlannerConfig::DEFAULT`]. (An `Option` keeps a
-    /// new planner all-zero, so that a `static` one lands in `.bss` instead of also costing its
-    /// size in flash for `.data`.)
-    config: Option<PlannerConfig>,
+    /// The settings given to [`Planner::set_config`], once `config_set`; until then
+    /// [`PlannerConfig::DEFAULT`] is in force. (A flag rather than an `Option`, whose `None`
+    /// would take the turn rule's spare value: all-zero bytes keep a new planner all-zero, so
+    /// that a `static` one lands in `.bss` instead of also costing its size in flash for
+    /// `.data`; the all-zero config has [`TurnRule::Paper`], discriminant 0.)
+    config: PlannerConfig,
+    /// Whether `config` was set.
+    config_set: bool,
     /// Bit `p` set: pop-up slot `p` blocks the edge.
     blocked_by: [u16; E],
     /// Active pop-ups with their ids (distinct, below `P`).
@@ -247,7 +273,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let () = Self::CAPACITY_OK;
         Self {
             network: Network::empty(),
-            config: None,
+            config: PlannerConfig {
+                start_candidates: 0,
+                goal_candidates: 0,
+                connect_radius_m: 0.0,
+                free_goal_headings: 0,
+                turn_rule: TurnRule::Paper,
+            },
+            config_set: false,
             blocked_by: [0; E],
             popups: Vec::new(),
             dist: [0.0; V],
@@ -306,12 +339,17 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// The connection settings.
     pub fn config(&self) -> PlannerConfig {
-        self.config.unwrap_or(PlannerConfig::DEFAULT)
+        if self.config_set {
+            self.config
+        } else {
+            PlannerConfig::DEFAULT
+        }
     }
 
     /// Replaces the connection settings (counts above [`MAX_LINKS`] are used as `MAX_LINKS`).
     pub fn set_config(&mut self, config: PlannerConfig) {
-        self.config = Some(config);
+        self.config = config;
+        self.config_set = true;
     }
 
     /// The last route found, as lines and arcs from the start pose to the goal.

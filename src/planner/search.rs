@@ -30,9 +30,9 @@ pub(super) enum Arrival {
 pub(super) enum StateSpace {
     /// The network's vertices (roadmap and landmark modes): a state is "at vertex `v`".
     Vertices,
-    /// The directed edges and then the start links (terrain mode): a state is "arrived at the
-    /// edge's target along it", so that each turn can be checked when it is taken
-    /// (`planner/terrain.rs`).
+    /// The straights of the route (terrain mode): a state is "arrived at the end of a directed
+    /// edge or start link", under the paper's turn rule with the straight before it, so that
+    /// each turn can be checked when it is taken (`planner/terrain`).
     EdgeStates,
 }
 
@@ -181,7 +181,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         };
         let states = match space {
             StateSpace::Vertices => self.search_vertex_count() as usize,
-            StateSpace::EdgeStates => self.network.edge_count() as usize + self.start_links.len(),
+            StateSpace::EdgeStates => self.prepare_edge_states(meter)?,
         };
         if states > V {
             return Err(PlanError::Internal); // load() rules this out

@@ -22,6 +22,7 @@
 //! counts; `host-tests` checks on random queries that the count never exceeds it.
 
 use super::heap::heap_levels;
+use super::TurnRule;
 
 /// Work counted by one operation.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -160,8 +161,14 @@ pub struct TerrainBoundInputs {
     pub vertices: u64,
     /// Directed edges, |E|: the search states besides the start links.
     pub edges: u64,
-    /// Turn transitions, `Σ_v indeg(v)·outdeg(v)`: the (edge in, edge out) pairs at a node.
+    /// Turn transitions, `Σ_v indeg(v)·outdeg(v)`: the (edge in, edge out) pairs at a node,
+    /// T.
     pub transitions: u64,
+    /// The out-edges of every transition's second edge's end, `Σ_(i,o) outdeg(end of o)`
+    /// over the transitions: what expanding every paper's-rule pair state examines.
+    pub pair_relaxations: u64,
+    /// The query's turn rule (it sets the states).
+    pub turn_rule: TurnRule,
     /// The largest out-degree of a vertex.
     pub max_out_degree: u64,
     /// Most pop-ups active at once, P.
@@ -204,13 +211,39 @@ pub fn cells_bound(length_cells: f32, widen_cells: f32) -> u64 {
 ///   a free heading; a left and a right turn for a fixed one), and 2 direct paths, each one
 ///   solve and ≤ 3 primitives of ≤ `cells_per_connection` cells and P·(popup_vertices + 1)
 ///   pop-up tests: N·(1 + 3·(cells + P·(popup_vertices + 1))) with N = 4C + 2;
-/// * search over S = |E| + Ks states: S heap resets; ≤ S pops; relaxations: the out-edges of
-///   every popped state, at most `transitions + Ks·max_out_degree`, and Kg goal links per pop;
-///   each relaxation or goal link may check one turn arc (`cells_per_turn` cells) and push or
+/// * search over S states (the turn rule's: the equal split S = |E| + Ks; the paper's rule
+///   S = (|E| + Ks + 1) + Ks + T + Ks·max_out_degree, its offset table of |E| + Ks + 1 entries
+///   written first, one vertex scan each): S heap resets; ≤ S pops, each reading its state
+///   and, under the paper's rule, ≤ D = ⌊log2(|E| + Ks + 1)⌋ + 1 table reads to decode it;
+///   relaxations: the out-edges of every popped state — the equal split:
+///   `transitions + Ks·max_out_degree`; the paper's rule: `pair_relaxations` for the pairs
+///   after a network edge, `Ks·max_out_degree²` for those after a start link and
+///   `Ks·max_out_degree` for the start links — and Kg goal links per pop; each relaxation or
+///   goal link may check one turn arc (`cells_per_turn` cells, and every pop-up) and push or
 ///   decrease once; every heap operation ≤ L = ⌊log2 S⌋ + 1 levels;
-/// * route: ≤ 2(S + 1) state reads for the two walks back.
+/// * route: ≤ 2(S + 1) state reads for the two walks back, each with ≤ D table reads.
 pub fn terrain_plan_work_bound(n: &TerrainBoundInputs) -> u64 {
-    let s = n.edges + n.start_links;
+    let starts = n.start_links.saturating_mul(n.max_out_degree);
+    let (s, table, decode, out_relaxations) = match n.turn_rule {
+        TurnRule::SharedEqually => (
+            n.edges + n.start_links,
+            0,
+            0,
+            n.transitions.saturating_add(starts),
+        ),
+        TurnRule::Paper => {
+            let table = n.edges + n.start_links + 1;
+            let s = table
+                .saturating_add(n.start_links)
+                .saturating_add(n.transitions)
+                .saturating_add(starts);
+            let relaxations = n
+                .pair_relaxations
+                .saturating_add(starts.saturating_mul(n.max_out_degree))
+                .saturating_add(starts);
+            (s, table, heap_levels(table), relaxations)
+        }
+    };
     let levels = heap_levels(s);
     let connections = 4 * n.candidates + 2;
     let per_connection = n
@@ -218,10 +251,10 @@ pub fn terrain_plan_work_bound(n: &TerrainBoundInputs) -> u64 {
         .saturating_add(n.popups * (n.popup_vertices + 1))
         .saturating_mul(3)
         .saturating_add(1);
-    let out_relaxations = n.transitions + n.start_links * n.max_out_degree;
-    let goal_relaxations = s * n.goal_links;
-    let relaxations = out_relaxations + goal_relaxations;
-    let search = (s + s * levels)
+    let goal_relaxations = s.saturating_mul(n.goal_links);
+    let relaxations = out_relaxations.saturating_add(goal_relaxations);
+    let search = s
+        .saturating_mul(1 + levels)
         .saturating_add(
             relaxations.saturating_mul(
                 n.cells_per_turn
@@ -230,13 +263,16 @@ pub fn terrain_plan_work_bound(n: &TerrainBoundInputs) -> u64 {
                     .saturating_add(n.popups * (n.popup_vertices + 1)),
             ),
         )
-        // Reading each popped state, and the start links' pushes.
-        .saturating_add(s + n.start_links * levels);
+        // Reading (and decoding) each popped state, and the start links' pushes.
+        .saturating_add(s.saturating_mul(1 + decode))
+        .saturating_add(n.start_links * levels)
+        .saturating_add(table);
     let endpoints = 2 + 2 * n.popups + 2 * n.vertices;
+    let route = (s + 1).saturating_mul(2 * (1 + decode));
     endpoints
         .saturating_add(connections.saturating_mul(per_connection))
         .saturating_add(search)
-        .saturating_add(2 * (s + 1))
+        .saturating_add(route)
 }
 
 /// The counts that bound a Voronoi query's work ([`voronoi_plan_work_bound`]).

@@ -12,7 +12,7 @@
 //! `--dump-before` writes one profile per phase: the instructions between two boundaries are
 //! one phase's. `scripts/profile-urban.sh` runs that and prints the table.
 
-use skyroute::planner::{Phase, PlannerConfig, Work};
+use skyroute::planner::{Phase, PlannerConfig, TurnRule, Work};
 use skyroute::{Goal, Planner, Popup, Pose, Query, Search, Vec2};
 use std::hint::black_box;
 use std::path::{Path, PathBuf};
@@ -82,6 +82,11 @@ fn parse_fixture(source: &str) -> Result<Fixture, String> {
         goal_candidates: int("goal_candidates")? as u8,
         connect_radius_m,
         free_goal_headings: int("free_goal_headings")? as u16,
+        turn_rule: if field(config, "turn_rule")?.ends_with("SharedEqually") {
+            TurnRule::SharedEqually
+        } else {
+            TurnRule::Paper
+        },
     };
     let start = floats(constant(source, "START")?)?;
     let goal_text = constant(source, "GOAL")?;

@@ -12,7 +12,7 @@ use host_tests::{cases, Rng};
 use skyroute::network::format::{EdgeRecord, Header, ObstacleRecord, U32Record, VertexRecord};
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec};
 use skyroute::network::{image_checksum, LoadError};
-use skyroute::planner::{Goal, PlanError, PlannerConfig, Popup, Query, Search};
+use skyroute::planner::{Goal, PlanError, PlannerConfig, Popup, Query, Search, TurnRule};
 use skyroute::{DubinsPath, Network, Planner, Pose, Vec2};
 use std::f32::consts::{FRAC_PI_2, PI};
 
@@ -427,12 +427,14 @@ fn zero_and_one_capacities_never_panic() {
             goal_candidates: 255,
             connect_radius_m: f32::NAN,
             free_goal_headings: 0,
+            turn_rule: TurnRule::Paper,
         },
         PlannerConfig {
             start_candidates: 255,
             goal_candidates: 0,
             connect_radius_m: -1.0,
             free_goal_headings: u16::MAX,
+            turn_rule: TurnRule::SharedEqually,
         },
     ] {
         p1.set_config(cfg);
@@ -530,6 +532,11 @@ fn random_extreme_call_sequences_never_panic() {
                     goal_candidates: rng.below(256) as u8,
                     connect_radius_m: rng.f().abs() * if rng.below(5) == 0 { -1.0 } else { 1.0 },
                     free_goal_headings: rng.below(400) as u16,
+                    turn_rule: if rng.below(2) == 0 {
+                        TurnRule::Paper
+                    } else {
+                        TurnRule::SharedEqually
+                    },
                 }),
                 1 | 2 => {
                     let popup = if rng.below(2) == 0 {

@@ -8,7 +8,7 @@
 use skyroute::geometry::grid::CellGrid;
 use skyroute::network::elevation::ElevationCoding;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec};
-use skyroute::planner::{Goal, PlanError, PlannerConfig, Popup, Query, Search};
+use skyroute::planner::{Goal, PlanError, PlannerConfig, Popup, Query, Search, TurnRule};
 use skyroute::{Planner, Pose, Primitive, Vec2};
 
 /// Codes of free and high cells; with base 0, step 1, altitude 150 and safety height 0 every
@@ -19,7 +19,7 @@ const ALTITUDE: f32 = 150.0;
 const BLOCKING: u8 = 150;
 
 type SmallPlanner<'n> = Planner<'n, 4096, 4096, 4, 256>;
-type RingPlanner<'n> = Planner<'n, 8192, 8192, 16, 512>;
+type RingPlanner<'n> = Planner<'n, 32768, 8192, 16, 512>;
 
 struct Terrain {
     grid: CellGrid,
@@ -193,7 +193,7 @@ fn corridor(strip_end: f32) -> Terrain {
     t
 }
 
-/// Finding: `Fillet::new` (src/planner/terrain.rs) takes `cut = r·|u_in × u_out| / (1 + u_in·u_out)`
+/// Finding: `Fillet::new` (src/planner/terrain/fillet.rs) takes `cut = r·|u_in × u_out| / (1 + u_in·u_out)`
 /// and only treats `dot == −1` as infeasible. For exactly opposite directions whose computed
 /// dot product rounds to just above −1 (a direction `d·(1/ℓ)` one ulp short of unit length, the
 /// normal case for nodes on a grid line), the cross product is 0, so the cut is 0: a U-turn of
@@ -346,17 +346,45 @@ fn turn_arc_popup_tests_are_within_the_work_bound() {
             let start = Pose::new(8000.0, 4990.0, std::f32::consts::FRAC_PI_2);
             let goal = Vec2::new(1000.0, 1000.0);
             let q = query(start, goal);
-            assert_eq!(p.plan(&q, u64::MAX), Err(PlanError::NoRoute));
-            let stats = p.arc_check_stats();
-            let bound = p.worst_case_work();
-            let r = p.plan(&q, bound);
-            assert_eq!(
-                r,
-                Err(PlanError::NoRoute),
-                "budget worst_case_work() = {bound}; {} turn arcs checked, each against 16 \
-                 pop-ups of 16 vertices",
-                stats.arcs
-            );
+            for turn_rule in [TurnRule::Paper, TurnRule::SharedEqually] {
+                p.set_config(PlannerConfig {
+                    goal_candidates: 1,
+                    turn_rule,
+                    ..PlannerConfig::DEFAULT
+                });
+                assert_eq!(p.plan(&q, u64::MAX), Err(PlanError::NoRoute));
+                let stats = p.arc_check_stats();
+                let bound = p.worst_case_work();
+                let r = p.plan(&q, bound);
+                assert_eq!(
+                    r,
+                    Err(PlanError::NoRoute),
+                    "{turn_rule:?}: budget worst_case_work() = {bound}; {} turn arcs checked, \
+                     each against 16 pop-ups of 16 vertices",
+                    stats.arcs
+                );
+            }
+            // A planner whose `V` holds the edges but not the transitions plans with the equal
+            // split and refuses the paper's rule by name (needs |E| + T + 2·Ks + 1 + Σ outdeg).
+            let mut small: Box<Planner<'_, 8192, 8192, 16, 512>> = Box::new(Planner::new());
+            small.load(&bytes).unwrap();
+            for (turn_rule, expected) in [
+                (TurnRule::SharedEqually, Err(PlanError::NoRoute)),
+                (
+                    TurnRule::Paper,
+                    Err(PlanError::TooManySearchStates {
+                        needed: 6000 + 12000 + 2 * 8 + 1 + 8 * 2,
+                        capacity: 8192,
+                    }),
+                ),
+            ] {
+                small.set_config(PlannerConfig {
+                    goal_candidates: 1,
+                    turn_rule,
+                    ..PlannerConfig::DEFAULT
+                });
+                assert_eq!(small.plan(&q, u64::MAX), expected, "{turn_rule:?}");
+            }
         })
         .unwrap()
         .join()

@@ -9,7 +9,7 @@
 use crate::raw_dem::{raw_navigable, route_violations};
 use host_tests::{full_tier_only, scenarios, Rng};
 use skyroute::network::format::ProvenanceRecord;
-use skyroute::planner::{Goal, PlanError, Query, QueryField, Search};
+use skyroute::planner::{Goal, PlanError, PlannerConfig, Query, QueryField, Search, TurnRule};
 use skyroute::{LoadError, Network, Planner, Pose, Primitive, Vec2};
 use skyroute_prep::build::{build, local, local_heading, BuildOptions, Built};
 use skyroute_prep::dem::{self, Dem};
@@ -19,9 +19,9 @@ use skyroute_prep::scenario::{self, Scenario};
 use std::path::PathBuf;
 use std::time::Instant;
 
-/// A host planner with room for the Jacksboro networks' edges (up to 79 216 with a second
-/// altitude level) as search states.
-type TerrainPlanner<'n> = Planner<'n, 131072, 131072, 4, 1024>;
+/// A host planner with room for the Jacksboro networks' search states: under the paper's turn
+/// rule one per transition (1 727 995 with a 700 m level), about 43 MB.
+type TerrainPlanner<'n> = Planner<'n, 2097152, 131072, 4, 1024>;
 
 /// Sample spacing along the route, and the most distance between lines across it, metres
 /// (below the smallest DEM cell side, 74.4 m).
@@ -70,6 +70,16 @@ fn planner(bytes: &[u8]) -> Box<TerrainPlanner<'_>> {
     let mut p: Box<TerrainPlanner<'_>> = Box::new(Planner::new());
     p.load(bytes).unwrap();
     p.set_config(TERRAIN_CONFIG);
+    p
+}
+
+/// [`planner`] under `turn_rule`.
+fn planner_with(bytes: &[u8], turn_rule: TurnRule) -> Box<TerrainPlanner<'_>> {
+    let mut p = planner(bytes);
+    p.set_config(PlannerConfig {
+        turn_rule,
+        ..TERRAIN_CONFIG
+    });
     p
 }
 
@@ -286,14 +296,17 @@ fn component_at(dem: &Dem, frame: &LocalFrame, labels: &[u32], v: Vec2) -> u32 {
 
 /// Random start poses and goals (free and fixed headings) over navigable DEM cells, planned on
 /// the 750 m network with a 700 m level at its own altitude and, in flight, at 700 m (more
-/// terrain blocked, edges pruned by their stored elevation codes) and 900 m: every route found is clear of the raw
-/// DEM at the altitude in force; every count of work is within the bound; the cells per arc
-/// check are compared with the paper's Table 4.
+/// terrain blocked, edges pruned by their stored elevation codes) and 900 m, under each turn
+/// rule: every route found is clear of the raw DEM at the altitude in force; every count of
+/// work is within the bound; the paper's rule routes every query the equal split routes, never
+/// longer; the cells per arc check are compared with the paper's Table 4. Prints the
+/// completeness figures of `docs/PAPERS.md` (pairs whose ends share a component of the eroded
+/// free space, and how many of them each rule routes).
 #[test]
 fn random_queries_at_three_altitudes_are_clear_of_the_raw_dem() {
     if !full_tier_only(
         "terrain_plan::random_queries_at_three_altitudes_are_clear_of_the_raw_dem",
-        "a full medeiros-jacksboro build with a 700 m level, 90 queries",
+        "a full medeiros-jacksboro build with a 700 m level, 90 queries under two turn rules",
     ) {
         return;
     }
@@ -301,25 +314,24 @@ fn random_queries_at_three_altitudes_are_clear_of_the_raw_dem() {
     let b = built_with_700_m_level(&s);
     let dem = dem_of(&s);
     let widen = b.terrain.as_ref().unwrap().widen_m as f64;
-    let half_wingspan = 0.5 * s.vehicle.wingspan_m;
     let frame = b.frame;
     let bytes = b.bytes.clone();
+    let half_wingspan = 0.5 * s.vehicle.wingspan_m;
     with_big_stack(move || {
-        let mut p = planner(&bytes);
-        let grid = p.network().terrain_grid().unwrap();
+        let mut shared = planner_with(&bytes, TurnRule::SharedEqually);
+        let mut paper = planner_with(&bytes, TurnRule::Paper);
+        let grid = shared.network().terrain_grid().unwrap();
         let (w, h) = (grid.cell * grid.cols as f32, grid.cell * grid.rows as f32);
         let mut rng = Rng(7);
-        let mut most_cells = 0u64;
-        let (mut arcs, mut cells) = (0u64, 0u64);
-        let mut samples = 0u64;
-        let mut most_work_ratio: f64 = 0.0;
+        let mut stats = Totals::default();
+        let mut report = String::new();
         for (altitude, queries) in [(750.0f32, 40), (700.0, 25), (900.0, 25)] {
-            p.set_altitude(altitude, 100.0).unwrap();
+            shared.set_altitude(altitude, 100.0).unwrap();
+            paper.set_altitude(altitude, 100.0).unwrap();
             let threshold = altitude as f64 - 100.0;
             let labels = components(&dem, threshold, 0.0, 74.5, 92.5);
             let eroded = components(&dem, threshold, widen, 74.5, 92.5);
-            let (mut ok, mut refused) = (0, std::collections::BTreeMap::<String, u32>::new());
-            let (mut connected, mut wide, mut ok_wide) = (0, 0, 0);
+            let mut c = Completeness::default();
             let mut tried = 0;
             while tried < queries {
                 let mut point = || {
@@ -350,75 +362,153 @@ fn random_queries_at_three_altitudes_are_clear_of_the_raw_dem() {
                     goal,
                     search: Search::Dijkstra,
                 };
-                let same_component = component_at(&dem, &frame, &labels, a) != 0
-                    && component_at(&dem, &frame, &labels, a)
-                        == component_at(&dem, &frame, &labels, g);
-                connected += same_component as u32;
-                let wide_component = component_at(&dem, &frame, &eroded, a) != 0
-                    && component_at(&dem, &frame, &eroded, a)
-                        == component_at(&dem, &frame, &eroded, g);
-                wide += wide_component as u32;
-                let result = p.plan(&q, u64::MAX);
-                if result.is_ok() {
-                    // A route between raw components would cross blocked terrain.
-                    assert!(
-                        same_component,
-                        "a route between separate raw DEM components"
-                    );
-                    ok_wide += wide_component as u32;
-                }
-                match result {
-                    Ok(summary) => {
-                        ok += 1;
-                        check_shape(p.route(), &start, &goal, p.network().turn_radius());
-                        samples += check_against_dem(
-                            p.route(),
-                            &dem,
-                            &frame,
-                            threshold,
-                            widen,
-                            half_wingspan,
+                let same = |l: &[u32]| {
+                    component_at(&dem, &frame, l, a) != 0
+                        && component_at(&dem, &frame, l, a) == component_at(&dem, &frame, l, g)
+                };
+                let (same_component, wide_component) = (same(&labels), same(&eroded));
+                c.connected += same_component as u32;
+                c.wide += wide_component as u32;
+                let check = |p: &mut TerrainPlanner<'_>, stats: &mut Totals| {
+                    let result = p.plan(&q, u64::MAX);
+                    if result.is_ok() {
+                        // A route between raw components would cross blocked terrain.
+                        assert!(
+                            same_component,
+                            "a route between separate raw DEM components"
                         );
-                        let bound = p.worst_case_work();
-                        assert!(summary.work.total() <= bound);
-                        most_work_ratio =
-                            most_work_ratio.max(summary.work.total() as f64 / bound as f64);
-                        // One unit less budget fails and keeps the route.
-                        let before = p.route().to_vec();
-                        let short = p.plan(&q, summary.work.total() - 1);
-                        assert!(matches!(short, Err(PlanError::BudgetExhausted { .. })));
-                        assert_eq!(p.route(), &before[..]);
                     }
-                    Err(e) => *refused.entry(format!("{e:?}")).or_default() += 1,
+                    if let Ok(summary) = result {
+                        let d = (&dem, &frame, threshold, widen, half_wingspan);
+                        check_random_route(p, &q, &summary, d, stats);
+                    }
+                    stats.arc_stats(p);
+                    result.map(|summary| summary.length)
+                };
+                let by_shared = check(&mut shared, &mut stats);
+                let by_paper = check(&mut paper, &mut stats);
+                c.count(&by_shared, &by_paper, wide_component);
+                if let Ok(l) = by_shared {
+                    // The paper's rule is the weaker condition: it routes, no longer.
+                    let l_paper = by_paper.as_ref().expect("the paper's rule routes it too");
+                    assert!(*l_paper <= l * (1.0 + 1e-4) + 0.05, "{l_paper} > {l}");
                 }
-                let st = p.arc_check_stats();
-                arcs += st.arcs;
-                cells += st.cells;
-                most_cells = most_cells.max(st.most_cells);
-                assert!(st.most_cells <= p.terrain_bound_inputs().cells_per_turn);
             }
-            eprintln!(
-                "altitude {altitude} m: {ok} of {queries} random queries routed; {connected} \
-                 have both ends in one raw DEM component, {wide} in one component of the free \
-                 space eroded by the ±{widen} m band, {ok_wide} of those routed; refused \
-                 {refused:?}"
+            report += &format!(
+                "altitude {altitude} m, {queries} random queries: {} have both ends in one raw \
+                 DEM component, {} in one component of the free space eroded by the ±{widen} m \
+                 band; of those {}, the equal split routes {} and the paper's rule {} (all \
+                 queries: {} and {}; {} shorter under the paper's rule); refused (equal split) {:?}, (paper) {:?}\n",
+                c.connected,
+                c.wide,
+                c.wide,
+                c.ok_wide[0],
+                c.ok_wide[1],
+                c.ok[0],
+                c.ok[1],
+                c.shorter,
+                c.refused[0],
+                c.refused[1],
             );
             // A regression guard on completeness: at least half of the pairs that the eroded
             // free space connects get a route.
-            assert!(ok_wide * 2 >= wide, "too few routes at {altitude} m");
+            assert!(c.ok_wide[0] * 2 >= c.wide, "too few routes at {altitude} m");
         }
+        eprint!("{report}");
         eprintln!(
-            "arc checks: {arcs}, {cells} cells, {:.1} per check on average, {most_cells} most \
-             (bound {}; the paper's Table 4: 384 at worst); work at most {:.4} of the bound; \
-             {samples} raw DEM samples clear",
-            cells as f64 / arcs.max(1) as f64,
-            p.terrain_bound_inputs().cells_per_turn,
-            most_work_ratio
+            "arc checks: {}, {} cells, {:.1} per check on average, {} most (bound {}; the \
+             paper's Table 4: 384 at worst); work at most {:.4} of the bound; {} raw DEM \
+             samples clear",
+            stats.arcs,
+            stats.cells,
+            stats.cells as f64 / stats.arcs.max(1) as f64,
+            stats.most_cells,
+            shared.terrain_bound_inputs().cells_per_turn,
+            stats.most_work_ratio,
+            stats.samples
         );
     });
 }
 
-/// Bad inputs get typed errors and lose nothing.
+/// What the random queries checked, over both rules.
+#[derive(Default)]
+struct Totals {
+    arcs: u64,
+    cells: u64,
+    most_cells: u64,
+    samples: u64,
+    most_work_ratio: f64,
+}
+
+impl Totals {
+    /// Adds the last query's arc checks (each within the bound).
+    fn arc_stats(&mut self, p: &TerrainPlanner<'_>) {
+        let st = p.arc_check_stats();
+        self.arcs += st.arcs;
+        self.cells += st.cells;
+        self.most_cells = self.most_cells.max(st.most_cells);
+        assert!(st.most_cells <= p.terrain_bound_inputs().cells_per_turn);
+    }
+}
+
+/// One altitude's completeness under the two rules (index 0 the equal split, 1 the paper's).
+#[derive(Default)]
+struct Completeness {
+    connected: u32,
+    wide: u32,
+    ok: [u32; 2],
+    ok_wide: [u32; 2],
+    /// Routed by both, shorter (by over 0.5 m) under the paper's rule.
+    shorter: u32,
+    refused: [std::collections::BTreeMap<String, u32>; 2],
+}
+
+impl Completeness {
+    fn count(
+        &mut self,
+        shared: &Result<f32, PlanError>,
+        paper: &Result<f32, PlanError>,
+        wide: bool,
+    ) {
+        if let (Ok(s), Ok(p)) = (shared, paper) {
+            self.shorter += (*p < *s - 0.5) as u32;
+        }
+        for (k, r) in [shared, paper].into_iter().enumerate() {
+            match r {
+                Ok(_) => {
+                    self.ok[k] += 1;
+                    self.ok_wide[k] += wide as u32;
+                }
+                Err(e) => *self.refused[k].entry(format!("{e:?}")).or_default() += 1,
+            }
+        }
+    }
+}
+
+/// A random query's route: its shape, clear of the raw DEM (`d`: the DEM, frame, threshold,
+/// band and half wingspan), its work within the bound, and one unit less budget fails and
+/// keeps the route.
+fn check_random_route(
+    p: &mut TerrainPlanner<'_>,
+    q: &Query,
+    summary: &skyroute::RouteSummary,
+    d: (&Dem, &LocalFrame, f64, f64, f64),
+    stats: &mut Totals,
+) {
+    let (dem, frame, threshold, widen, half_wingspan) = d;
+    check_shape(p.route(), &q.start, &q.goal, p.network().turn_radius());
+    stats.samples += check_against_dem(p.route(), dem, frame, threshold, widen, half_wingspan);
+    let bound = p.worst_case_work();
+    assert!(summary.work.total() <= bound);
+    stats.most_work_ratio = stats
+        .most_work_ratio
+        .max(summary.work.total() as f64 / bound as f64);
+    let before = p.route().to_vec();
+    let short = p.plan(q, summary.work.total() - 1);
+    assert!(matches!(short, Err(PlanError::BudgetExhausted { .. })));
+    assert_eq!(p.route(), &before[..]);
+}
+
 #[test]
 fn terrain_bad_inputs_are_refused() {
     let s = scenario_at(None);

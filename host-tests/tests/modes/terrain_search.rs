@@ -1,18 +1,21 @@
-//! The terrain search (Dijkstra over (previous node, node) states) against a second algorithm:
-//! on small random terrain networks, a depth-first enumeration of whole walks — start turn and
+//! The terrain search (Dijkstra over its turn rule's states) against a second algorithm: on
+//! small random terrain networks, a depth-first enumeration of whole walks — start turn and
 //! straight, node turns, final straight — with branch and bound, costing each walk in f64 with
 //! its own fillet formula (`r·tan(θ/2)` from the turn angle, not the planner's half-angle
-//! identity) and the same feasibility rules: every turn's cut within its share of both
-//! straights (half of each node-to-node straight, the whole start straight, half the goal
-//! straight), every edge usable at the altitude, every turn arc and connection over free cells.
-//! The cheapest walk must cost what the planner's route measures, and the planner must find a
-//! route exactly when a walk exists.
+//! identity) and each turn rule's feasibility written out on the walk: under the paper's rule
+//! (equations 1–2) the cuts at the two ends of every straight sum to at most its length (the
+//! start straight's whole length for the first turn, the goal straight's for the last); under
+//! the equal split every cut is within half of each node-to-node straight (the whole start
+//! straight, half the goal straight); every edge usable at the altitude, every turn arc and
+//! connection over free cells. The cheapest walk must cost what the planner's route measures,
+//! the planner must find a route exactly when a walk exists, and its route must be one
+//! continuous curve (a straight shorter than its two cuts would leave a gap).
 
 use host_tests::Rng;
 use skyroute::geometry::grid::{arc_cells, primitive_cells, CellGrid};
 use skyroute::network::elevation::ElevationCoding;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, TerrainSpec};
-use skyroute::planner::{Goal, PlanError, PlannerConfig, Query, Search};
+use skyroute::planner::{Goal, PlanError, PlannerConfig, Query, Search, TurnRule};
 use skyroute::{Arc, DubinsPath, Planner, Pose, Primitive, Turn, Vec2};
 
 const CELL: f32 = 50.0;
@@ -184,6 +187,7 @@ fn fillet_clear(case: &Case, v: Vec2, a: (f64, f64), cut: f64, angle: f64, left:
 
 struct Search2<'a> {
     case: &'a Case,
+    rule: TurnRule,
     edge_ok: Vec<Vec<bool>>,
     goal: Vec2,
     goal_ok: Vec<bool>,
@@ -198,8 +202,9 @@ fn dir(a: Vec2, b: Vec2) -> ((f64, f64), f64) {
 }
 
 impl Search2<'_> {
-    /// At node `v`, arrived along `a` with `share` of the straight usable, `cost` so far (the
-    /// straight counted to `v`), from node `from`; `depth` edges so far.
+    /// At node `v`, arrived along `a` with `share` of the straight usable by the turn at `v`,
+    /// `cost` so far (the straight counted to `v`), from node `from`; `depth` edges so far.
+    /// Any walk on flies at least `cost − share` (up to the turn's entry).
     fn walk(
         &mut self,
         v: usize,
@@ -210,14 +215,18 @@ impl Search2<'_> {
         depth: u32,
     ) {
         self.walks += 1;
-        if cost >= self.best || depth > 14 {
+        if cost - share >= self.best || depth > 14 {
             return;
         }
         let p = self.case.nodes[v];
         if self.goal_ok[v] {
             let (b, l) = dir(p, self.goal);
             let (cut, angle, left) = fillet(a, b, RADIUS as f64);
-            if cut <= share && cut <= 0.5 * l && fillet_clear(self.case, p, a, cut, angle, left) {
+            let goal_room = match self.rule {
+                TurnRule::Paper => l,
+                TurnRule::SharedEqually => 0.5 * l,
+            };
+            if cut <= share && cut <= goal_room && fillet_clear(self.case, p, a, cut, angle, left) {
                 let total = cost + l - 2.0 * cut + RADIUS as f64 * angle;
                 self.best = self.best.min(total);
             }
@@ -228,19 +237,25 @@ impl Search2<'_> {
             }
             let (b, l) = dir(p, self.case.nodes[w]);
             let (cut, angle, left) = fillet(a, b, RADIUS as f64);
-            if cut > share || cut > 0.5 * l || !fillet_clear(self.case, p, a, cut, angle, left) {
+            // The room the next straight leaves: the paper's `ℓ − c` (eq. 1–2), or half.
+            let (cap, room) = match self.rule {
+                TurnRule::Paper => (l, l - cut),
+                TurnRule::SharedEqually => (0.5 * l, 0.5 * l),
+            };
+            if cut > share || cut > cap || !fillet_clear(self.case, p, a, cut, angle, left) {
                 continue;
             }
             let next = cost + l - 2.0 * cut + RADIUS as f64 * angle;
-            self.walk(w, b, 0.5 * l, next, Some(v), depth + 1);
+            self.walk(w, b, room, next, Some(v), depth + 1);
         }
     }
 }
 
 #[test]
-fn dijkstra_over_turn_states_matches_an_exhaustive_walk_search() {
+fn dijkstra_under_each_turn_rule_matches_an_exhaustive_walk_search() {
     let mut rng = Rng(11);
     let (mut routed, mut none) = (0, 0);
+    let (mut paper_only, mut paper_shorter) = (0, 0);
     let mut walks = 0;
     for k in 0..150 {
         let c = case(&mut rng);
@@ -278,93 +293,147 @@ fn dijkstra_over_turn_states_matches_an_exhaustive_walk_search() {
                     && clear(&c, &Primitive::Line(skyroute::Segment::new(p, goal)))
             })
             .collect();
-        let mut s = Search2 {
-            case: &c,
-            edge_ok,
-            goal,
-            goal_ok,
-            best: f64::INFINITY,
-            walks: 0,
-        };
-        // The direct path, then every start link.
-        for turn in [Turn::Left, Turn::Right] {
-            if let Some(p) = DubinsPath::turn_then_straight(&start, RADIUS, goal, turn) {
-                if path_clear(&c, &p) {
-                    s.best = s.best.min(p.length() as f64);
-                }
-            }
+        let mut bests = [f64::INFINITY; 2];
+        for (which, rule) in [TurnRule::Paper, TurnRule::SharedEqually]
+            .into_iter()
+            .enumerate()
+        {
+            let (best, n_walks) = brute_force(&c, rule, &edge_ok, &goal_ok, &start, goal);
+            walks += n_walks;
+            bests[which] = best;
+            check_planner(&c, rule, &start, goal, best, k, &mut routed, &mut none);
         }
-        for v in 0..n {
-            for turn in [Turn::Left, Turn::Right] {
-                let Some(p) = DubinsPath::turn_then_straight(&start, RADIUS, c.nodes[v], turn)
-                else {
-                    continue;
-                };
-                if !path_clear(&c, &p) {
-                    continue;
-                }
-                let h = p.end().heading as f64;
-                s.walk(
-                    v,
-                    (h.cos(), h.sin()),
-                    p.lengths[1] as f64,
-                    p.length() as f64,
-                    None,
-                    0,
-                );
-            }
+        // The paper's rule is the weaker condition: never costlier, and sometimes cheaper or
+        // the only one to route.
+        assert!(bests[0] <= bests[1] + 1e-9, "case {k}: {bests:?}");
+        if bests[0].is_finite() && !bests[1].is_finite() {
+            paper_only += 1;
+        } else if bests[0] < bests[1] - 1e-6 {
+            paper_shorter += 1;
         }
-        walks += s.walks;
+    }
+    eprintln!(
+        "{routed} routed, {none} without a route, {walks} walks enumerated; the paper's rule \
+         alone routes {paper_only} cases and is shorter in {paper_shorter}"
+    );
+    assert!(routed >= 40 && none >= 2);
+    assert!(paper_only + paper_shorter >= 1);
+}
 
-        let mut planner: Box<Planner<'_, 128, 128, 2, 64>> = Box::new(Planner::new());
-        planner.load(&c.bytes).unwrap();
-        planner.set_config(PlannerConfig {
-            start_candidates: 16,
-            goal_candidates: 16,
-            connect_radius_m: f32::INFINITY,
-            free_goal_headings: 36,
-        });
-        let q = Query {
-            start,
-            goal: Goal {
-                position: goal,
-                heading: None,
-            },
-            search: Search::Dijkstra,
-        };
-        match planner.plan(&q, u64::MAX) {
-            Ok(summary) => {
-                routed += 1;
-                assert!(
-                    s.best.is_finite(),
-                    "case {k}: the planner routes ({}) where no walk exists",
-                    summary.length
-                );
-                let tol = 1e-4 * s.best + 0.05;
-                assert!(
-                    (summary.length as f64 - s.best).abs() <= tol,
-                    "case {k}: planner {} vs exhaustive {}",
-                    summary.length,
-                    s.best
-                );
-                assert!(summary.work.total() <= planner.worst_case_work());
-            }
-            Err(e) => {
-                none += 1;
-                assert!(
-                    !s.best.is_finite(),
-                    "case {k}: planner {e:?} but a walk of {} exists",
-                    s.best
-                );
-                assert!(matches!(
-                    e,
-                    PlanError::NoRoute | PlanError::StartUnconnected | PlanError::GoalUnconnected
-                ));
+/// The cheapest walk under `rule` (infinite if none) and the walks enumerated.
+fn brute_force(
+    c: &Case,
+    rule: TurnRule,
+    edge_ok: &[Vec<bool>],
+    goal_ok: &[bool],
+    start: &Pose,
+    goal: Vec2,
+) -> (f64, u64) {
+    let mut s = Search2 {
+        case: c,
+        rule,
+        edge_ok: edge_ok.to_vec(),
+        goal,
+        goal_ok: goal_ok.to_vec(),
+        best: f64::INFINITY,
+        walks: 0,
+    };
+    // The direct path, then every start link.
+    for turn in [Turn::Left, Turn::Right] {
+        if let Some(p) = DubinsPath::turn_then_straight(start, RADIUS, goal, turn) {
+            if path_clear(c, &p) {
+                s.best = s.best.min(p.length() as f64);
             }
         }
     }
-    eprintln!("{routed} routed, {none} without a route, {walks} walks enumerated");
-    assert!(routed >= 20 && none >= 1);
+    for v in 0..c.nodes.len() {
+        for turn in [Turn::Left, Turn::Right] {
+            let Some(p) = DubinsPath::turn_then_straight(start, RADIUS, c.nodes[v], turn) else {
+                continue;
+            };
+            if !path_clear(c, &p) {
+                continue;
+            }
+            let h = p.end().heading as f64;
+            s.walk(
+                v,
+                (h.cos(), h.sin()),
+                p.lengths[1] as f64,
+                p.length() as f64,
+                None,
+                0,
+            );
+        }
+    }
+    (s.best, s.walks)
+}
+
+/// Plans case `k` under `rule` and checks the answer against the brute force's `best`.
+#[allow(clippy::too_many_arguments)]
+fn check_planner(
+    c: &Case,
+    rule: TurnRule,
+    start: &Pose,
+    goal: Vec2,
+    best: f64,
+    k: usize,
+    routed: &mut u32,
+    none: &mut u32,
+) {
+    let mut planner: Box<Planner<'_, 1024, 128, 2, 64>> = Box::new(Planner::new());
+    planner.load(&c.bytes).unwrap();
+    planner.set_config(PlannerConfig {
+        start_candidates: 16,
+        goal_candidates: 16,
+        connect_radius_m: f32::INFINITY,
+        free_goal_headings: 36,
+        turn_rule: rule,
+    });
+    let q = Query {
+        start: *start,
+        goal: Goal {
+            position: goal,
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    };
+    match planner.plan(&q, u64::MAX) {
+        Ok(summary) => {
+            *routed += 1;
+            assert!(
+                best.is_finite(),
+                "case {k} {rule:?}: the planner routes ({}) where no walk exists",
+                summary.length
+            );
+            let tol = 1e-4 * best + 0.05;
+            assert!(
+                (summary.length as f64 - best).abs() <= tol,
+                "case {k} {rule:?}: planner {} vs exhaustive {}",
+                summary.length,
+                best
+            );
+            // One curve: where two cuts overran their straight, the arcs would not meet.
+            for w in planner.route().windows(2) {
+                let (a, b) = (w[0].pose_at(w[0].length()), w[1].pose_at(0.0));
+                assert!(
+                    a.position.distance(b.position) < 0.05,
+                    "case {k} {rule:?}: gap {a:?} {b:?}"
+                );
+            }
+            assert!(summary.work.total() <= planner.worst_case_work());
+        }
+        Err(e) => {
+            *none += 1;
+            assert!(
+                !best.is_finite(),
+                "case {k} {rule:?}: planner {e:?} but a walk of {best} exists"
+            );
+            assert!(matches!(
+                e,
+                PlanError::NoRoute | PlanError::StartUnconnected | PlanError::GoalUnconnected
+            ));
+        }
+    }
 }
 
 /// Pop-ups on terrain networks disable exactly the line edges that come within the clearance

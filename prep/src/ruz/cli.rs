@@ -352,6 +352,7 @@ pub fn plan_decided_command(req: &PlanRequest) -> CliResult {
         frame,
         options: MissionOptions {
             connect_radius_m: req.connect_radius_m,
+            turn_rule: req.turn_rule,
         },
     };
     let (mut json, flown) = plan_decided(&planning, &which, &req.limits).map_err(
