@@ -684,12 +684,7 @@ fn run(cli: Cli) -> CliResult {
             histograms: histograms.as_deref(),
         }),
         Command::Init(a) => init(&a),
-        Command::Info { network } => {
-            let bytes =
-                std::fs::read(&network).map_err(|e| format!("{}: {e}", network.display()))?;
-            print!("{}", skyroute_prep::info::describe(&network, &bytes)?);
-            Ok(())
-        }
+        Command::Info { network } => info(&network),
         Command::Export {
             network,
             output,
@@ -744,6 +739,13 @@ fn run(cli: Cli) -> CliResult {
             Ok(())
         }
     }
+}
+
+/// `skyroute info NETWORK`: prints what the network holds and what a planner needs for it.
+fn info(network: &std::path::Path) -> Result<(), Box<dyn std::error::Error>> {
+    let bytes = std::fs::read(network).map_err(|e| format!("{}: {e}", network.display()))?;
+    print!("{}", skyroute_prep::info::describe(network, &bytes)?);
+    Ok(())
 }
 
 fn main() -> ExitCode {
