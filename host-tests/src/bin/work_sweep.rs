@@ -7,8 +7,8 @@
 //! ```
 //!
 //! Roadmap (niendorf-urban): random start and goal poses, 0–3 circular pop-ups, Dijkstra or A*.
-//! Terrain (medeiros-jacksboro): random poses, the built altitude and three others (−150,
-//! −75, +100 m), 0–2 pop-ups.
+//! Terrain (medeiros-jacksboro, the firmware's turn rule `SharedEqually`): random poses, the
+//! built altitude and three others (−150, −75, +100 m), 0–2 pop-ups.
 //! Landmark (babel-II-N): the network's start and goal, a random weather, random rosette
 //! losses and 0–2 pop-ups. Voronoi (voronoi-dense): random poses and threat weights, threats
 //! popped and removed. Every roadmap and terrain route is also checked for continuity and the
@@ -212,6 +212,11 @@ fn terrain(queries: u64) -> Sweep {
     let net = Network::from_bytes(&b.bytes).unwrap();
     let mut p: Box<Big<'_>> = Box::new(Planner::new());
     p.load(&b.bytes).unwrap();
+    // The rule the firmware runs: the paper's needs far more states than this planner has.
+    p.set_config(skyroute::planner::PlannerConfig {
+        turn_rule: skyroute::planner::TurnRule::SharedEqually,
+        ..p.config()
+    });
     let t = *net.terrain().unwrap();
     // The built altitude and three others: lower ones block more of the network.
     let levels = [-150.0, -75.0, 0.0, 100.0].map(|d| t.altitude_m + d);
