@@ -306,6 +306,9 @@ fn voronoi(queries: u64) -> Sweep {
     })
 }
 
+/// A mode's name and its sweep.
+type ModeSweep = (&'static str, fn(u64) -> Sweep);
+
 /// Whether a mode's routes are Dubins pieces (checked by [`route_is_flyable`]).
 fn dubins(name: &str) -> bool {
     name.starts_with("roadmap") || name.starts_with("terrain")
@@ -327,7 +330,7 @@ fn main() -> ExitCode {
         .iter()
         .position(|a| a == "--mode")
         .and_then(|i| args.get(i + 1));
-    let modes: [(&str, fn(u64) -> Sweep); 4] = [
+    let modes: [ModeSweep; 4] = [
         ("roadmap niendorf-urban", roadmap),
         ("terrain medeiros-jacksboro", terrain),
         ("landmark babel-II-N", landmark),
