@@ -11,22 +11,12 @@
 #   scripts/prove-no-panic.sh [ELF ...]
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-elfs=("$@")
-if [[ ${#elfs[@]} -eq 0 ]]; then
-    for b in roadmap terrain landmark voronoi ruz; do
-        elfs+=("$root/firmware-example/target/thumbv7em-none-eabihf/release/$b")
-    done
-fi
-objdump=$(command -v llvm-objdump || command -v arm-none-eabi-objdump || true)
-if [[ -z $objdump ]]; then
-    echo "prove-no-panic: llvm-objdump (Debian: llvm) or arm-none-eabi-objdump is needed" >&2
-    exit 2
-fi
+# shellcheck source=lib/firmware-disassembly.sh
+source "$root/scripts/lib/firmware-disassembly.sh"
+firmware_elfs "$@"
 status=0
 for elf in "${elfs[@]}"; do
-    [[ -f $elf ]] || { echo "prove-no-panic: $elf not built" >&2; exit 2; }
-    "$objdump" -d --no-show-raw-insn -C "$elf" >"$elf.dis" 2>/dev/null ||
-        "$objdump" -d -C "$elf" >"$elf.dis"
+    disassemble "$elf" "$elf.dis"
     python3 - "$elf.dis" "$(basename "$elf")" <<'PY' || status=1
 import collections, re, sys
 path, name = sys.argv[1:]

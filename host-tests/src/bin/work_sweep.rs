@@ -115,6 +115,20 @@ fn at(rng: &mut Rng, net: &Network) -> Vec2 {
     )
 }
 
+/// A random query in the network's extent: start pose, goal position, the goal's heading
+/// fixed half of the time.
+fn random_query(rng: &mut Rng, net: &Network, search: Search) -> Query {
+    let goal = pose(rng, net);
+    Query {
+        start: pose(rng, net),
+        goal: Goal {
+            position: goal.position,
+            heading: rng.chance(0.5).then_some(goal.heading),
+        },
+        search,
+    }
+}
+
 fn pose(rng: &mut Rng, net: &Network) -> Pose {
     Pose {
         position: at(rng, net),
@@ -191,19 +205,12 @@ fn roadmap(queries: u64) -> Sweep {
             let n = rng.below(4);
             random_popups(p, rng, n, &net);
         }
-        let goal = pose(rng, &net);
-        Query {
-            start: pose(rng, &net),
-            goal: Goal {
-                position: goal.position,
-                heading: rng.chance(0.5).then_some(goal.heading),
-            },
-            search: if i % 2 == 0 {
-                Search::Dijkstra
-            } else {
-                Search::AStar
-            },
-        }
+        let search = if i % 2 == 0 {
+            Search::Dijkstra
+        } else {
+            Search::AStar
+        };
+        random_query(rng, &net, search)
     })
 }
 
@@ -227,15 +234,7 @@ fn terrain(queries: u64) -> Sweep {
             let n = rng.below(3);
             random_popups(p, rng, n, &net);
         }
-        let goal = pose(rng, &net);
-        Query {
-            start: pose(rng, &net),
-            goal: Goal {
-                position: goal.position,
-                heading: rng.chance(0.5).then_some(goal.heading),
-            },
-            search: Search::Dijkstra,
-        }
+        random_query(rng, &net, Search::Dijkstra)
     })
 }
 
@@ -294,15 +293,7 @@ fn voronoi(queries: u64) -> Sweep {
             }
             let _ = p.set_threat_weight(rng.unit() as f32);
         }
-        let goal = pose(rng, &net);
-        Query {
-            start: pose(rng, &net),
-            goal: Goal {
-                position: goal.position,
-                heading: rng.chance(0.5).then_some(goal.heading),
-            },
-            search: Search::Dijkstra,
-        }
+        random_query(rng, &net, Search::Dijkstra)
     })
 }
 
