@@ -113,12 +113,11 @@ impl<const N: usize> IndexedHeap<N> {
         if self.len == 0 {
             return None;
         }
-        let top = self.slots[0];
+        let top = *self.slots.first()?;
         self.len -= 1;
         self.set_position(top.id, DONE);
         let mut levels = 1;
-        if self.len > 0 {
-            let last = self.slots[self.len];
+        if let Some(&last) = self.slots.get(self.len).filter(|_| self.len > 0) {
             levels += self.sift_down(last);
         }
         Some((top.id, top.key, levels))
@@ -135,12 +134,19 @@ impl<const N: usize> IndexedHeap<N> {
     /// one write each. Returns the number of levels moved.
     fn sift_up(&mut self, mut at: usize, x: Slot) -> u32 {
         let mut levels = 0;
-        let live = &mut self.slots[..self.len];
+        // `len ≤ N` always; an inconsistent length leaves the heap as it is, without a panic.
+        let Some(live) = self.slots.get_mut(..self.len) else {
+            return levels;
+        };
         while at > 0 {
             let parent = (at - 1) / 2;
-            let above = live[parent];
+            let Some(&above) = live.get(parent) else {
+                break;
+            };
             if x.key < above.key {
-                live[at] = above;
+                if let Some(slot) = live.get_mut(at) {
+                    *slot = above;
+                }
                 if let Some(p) = self.position.get_mut(above.id as usize) {
                     *p = at as u32 + 1;
                 }
@@ -150,7 +156,9 @@ impl<const N: usize> IndexedHeap<N> {
                 break;
             }
         }
-        live[at] = x;
+        if let Some(slot) = live.get_mut(at) {
+            *slot = x;
+        }
         self.set_position(x.id, at as u32 + 1);
         levels
     }
@@ -161,7 +169,9 @@ impl<const N: usize> IndexedHeap<N> {
     fn sift_down(&mut self, x: Slot) -> u32 {
         let mut levels = 0;
         let mut at = 0;
-        let live = &mut self.slots[..self.len];
+        let Some(live) = self.slots.get_mut(..self.len) else {
+            return levels;
+        };
         loop {
             let (l, r) = (2 * at + 1, 2 * at + 2);
             let (mut smallest, mut key) = (at, x.key);
@@ -178,15 +188,21 @@ impl<const N: usize> IndexedHeap<N> {
             if smallest == at {
                 break;
             }
-            let below = live[smallest];
-            live[at] = below;
+            let Some(&below) = live.get(smallest) else {
+                break;
+            };
+            if let Some(slot) = live.get_mut(at) {
+                *slot = below;
+            }
             if let Some(p) = self.position.get_mut(below.id as usize) {
                 *p = at as u32 + 1;
             }
             at = smallest;
             levels += 1;
         }
-        live[at] = x;
+        if let Some(slot) = live.get_mut(at) {
+            *slot = x;
+        }
         self.set_position(x.id, at as u32 + 1);
         levels
     }
