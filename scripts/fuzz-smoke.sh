@@ -5,7 +5,7 @@
 # the loader's corpus with the smaller of them, then runs each target for FUZZ_SECONDS (default 20) seconds.
 # A crash fails the run and leaves its input in fuzz/artifacts/TARGET/.
 #
-#   scripts/fuzz-smoke.sh [TARGET ...]     (default: load planner_ops voronoi decision)
+#   scripts/fuzz-smoke.sh [TARGET ...]     (default: load planner_ops voronoi decision scenario dem)
 #
 # Without a nightly toolchain it says so and exits 0: the fuzz run is skipped, not failed.
 set -euo pipefail
@@ -24,7 +24,7 @@ fi
 seconds=${FUZZ_SECONDS:-20}
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
-    targets=(load planner_ops voronoi decision)
+    targets=(load planner_ops voronoi decision scenario dem)
 fi
 
 mkdir -p fuzz/networks fuzz/corpus/load
@@ -39,6 +39,15 @@ cp firmware-example/fixture-landmark/network.bin fuzz/networks/landmark-babel-II
 # a sparse roadmap of niendorf-urban.
 "$skyroute" build scenarios/niendorf-urban.geojson --sample-spacing 400 -o fuzz/corpus/load/roadmap-sparse.bin >/dev/null
 cp fuzz/networks/ruz-voronoi.bin fuzz/networks/voronoi-dense.bin fuzz/networks/terrain-jacksboro.bin fuzz/corpus/load/
+# The parsers' seeds: the shipped scenarios, the shipped DEM and a GeoTIFF of its first rows
+# (when GDAL is there).
+mkdir -p fuzz/corpus/scenario fuzz/corpus/dem
+cp scenarios/*.geojson fuzz/corpus/scenario/
+head -c 20000 scenarios/jacksboro-dem.asc >fuzz/corpus/dem/jacksboro-head.asc
+if command -v gdal_translate >/dev/null; then
+    gdal_translate -q -srcwin 0 0 40 30 -co COMPRESS=DEFLATE scenarios/jacksboro-dem.asc \
+        fuzz/corpus/dem/jacksboro-40x30.tif
+fi
 
 mkdir -p target/fuzz-logs
 for t in "${targets[@]}"; do
