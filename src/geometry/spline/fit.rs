@@ -213,10 +213,18 @@ impl<T: CornerBound> Ctx<'_, T> {
 
     /// Whether every inner vertex of `chain` is a feasible corner.
     fn chain_ok(&mut self, chain: &[Node]) -> bool {
-        chain
-            .windows(3)
-            .all(|w| matches!(w, [a, b, c] if self.eval(*a, *b, *c).is_some()))
+        triples(chain).all(|(a, b, c)| self.eval(a, b, c).is_some())
     }
+}
+
+/// The consecutive triples of `items` (`slice::windows(3)` without its run-time size check,
+/// whose `expect` would otherwise stay in the firmware).
+fn triples<T: Copy>(items: &[T]) -> impl Iterator<Item = (T, T, T)> + '_ {
+    items
+        .iter()
+        .zip(items.iter().skip(1))
+        .zip(items.iter().skip(2))
+        .map(|((&a, &b), &c)| (a, b, c))
 }
 
 /// `legs` lengthened by a common factor (a scaled piece has a lower curvature) so that the
@@ -618,9 +626,8 @@ fn emit<T: CornerBound>(
     let snap = |a: Vec2, b: Vec2, seg: f32| {
         a.distance(b) <= SNAP_REL * seg + 4.0 * f32::EPSILON * magnitude(a)
     };
-    for w in path.windows(3) {
-        let [prev, c, next] = w else { continue };
-        let corner = ctx.eval(*prev, *c, *next).ok_or(infeasible(c.tag))?;
+    for (prev, c, next) in triples(&path) {
+        let corner = ctx.eval(prev, c, next).ok_or(infeasible(c.tag))?;
         let mut a = c.p - corner.u1 * corner.legs.s1;
         let b = c.p + corner.u2 * corner.legs.s2;
         if let Some((q, tag)) = pending.take() {
@@ -709,14 +716,12 @@ pub fn fit<const R: usize>(
     let mut path: HVec<Node, R> = HVec::new();
     let dropped = build_path(input, &mut ctx, &mut path)?;
     let n = input.waypoints.len();
-    for w in path.windows(2) {
-        if let [a, b] = w {
-            if !coarse(a.tag, b.tag, n) && !clear(&[a.p, b.p]) {
-                return Err(FitError::SegmentBlocked {
-                    from: a.tag,
-                    to: b.tag,
-                });
-            }
+    for (a, b) in path.iter().zip(path.iter().skip(1)) {
+        if !coarse(a.tag, b.tag, n) && !clear(&[a.p, b.p]) {
+            return Err(FitError::SegmentBlocked {
+                from: a.tag,
+                to: b.tag,
+            });
         }
     }
     let (mut pieces, mut corners, mut length) = (0usize, 0usize, 0.0f32);
