@@ -626,7 +626,7 @@ fn emit<T: CornerBound>(
     let snap = |a: Vec2, b: Vec2, seg: f32| {
         a.distance(b) <= SNAP_REL * seg + 4.0 * f32::EPSILON * magnitude(a)
     };
-    for (prev, c, next) in triples(&path) {
+    for (prev, c, next) in triples(path) {
         let corner = ctx.eval(prev, c, next).ok_or(infeasible(c.tag))?;
         let mut a = c.p - corner.u1 * corner.legs.s1;
         let b = c.p + corner.u2 * corner.legs.s2;
