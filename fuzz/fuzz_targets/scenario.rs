@@ -15,8 +15,16 @@ fuzz_target!(|bytes: &[u8]| {
         Ok(s) => {
             // What the parser promises of every accepted scenario.
             for z in &s.no_fly {
-                assert!(z.ring.len() >= 3, "zone {:?} has {} vertices", z.name, z.ring.len());
-                assert!(z.ring.iter().all(|&(lon, lat)| lon.abs() <= 180.0 && lat.abs() <= 90.0));
+                assert!(
+                    z.ring.len() >= 3,
+                    "zone {:?} has {} vertices",
+                    z.name,
+                    z.ring.len()
+                );
+                assert!(z
+                    .ring
+                    .iter()
+                    .all(|&(lon, lat)| lon.abs() <= 180.0 && lat.abs() <= 90.0));
             }
             assert!(s.waypoints.len() <= skyroute_prep::scenario::limits::MAX_WAYPOINTS);
         }
