@@ -26,8 +26,8 @@ use super::connect::conflicts;
 use super::popup::Popup;
 use super::{Meter, PlanError, Planner, QueryField};
 use crate::geometry::line_cover::{capsule_interval, disc_interval, for_each_crossing};
-use crate::geometry::predicates::{point_in_polygon, point_segment_distance, PolygonView};
-use crate::geometry::{insertion_sort_by, DubinsPath, DubinsWord, Pose, Vec2};
+use crate::geometry::predicates::{conflicts_with_circle, conflicts_with_polygon, PolygonView};
+use crate::geometry::{insertion_sort_by, DubinsPath, DubinsWord, Pose, Primitive, Segment, Vec2};
 use crate::network::Obstacle;
 use core::f32::consts::PI;
 use heapless::Vec;
@@ -77,6 +77,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// The regions (obstacles, then pop-ups) that `p` lies in or within the clearance of.
     fn regions_at(&self, p: Vec2, meter: &mut Meter) -> Result<Regions, TooManyRegions> {
         let c = self.network.clearance();
+        // The point as a zero-length line, for the shared clearance predicates.
+        let point = Primitive::Line(Segment { start: p, end: p });
         let mut found = Regions::new();
         for i in 0..self.network.obstacle_count() {
             let Some((obstacle, (lo, hi))) = self.network.obstacle(i) else {
@@ -89,9 +91,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             let within = match obstacle {
                 Obstacle::Polygon(poly) => {
                     meter.work.collision_tests += poly.vertex_count() as u64 + 1;
-                    polygon_within(p, &poly, c)
+                    conflicts_with_polygon(&point, &poly, c)
                 }
-                Obstacle::Circle { centre, radius } => p.distance(centre) <= radius + c,
+                Obstacle::Circle { centre, radius } => {
+                    conflicts_with_circle(&point, centre, radius, c)
+                }
             };
             if within {
                 found
@@ -100,11 +104,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
         }
         for (id, popup) in self.popups() {
-            meter.work.collision_tests += popup_elements(popup);
-            let within = match popup {
-                Popup::Circle { centre, radius } => p.distance(*centre) <= radius + c,
-                Popup::Polygon(points) => polygon_within(p, points.as_slice(), c),
-            };
+            let (within, tests) = popup.conflicts(&point, c);
+            meter.work.collision_tests += tests as u64;
             if within {
                 found
                     .push(Violation::Popup(id))
@@ -270,23 +271,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         self.regions_at(path.end().position, meter)
             .is_ok_and(|r| r.is_empty())
-    }
-}
-
-/// Whether `p` lies inside `polygon` or within `c` of its boundary.
-fn polygon_within(p: Vec2, polygon: &(impl PolygonView + ?Sized), c: f32) -> bool {
-    (0..polygon.vertex_count()).any(|i| {
-        polygon
-            .edge(i)
-            .is_none_or(|e| point_segment_distance(p, &e) <= c)
-    }) || point_in_polygon(p, polygon)
-}
-
-/// Predicate evaluations a pop-up costs one point: one per edge and one containment test.
-fn popup_elements(popup: &Popup) -> u64 {
-    match popup {
-        Popup::Circle { .. } => 1,
-        Popup::Polygon(points) => points.len() as u64 + 1,
     }
 }
 
