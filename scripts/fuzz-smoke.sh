@@ -6,6 +6,9 @@
 # A crash fails the run and leaves its input in fuzz/artifacts/TARGET/.
 #
 #   scripts/fuzz-smoke.sh [TARGET ...]     (default: load planner_ops voronoi decision scenario dem)
+#   LOAD_RUNS=10000000 scripts/fuzz-smoke.sh load   (the loader's long run: the small images'
+#                                                    corpus, fuzz/corpus/load-small/, until that
+#                                                    many executions)
 #
 # Without a nightly toolchain it says so and exits 0: the fuzz run is skipped, not failed.
 set -euo pipefail
@@ -39,6 +42,37 @@ cp firmware-example/fixture-landmark/network.bin fuzz/networks/landmark-babel-II
 # a sparse roadmap of niendorf-urban.
 "$skyroute" build scenarios/niendorf-urban.geojson --sample-spacing 400 -o fuzz/corpus/load/roadmap-sparse.bin >/dev/null
 cp fuzz/networks/ruz-voronoi.bin fuzz/networks/voronoi-dense.bin fuzz/networks/terrain-jacksboro.bin fuzz/corpus/load/
+# Small images of every mode (a few kB each, so a run takes microseconds): the `skyroute init`
+# templates, the terrain one over a 30 x 30 window of the shipped DEM. They seed the loader's
+# corpus here and `fuzz/corpus/load-small/`, the corpus of the long run (LOAD_RUNS).
+small=target/fuzz-small
+mkdir -p "$small" fuzz/corpus/load-small
+python3 - scenarios/jacksboro-dem.asc "$small/dem.asc" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+head = dict(l.split() for l in lines[:6])
+rows = [l.split() for l in lines[6:] if l.strip()]
+r0, c0, n = 100, 100, 30  # the window's first row (from the north) and column, and its side
+cell = float(head["cellsize"])
+with open(sys.argv[2], "w") as out:
+    out.write(f"ncols {n}\nnrows {n}\n")
+    out.write(f"xllcorner {float(head['xllcorner']) + c0 * cell:.8f}\n")
+    out.write(f"yllcorner {float(head['yllcorner']) + (len(rows) - r0 - n) * cell:.8f}\n")
+    out.write(f"cellsize {head['cellsize']}\nNODATA_value {head['NODATA_value']}\n")
+    for row in rows[r0:r0 + n]:
+        out.write(" ".join(row[c0:c0 + n]) + "\n")
+PY
+for mode in roadmap landmark voronoi terrain; do
+    dem=()
+    [[ $mode == terrain ]] && dem=(--dem "$small/dem.asc")
+    "$skyroute" init --force --mode "$mode" ${dem[@]+"${dem[@]}"} "$small/$mode.geojson" >/dev/null
+done
+"$skyroute" build "$small/roadmap.geojson" --sample-spacing 500 -o "$small/roadmap.bin" >/dev/null
+"$skyroute" build "$small/landmark.geojson" -o "$small/landmark.bin" >/dev/null
+"$skyroute" build "$small/voronoi.geojson" -o "$small/voronoi.bin" >/dev/null
+"$skyroute" build "$small/terrain.geojson" -o "$small/terrain.bin" >/dev/null
+cp "$small"/*.bin fuzz/corpus/load/
+cp "$small"/*.bin fuzz/corpus/load-small/
 # The parsers' seeds: the shipped scenarios, the shipped DEM and a GeoTIFF of its first rows
 # (when GDAL is there).
 mkdir -p fuzz/corpus/scenario fuzz/corpus/dem
@@ -51,15 +85,20 @@ fi
 
 mkdir -p target/fuzz-logs
 for t in "${targets[@]}"; do
-    max_len=()
-    if [[ $t == load ]]; then
-        max_len=(-max_len=400000)
+    extra=(-max_total_time="$seconds")
+    corpus=()
+    if [[ $t == load && -n ${LOAD_RUNS:-} ]]; then
+        # The long run: the small images only, until LOAD_RUNS executions.
+        extra=(-runs="$LOAD_RUNS" -max_len=32768)
+        corpus=(corpus/load-small)
+    elif [[ $t == load ]]; then
+        extra+=(-max_len=400000)
     fi
     log=target/fuzz-logs/$t.log
-    echo "fuzz: $t for ${seconds} s (log: $log)"
+    echo "fuzz: $t: ${extra[*]} (log: $log)"
     if ! (cd fuzz && SKYROUTE_FUZZ_NETWORKS="$root/fuzz/networks" \
-        cargo +nightly fuzz run "$t" -- -max_total_time="$seconds" -rss_limit_mb=4096 \
-        ${max_len[@]+"${max_len[@]}"} -print_final_stats=1) >"$log" 2>&1; then
+        cargo +nightly fuzz run "$t" ${corpus[@]+"${corpus[@]}"} -- -rss_limit_mb=4096 \
+        "${extra[@]}" -print_final_stats=1) >"$log" 2>&1; then
         tail -40 "$log"
         echo "fuzz: $t FAILED (the input is in fuzz/artifacts/$t/)" >&2
         exit 1

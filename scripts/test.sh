@@ -138,12 +138,11 @@ install_missing() {
         fi
     done
     # Debian packages: QEMU for the firmware, GDAL for the GeoJSON route and GeoTIFF checks,
-    # llvm-objdump for the firmware call graphs (no recursion).
+    # llvm-objdump and llvm-objcopy for the firmware call graphs (no recursion, stack bound).
     local packages=()
     command -v qemu-system-arm >/dev/null || packages+=(qemu-system-arm)
     command -v ogrinfo >/dev/null || packages+=(gdal-bin)
-    command -v llvm-objdump >/dev/null || command -v arm-none-eabi-objdump >/dev/null ||
-        packages+=(llvm)
+    { command -v llvm-objdump && command -v llvm-objcopy; } >/dev/null || packages+=(llvm)
     if [[ ${#packages[@]} -gt 0 ]]; then
         as_root apt-get update
         as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y "${packages[@]}"
@@ -283,9 +282,26 @@ ruz_fixture() {
 
 # firmware_run ELF [MACHINE]: boots the firmware ELF under QEMU (netduinoplus2 unless MACHINE
 # says otherwise); its exit code is the verdict.
+# firmware_run ELF [MACHINE]: boots ELF under QEMU; its decoded log is also kept in
+# target/firmware-logs/MACHINE-NAME.log (the stack bound step reads the measured peaks there).
 firmware_run() {
-    QEMU_MACHINE=${2:-netduinoplus2} FIRMWARE_TIMEOUT=${FIRMWARE_TIMEOUT:-300} \
-        bash scripts/run-firmware.sh "$1"
+    local machine=${2:-netduinoplus2}
+    mkdir -p target/firmware-logs
+    QEMU_MACHINE=$machine FIRMWARE_TIMEOUT=${FIRMWARE_TIMEOUT:-300} \
+        bash scripts/run-firmware.sh "$1" 2>&1 | tee "target/firmware-logs/$machine-$(basename "$1").log"
+    return "${PIPESTATUS[0]}"
+}
+
+# The static stack bound of each netduinoplus2 binary, checked against the whole-program peak
+# that binary measured under QEMU.
+stack_bound() {
+    local peaks=() b peak
+    for b in roadmap terrain landmark voronoi ruz; do
+        peak=$(grep -oE 'stack: peak [0-9]+ B' "target/firmware-logs/netduinoplus2-$b.log" 2>/dev/null |
+            tail -1 | grep -oE '[0-9]+' || true)
+        [[ -n $peak ]] && peaks+=("$b:$peak")
+    done
+    STACK_PEAKS="${peaks[*]-}" scripts/stack-bound.sh
 }
 
 # firmware_size ELF [FLASH RAM]: the firmware's flash and RAM from the ELF's section headers
@@ -343,6 +359,7 @@ step "ruz decision firmware clippy (bin ruz)" firmware_clippy ruz
 step "ruz decision firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/ruz"
 step "ruz decision firmware size" firmware_size "$firmware_release/ruz"
 step "no recursion in the core (the five firmware binaries' call graphs)" scripts/no-recursion.sh
+step "stack bound (static, from the five firmware binaries' disassembly)" stack_bound
 
 step "fuzz smoke run (each cargo-fuzz target for FUZZ_SECONDS, default 20 s)" \
     scripts/fuzz-smoke.sh
