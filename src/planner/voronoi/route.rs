@@ -126,7 +126,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.goal_links.clear();
         let radius = self.voronoi_turn_radius();
         for (p, from_start) in [(query.start.position, true), (query.goal.position, false)] {
-            for v in self.nearest_graph_vertices(p, meter)? {
+            // By reference: a heapless `IntoIter` drops its rest through a range index.
+            let candidates = self.nearest_graph_vertices(p, meter)?;
+            for &v in candidates.iter() {
                 let links = if from_start {
                     &self.start_links
                 } else {
@@ -190,7 +192,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 let _ = best.insert(at, (d, v));
             }
         }
-        Ok(best.iter().map(|(_, v)| *v).collect())
+        // Pushed one by one: `collect` into a heapless vector `expect`s that it fits.
+        let mut nearest = Vec::new();
+        for &(_, v) in best.iter() {
+            let _ = nearest.push(v);
+        }
+        Ok(nearest)
     }
 
     /// Whether the triangle `a, b, c` (a corner piece's hull) lies clear of every no-fly zone
