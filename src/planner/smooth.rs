@@ -75,11 +75,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Heading smoothing: for each junction between two paths (not the start, not the goal),
-    /// try `candidates` headings spread ±90° about its current one and keep the one that makes
-    /// the two adjacent paths shortest while both stay collision-free.
+    /// try `candidates` headings spread ±90° about its current one, and the heading of the chord
+    /// from the previous junction to the next (the paper's azimuth, Niendorf et al. section V),
+    /// and keep the one that makes the two adjacent paths shortest while both stay
+    /// collision-free.
     ///
-    /// Work: at most (paths − 1) · candidates · 2 Dubins solves and clearance checks. If the
-    /// budget runs out, the route keeps the changes made so far (each leaves it valid).
+    /// Work: at most (paths − 1) · (candidates + 1) · 2 Dubins solves and clearance checks. If
+    /// the budget runs out, the route keeps the changes made so far (each leaves it valid).
     pub fn smooth_headings(
         &mut self,
         candidates: u16,
@@ -98,21 +100,28 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             };
             let junction = b.start;
             let mut best = (a.length() + b.length(), a, b);
-            for k in 0..n {
+            let chord = b.end().position - a.start.position;
+            for k in 0..=n {
                 // Checked before every candidate, whichever way the previous one ended.
                 if let Err(e) = meter.check() {
                     result = Err(e);
                     break 'junctions;
                 }
-                // Offsets −90° … +90°, evenly spaced; 0 (the current heading) is already `best`.
-                let offset = if n == 1 {
-                    0.0
+                // Offsets −90° … +90°, evenly spaced (0, the current heading, is already
+                // `best`), then the chord's heading.
+                let heading = if k == n {
+                    if chord.x == 0.0 && chord.y == 0.0 {
+                        continue;
+                    }
+                    chord.angle()
+                } else if n == 1 {
+                    junction.heading
                 } else {
-                    -PI / 2.0 + PI * k as f32 / (n - 1) as f32
+                    wrap_to_pi(junction.heading - PI / 2.0 + PI * k as f32 / (n - 1) as f32)
                 };
                 let pose = Pose {
                     position: junction.position,
-                    heading: wrap_to_pi(junction.heading + offset),
+                    heading,
                 };
                 let Some(first) = self.solve_clear(&a.start, &pose, &mut meter) else {
                     continue;

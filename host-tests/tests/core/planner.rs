@@ -539,13 +539,13 @@ fn post_processing_keeps_routes_valid_and_never_longer() {
             let paths_after_cut = p.route_paths().len() as u64;
             let smooth = p.smooth_headings(9, u64::MAX).unwrap();
             // The documented bounds: one solve and check per junction (shortcut), two per
-            // junction and heading (smoothing); a check is ≤ 3 primitives against every
-            // obstacle box, polygon edge, containment test and pop-up.
+            // junction and heading, the 9 asked and the chord's (smoothing); a check is ≤ 3
+            // primitives against every obstacle box, polygon edge, containment test and pop-up.
             let n = p.work_bound_inputs(true);
             let per_path =
                 1 + 3 * (2 * n.obstacles + n.obstacle_points + n.popups * (n.popup_vertices + 1));
             assert!(cut.work.total() <= paths_before.saturating_sub(1) * per_path);
-            assert!(smooth.work.total() <= paths_after_cut.saturating_sub(1) * 9 * 2 * per_path);
+            assert!(smooth.work.total() <= paths_after_cut.saturating_sub(1) * 10 * 2 * per_path);
             assert!(cut.length_before <= planned.length + 1e-2);
             assert!(cut.length_after <= cut.length_before + 1e-3);
             assert!(smooth.length_after <= smooth.length_before + 1e-3);

@@ -4,8 +4,8 @@
 //! returns a non-finite route, capacities of 0 and 1 never panic, and random sequences of calls
 //! with extreme values never panic and keep their work within the budget.
 //!
-//! Each test pins a behaviour the core must keep (the `DEFECT n` comments name the failure it
-//! rules out); the others are edge cases not covered elsewhere (marked `EDGE CASE`).
+//! Each test pins a behaviour the core must keep (its comment names the failure it rules out);
+//! the others are edge cases not covered elsewhere (marked `EDGE CASE`).
 
 use host_tests::{cases, Rng};
 
@@ -134,10 +134,9 @@ fn plan_route(p: &mut Big<'_>) -> skyroute::RouteSummary {
 }
 
 // ---------------------------------------------------------------------------------------------
-// DEFECT 1 (fixed): `smooth_headings` does not enforce its budget.
-// src/planner/smooth.rs: `meter.check()` is only reached after a candidate whose both halves were
-// solved and found clear; every `continue` (first solve not clear / not shorter / second not
-// clear) skips it, and `finish` never checks. So the pass returns Ok with work > budget.
+// Rules out: `smooth_headings` returning Ok with work over its budget. src/planner/smooth.rs
+// checks the meter before every candidate, whichever way the previous one ended (a first solve
+// not clear, not shorter, a second not clear), and `finish` checks the last one's work.
 // ---------------------------------------------------------------------------------------------
 #[test]
 fn smooth_headings_never_reports_success_over_budget() {
@@ -177,12 +176,12 @@ fn smooth_headings_never_reports_success_over_budget() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// DEFECT 2 (fixed): the loader accepted polygon obstacles whose point ranges overlap (FORMAT.md: Q is
-// "polygon points over all obstacles"), but `plan_work_bound` charges `obstacle_points` once
-// in total. Each polygon is charged `point_count + 1` collision tests per primitive in
-// `path_is_clear`, so an accepted image makes `plan` count far more than `worst_case_work()`,
-// and a query given exactly `worst_case_work()` as budget fails with BudgetExhausted.
-// src/network/mod.rs validate_obstacles (~line 375), src/planner/work.rs plan_work_bound.
+// Rules out: polygon obstacles whose point ranges overlap (FORMAT.md: Q is "polygon points over
+// all obstacles"). `plan_work_bound` charges `obstacle_points` once in total while
+// `path_is_clear` charges each polygon `point_count + 1` collision tests per primitive, so such
+// an image would make `plan` count more than `worst_case_work()`, and a query given exactly
+// that budget would fail with BudgetExhausted. src/network/validate.rs validate_obstacles,
+// src/planner/work.rs plan_work_bound.
 // ---------------------------------------------------------------------------------------------
 #[test]
 fn overlapping_polygon_point_ranges_are_rejected() {
@@ -218,11 +217,10 @@ fn overlapping_polygon_point_ranges_are_rejected() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// DEFECT 3 (fixed) (fail-open, numeric range): `Vec2::norm` squares in f32, so distances above ~1.8e19 m
-// overflow to +inf. A circle pop-up whose centre is far away but whose radius reaches the
-// network (here a disc that contains the whole area) passes `Popup::validate`, blocks no edge
-// (`conflicts_with_circle`: inf <= r + c is false) and does not contain the start
-// (`Popup::contains`: inf <= r is false): the planner routes straight through it.
+// Rules out (fail-open, numeric range): a circle pop-up ignored because a distance overflows.
+// Squared in f32, distances above ~1.8e19 m are +inf; a pop-up whose centre is that far but
+// whose radius reaches the network (here a disc containing the whole area) must be refused by
+// `Popup::validate` or must block the edges and contain the start, never be routed through.
 // src/planner/popup.rs validate/contains/conflicts, src/geometry/mod.rs Vec2::norm.
 // ---------------------------------------------------------------------------------------------
 #[test]
@@ -260,10 +258,10 @@ fn huge_circle_popup_that_contains_the_start_is_not_ignored() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// DEFECT 4 (fixed) (NaN/inf propagation): with `connect_radius_m = +inf` (or any radius ≥ ~1.8e19) a far
-// start is accepted; `DubinsPath::with_word` squares the centre distance in f32 (d*d → inf), so
-// the start link has an infinite straight, and the planner returns Ok with a route whose length
-// is infinite and whose primitives have non-finite coordinates.
+// Rules out (NaN/inf propagation): with `connect_radius_m = +inf` (or any radius ≥ ~1.8e19) a
+// far start reaches `DubinsPath::with_word`, whose squared centre distance overflows f32
+// (d*d → inf); the planner must refuse the query rather than return a route whose length is
+// infinite or whose primitives have non-finite coordinates.
 // src/geometry/dubins.rs csc_angles (l_sq = d*d − …), src/planner/connect.rs nearest_vertices.
 // ---------------------------------------------------------------------------------------------
 #[test]
@@ -300,11 +298,11 @@ fn plan_never_returns_a_non_finite_route() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// DEFECT 5 (fixed) (validation gap): FORMAT.md says an edge's path "starts at the source vertex's pose;
-// flying it ends at the target's pose", and the grid-coverage check (4r around each vertex) and
-// pop-up pruning rely on it, but `validate_edges` never checks it. An accepted image can hold an
-// edge that flies 5 km away from its target: routes through it are discontinuous, and a pop-up
-// on its far part (outside the grid) blocks nothing. src/network/mod.rs validate_edges.
+// Rules out (validation gap): an edge whose path does not end at its target's pose. FORMAT.md
+// says an edge's path "starts at the source vertex's pose; flying it ends at the target's
+// pose", and the grid-coverage check (4r around each vertex) and pop-up pruning rely on it; an
+// edge flying 5 km away from its target would make routes discontinuous and a pop-up on its far
+// part (outside the grid) block nothing. src/network/validate.rs validate_edges.
 // ---------------------------------------------------------------------------------------------
 #[test]
 fn loader_rejects_edge_geometry_that_misses_its_target() {
@@ -563,8 +561,10 @@ fn random_extreme_call_sequences_never_panic() {
                     }
                 }
                 5 => {
-                    // (No budget assertion here: see DEFECT 1.)
-                    let _ = p.smooth_headings(rng.below(40) as u16, rng.below(5000));
+                    let b = rng.below(5000);
+                    if let Ok(s) = p.smooth_headings(rng.below(40) as u16, b) {
+                        assert!(s.work.total() <= b);
+                    }
                 }
                 _ => {
                     let near = rng.below(3) != 0;
