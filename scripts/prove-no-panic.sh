@@ -27,7 +27,8 @@ cur, callers = None, collections.defaultdict(set)
 for line in open(path, errors="replace"):
     m = re.match(r"^([0-9a-f]+) <(.*)>:$", line)
     if m:
-        cur = m.group(2)
+        if not m.group(2).startswith("$"):  # $t, $d: Thumb/data mapping symbols, not functions
+            cur = m.group(2)
         continue
     t = entry.search(line)
     if t and cur and re.search(r"\s(bl|b|b\.w|blx|beq|bne|b\.n)(\.w)?\s", line) and not cur.startswith("core::"):

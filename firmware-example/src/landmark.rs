@@ -115,7 +115,8 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
     let lost_landmark = fixture.lost_landmark;
     let overflown = route.iter().any(|&e| {
         net.edge_link(e).is_some_and(|r| {
-            r.target < l.landmark_count * l.directions && r.target / l.directions == lost_landmark
+            r.target < l.landmark_count * l.directions
+                && r.target.checked_div(l.directions) == Some(lost_landmark)
         })
     });
     if !overflown {
@@ -224,7 +225,7 @@ fn check_replan(
             let avoids = edges.iter().all(|&e| {
                 net.edge_link(e).is_some_and(|r| {
                     r.source >= l.landmark_count * l.directions
-                        || r.source / l.directions != lost_landmark
+                        || r.source.checked_div(l.directions) != Some(lost_landmark)
                 })
             });
             if !avoids {
@@ -303,12 +304,13 @@ fn log_route(net: &Network<'_>, what: &str, s: &RouteSummary, ticks: u64, edges:
                 e
             );
         } else if r.source < overflights {
-            let (landmark, direction) = (r.source / l.directions, r.source % l.directions);
+            let landmark = r.source.checked_div(l.directions).unwrap_or(0);
+            let direction = r.source.checked_rem(l.directions).unwrap_or(0);
             defmt::info!(
                 "  overflight L{=u32} direction {=u32} (compass {=u32} deg) -> leg {=f32} m ({=u32} pieces, edge {=u32}){=str}",
                 landmark,
                 direction,
-                360 * direction / l.directions,
+                (360 * direction).checked_div(l.directions).unwrap_or(0),
                 r.cost,
                 pieces,
                 e,

@@ -274,8 +274,7 @@ impl DubinsPath {
         let mut pose = self.start;
         let mut out = [None; 3];
         let kinds = [Some(k1), middle, Some(k3)];
-        for (i, kind) in kinds.iter().enumerate() {
-            let len = self.lengths[i];
+        for (i, (kind, &len)) in kinds.iter().zip(self.lengths.iter()).enumerate() {
             // A piece of zero length (or an arc whose turn angle rounds to zero) is skipped, not
             // built: a zero-length right arc has sweep −0.0, which `Arc::turn` reads as a *left*
             // turn, so its end heading came out flipped by π and every later piece was built on
@@ -302,7 +301,9 @@ impl DubinsPath {
                 },
                 Primitive::Arc(_) => end,
             };
-            out[i] = Some((prim, heading));
+            if let Some(slot) = out.get_mut(i) {
+                *slot = Some((prim, heading));
+            }
         }
         out
     }

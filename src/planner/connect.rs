@@ -87,13 +87,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 continue;
             }
             if kept.is_full() {
-                farthest = (0..kept.len())
-                    .max_by(|&i, &j| {
-                        (kept[i].0, kept[i].1)
-                            .partial_cmp(&(kept[j].0, kept[j].1))
+                farthest = kept
+                    .iter()
+                    .enumerate()
+                    .max_by(|(_, a), (_, b)| {
+                        (a.0, a.1)
+                            .partial_cmp(&(b.0, b.1))
                             .unwrap_or(core::cmp::Ordering::Equal)
                     })
-                    .unwrap_or(0);
+                    .map_or(0, |(i, _)| i);
             }
         }
         // Nearest first, equally near ones in index order (insertion sort of ≤ 32).

@@ -169,7 +169,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if source == l.start_vertex {
             return r.cost <= l.start_range_m;
         }
-        let (landmark, direction) = (source / l.directions, source % l.directions);
+        // Checked: a network with no directions has no overflight to be navigable from.
+        let (Some(landmark), Some(direction)) = (
+            source.checked_div(l.directions),
+            source.checked_rem(l.directions),
+        ) else {
+            return false;
+        };
         if landmark >= l.landmark_count {
             return true; // the goal's (if any)
         }

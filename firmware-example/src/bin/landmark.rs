@@ -38,7 +38,10 @@ const FIXTURE: LandmarkFixture = LandmarkFixture {
 
 #[entry]
 fn main() -> ! {
-    let planner = PLANNER.take();
+    // `try_take`: `take` panics when taken twice; `main` runs once, so this is always `Some`.
+    let Some(planner) = PLANNER.try_take() else {
+        exit(false)
+    };
     let ok =
         start(planner, NETWORK, None).is_some_and(|clock| landmark::run(planner, clock, &FIXTURE));
     exit(ok)

@@ -40,7 +40,10 @@ const FIXTURE: RouteFixture = RouteFixture {
 
 #[entry]
 fn main() -> ! {
-    let planner = PLANNER.take();
+    // `try_take`: `take` panics when taken twice; `main` runs once, so this is always `Some`.
+    let Some(planner) = PLANNER.try_take() else {
+        exit(false)
+    };
     let ok = start(planner, NETWORK, Some(CONFIG))
         .is_some_and(|clock| popup_mission::run(planner, clock, &FIXTURE));
     exit(ok)

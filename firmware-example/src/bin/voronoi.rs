@@ -59,6 +59,10 @@ const FIXTURE: VoronoiFixture = VoronoiFixture {
 
 #[entry]
 fn main() -> ! {
-    let ok = voronoi::run(PLANNER.take(), STORAGE.take(), NETWORK, &FIXTURE);
+    // `try_take`: `take` panics when taken twice; `main` runs once, so these are always `Some`.
+    let (Some(planner), Some(storage)) = (PLANNER.try_take(), STORAGE.try_take()) else {
+        exit(false)
+    };
+    let ok = voronoi::run(planner, storage, NETWORK, &FIXTURE);
     exit(ok)
 }

@@ -281,7 +281,13 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
         if m >= N {
             return Err(VoronoiError::Inconsistent);
         }
-        self.line.copy_within(pos..m, pos + 1);
+        // Shifted up by one, element by element (`copy_within` checks its ranges by panicking).
+        for k in (pos..m).rev() {
+            let moved = self.line.get(k).copied().unwrap_or(0);
+            if let Some(slot) = self.line.get_mut(k + 1) {
+                *slot = moved;
+            }
+        }
         if let Some(slot) = self.line.get_mut(pos) {
             *slot = pi;
         }

@@ -163,8 +163,9 @@ impl Box64 {
     /// `p` (in the box) rounded to f32 and clamped into the box.
     fn to_f32(&self, p: P) -> Vec2 {
         Vec2::new(
-            (p.0 as f32).clamp(self.b.min.x, self.b.max.x),
-            (p.1 as f32).clamp(self.b.min.y, self.b.max.y),
+            // max-then-min rather than `clamp`, which panics on a box with min > max.
+            (p.0 as f32).max(self.b.min.x).min(self.b.max.x),
+            (p.1 as f32).max(self.b.min.y).min(self.b.max.y),
         )
     }
 
@@ -542,10 +543,10 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
         ];
         // (side, start corner, end corner)
         let sides = [
-            (Side::Bottom, 0, 1),
-            (Side::Right, 1, 2),
-            (Side::Top, 2, 3),
-            (Side::Left, 3, 0),
+            (Side::Bottom, corners[0], corners[1]),
+            (Side::Right, corners[1], corners[2]),
+            (Side::Top, corners[2], corners[3]),
+            (Side::Left, corners[3], corners[0]),
         ];
         let in_x = |v: Vec2| v.x >= lo.x && v.x <= hi.x;
         let in_y = |v: Vec2| v.y >= lo.y && v.y <= hi.y;
@@ -563,7 +564,7 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
                 Side::Left => v.x == lo.x && in_y(v),
                 Side::Right => v.x == hi.x && in_y(v),
             };
-            let (mut cur, last) = (corners[start], corners[end]);
+            let (mut cur, last) = (start, end);
             for _ in 0..out.vertices.len() {
                 let here = out.vertices.get(usize::from(cur)).copied().unwrap_or(lo);
                 let mut next: Option<(f32, u16)> = None;
