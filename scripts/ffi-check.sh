@@ -60,6 +60,21 @@ fi
 cargo build -q --release -p skyroute-ffi --target "$target"
 lib=target/$target/release/libskyroute_ffi.a
 echo "$lib: $(stat -c %s "$lib") bytes (with debug info; the release profile keeps it)"
+# The library needs nothing from outside it (no C library, no allocator): every symbol a member
+# uses, a member defines (readelf: nm would read the members' embedded LLVM bitcode).
+members=$(mktemp -d)
+(cd "$members" && ar x "$root/$lib")
+undefined=$(for o in "$members"/*.o; do readelf -sW "$o"; done |
+    awk '$7 == "UND" && $8 != "" {print $8}' | sort -u)
+defined=$(for o in "$members"/*.o; do readelf -sW "$o"; done |
+    awk '$7 != "UND" && ($5 == "GLOBAL" || $5 == "WEAK") {print $8}' | sort -u)
+rm -rf "$members"
+external=$(comm -23 <(echo "$undefined") <(echo "$defined"))
+if [[ -n $external ]]; then
+    echo "the $target library needs symbols it does not define:" $external >&2
+    exit 1
+fi
+echo "every symbol the library uses, it defines"
 if command -v llvm-size >/dev/null && command -v llvm-objdump >/dev/null; then
     # Every member's code and data (the Rust core library's included): an upper bound of what a
     # link with --gc-sections keeps.

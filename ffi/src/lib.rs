@@ -17,8 +17,9 @@
 //! Calls are not thread-safe: one call at a time per planner. No call panics on any input
 //! the header allows; a pointer that must not be NULL and is NULL returns
 //! `SR_STATUS_NULL_POINTER`. On the target (`target_os = "none"`) a panic, which no input
-//! should reach, calls the C library's `abort()`; on a host, where std is linked, a panic in
-//! an `extern "C"` function aborts the process (it never unwinds into C).
+//! should reach, executes an undefined instruction (a fault the autopilot's handler reports;
+//! the library needs nothing from a C library); on a host, where std is linked, a panic in an
+//! `extern "C"` function aborts the process (it never unwinds into C).
 #![no_std]
 #![deny(missing_docs)]
 #![deny(unsafe_op_in_unsafe_fn)]
@@ -252,15 +253,23 @@ unsafe fn planner_ref<'a>(h: *const SrPlanner) -> Option<&'a CorePlanner> {
     unsafe { h.as_ref() }.map(|s| &s.planner)
 }
 
-/// Calls the C library's `abort()`: the target has no unwinding, and no input the header
-/// allows reaches a panic.
+/// Stops at the faulting instruction: on Arm an undefined instruction (`udf`), which raises a
+/// UsageFault or HardFault that the autopilot's fault handler reports; elsewhere a spin. The
+/// target has no unwinding, and no input the header allows reaches a panic.
 #[cfg(all(not(test), target_os = "none"))]
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
-    extern "C" {
-        fn abort() -> !;
+    #[cfg(target_arch = "arm")]
+    fn stop() -> ! {
+        // SAFETY: `udf` only raises the undefined-instruction fault; it reads and writes no
+        // memory and does not return.
+        unsafe { core::arch::asm!("udf #0", options(noreturn, nomem, nostack)) }
     }
-    // SAFETY: `abort` is the C library's, present wherever a C program links this library; it
-    // takes no arguments and does not return.
-    unsafe { abort() }
+    #[cfg(not(target_arch = "arm"))]
+    fn stop() -> ! {
+        loop {
+            core::hint::spin_loop();
+        }
+    }
+    stop()
 }
