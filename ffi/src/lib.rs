@@ -78,7 +78,7 @@ pub type CorePlanner =
 const _: () = {
     assert!(SR_MAX_POPUP_VERTICES == skyroute::planner::MAX_POPUP_VERTICES);
     assert!(size_of::<SrPlanner>() <= SR_PLANNER_STORAGE_SIZE);
-    assert!(SR_PLANNER_STORAGE_ALIGN % align_of::<SrPlanner>() == 0);
+    assert!(SR_PLANNER_STORAGE_ALIGN.is_multiple_of(align_of::<SrPlanner>()));
 };
 
 /// A planner, opaque: C holds it through the handle `sr_planner_init` writes, which points
@@ -86,13 +86,6 @@ const _: () = {
 /// successful `sr_load`, in place.
 pub struct SrPlanner {
     planner: CorePlanner,
-}
-
-impl SrPlanner {
-    /// The wrapped planner.
-    pub fn planner(&self) -> &CorePlanner {
-        &self.planner
-    }
 }
 
 /// The bytes a planner takes on this target (at most `SR_PLANNER_STORAGE_SIZE`).
@@ -126,7 +119,7 @@ pub unsafe extern "C" fn sr_planner_init(
     if mem.is_null() || planner.is_null() {
         return SrStatus::NullPointer;
     }
-    if (mem as usize) % align_of::<SrPlanner>() != 0 {
+    if !mem.cast::<SrPlanner>().is_aligned() {
         return SrStatus::MemoryMisaligned;
     }
     if len < size_of::<SrPlanner>() {

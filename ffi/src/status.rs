@@ -393,11 +393,6 @@ impl SrStatus {
     pub fn from_code(code: i32) -> Option<SrStatus> {
         ALL.iter().copied().find(|s| *s as i32 == code)
     }
-
-    /// Every status, in the order of their numbers.
-    pub fn all() -> &'static [SrStatus] {
-        &ALL
-    }
 }
 
 /// Every status, in the order of their numbers.
