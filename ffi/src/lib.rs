@@ -10,15 +10,15 @@
 //! aligned to `sr_planner_align()`; [`SR_PLANNER_STORAGE_SIZE`] and
 //! [`SR_PLANNER_STORAGE_ALIGN`] bound both for every target this crate builds for (checked at
 //! compile time), so a C program can reserve the block as a `static` array and the linker
-//! rejects a build whose RAM does not suffice. `sr_planner_init` writes the new planner in
-//! place (no planner-sized copy on the stack) and the block holds every byte of the planner's
-//! state; the library keeps no pointer to it beyond the handle it writes.
+//! rejects a build whose RAM does not suffice. The block holds every byte of the planner's
+//! state (a release build of `sr_planner_init` writes it in place, with no planner-sized copy
+//! on the stack); the library keeps no pointer to it beyond the handle it writes.
 //!
-//! Calls are not thread-safe: one call at a time per planner. No call panics on any input
-//! the header allows; a pointer that must not be NULL and is NULL returns
-//! `SR_STATUS_NULL_POINTER`. On the target (`target_os = "none"`) a panic, which no input
-//! should reach, executes an undefined instruction (a fault the autopilot's handler reports;
-//! the library needs nothing from a C library); on a host, where std is linked, a panic in an
+//! Calls are not thread-safe: one call at a time per planner. Every failure is a status: a
+//! pointer that must not be NULL and is NULL returns `SR_STATUS_NULL_POINTER`, and the core's
+//! errors are values. Should a panic happen all the same, on the target (`target_os = "none"`)
+//! it executes an undefined instruction (a fault the autopilot's handler reports; the library
+//! needs nothing from a C library), and on a host, where std is linked, a panic in an
 //! `extern "C"` function aborts the process (it never unwinds into C).
 #![no_std]
 #![deny(missing_docs)]
