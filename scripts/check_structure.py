@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Structure check for the Rust sources: file length, function length, module import cycles.
 
-Usage: scripts/check_structure.py [ROOT ...]        (default: src prep/src)
+Usage: scripts/check_structure.py [ROOT ...]        (default: src prep/src ffi/src)
 
 For every ROOT (a crate's source folder) it reports
   (a) files longer than MAX_FILE_LINES lines,
@@ -382,7 +382,7 @@ def presence_checks(repo):
 def main(argv):
     here = os.path.dirname(os.path.abspath(__file__))
     repo = os.path.dirname(here)
-    roots = argv[1:] or [os.path.join(repo, "src"), os.path.join(repo, "prep", "src")]
+    roots = argv[1:] or [os.path.join(repo, "src"), os.path.join(repo, "prep", "src"), os.path.join(repo, "ffi", "src")]
     total = 0
     for root in roots:
         root = os.path.relpath(root)

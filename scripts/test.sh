@@ -325,6 +325,7 @@ step "core docs (cargo doc, warnings denied)" \
 step "OMPL Dubins reference" ompl_reference
 step "SciPy Voronoi reference" scipy_voronoi_reference
 step "cargo test --workspace (full tier)" env SKYROUTE_TIER=full cargo test --workspace
+step "C ABI (header vs cbindgen, C program vs Rust API, thumbv7em library)" scripts/ffi-check.sh
 step "work bound sweep (random queries per mode, docs/RELIABILITY.md)" \
     cargo run --release -q -p host-tests --bin work_sweep -- --queries "${SWEEP_QUERIES:-100000}"
 step "firmware fixture" fixture
