@@ -5,7 +5,6 @@
 use crate::capacity::{
     needs, paper_turn_states, planner_bytes, with_headroom, FIRMWARE_POPUPS, FIRMWARE_ROUTE,
 };
-use crate::mission::CompactHostPlanner;
 use skyroute::network::format::FORMAT_VERSION;
 use skyroute::network::Mode;
 use skyroute::{Network, Planner};
@@ -139,7 +138,8 @@ fn onboard(w: &mut String, bytes: &[u8], net: &Network) {
         );
     }
     let mut storage = Box::new(skyroute::planner::VoronoiStorage::new());
-    let mut p: Box<CompactHostPlanner> = Box::new(Planner::new());
+    // The work bounds depend on the pop-up and route capacities: those of the RAM line above.
+    let mut p: Box<Planner<'_, { 1 << 17 }, { 1 << 18 }, P, R>> = Box::new(Planner::new());
     let loaded = match net.mode() {
         Mode::Voronoi => {
             let _ = writeln!(
@@ -158,7 +158,8 @@ fn onboard(w: &mut String, bytes: &[u8], net: &Network) {
     if loaded {
         let _ = writeln!(
             w,
-            "  worst-case work: a query {}, adding a pop-up {} (counted units, docs/BENCHMARKS.md){}",
+            "  worst-case work with P = {P} and R = {R}: a query {}, adding a pop-up {} (counted \
+             units, docs/BENCHMARKS.md){}",
             p.worst_case_work(),
             p.worst_case_popup_work(),
             match net.mode() {

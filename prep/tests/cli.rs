@@ -31,7 +31,8 @@ fn build_plan_export_render_end_to_end() {
         "1445 vertices, 18342 edges, 60 obstacles",
         "V >= 1445 (search states), E >= 18342",
         "provenance: 63 digests",
-        "worst-case work: a query",
+        // The bound of a planner with the RAM line's capacities (P = 4 pop-ups).
+        "worst-case work with P = 4 and R = 128: a query 2083470,",
     ] {
         assert!(
             stdout(&o).contains(part),
