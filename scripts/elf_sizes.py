@@ -7,12 +7,17 @@ network, and the initial image of .data). RAM: every allocated section in the RA
 
     scripts/elf_sizes.py ELF [FLASH_BYTES [RAM_BYTES]]   (default: the STM32F405's 1 MiB, 128 KiB)
 
+Fails when `.data` exceeds DATA_LIMIT bytes: the planner and its storage are `static`s that
+must start as all-zero bytes, so that they land in `.bss` instead of also costing their size
+in flash for the initial image of `.data`.
+
 Used by scripts/test.sh (its firmware size steps) and scripts/onboard-figures.sh.
 """
 import struct
 import sys
 
 SHF_ALLOC, SHT_NOBITS = 0x2, 8
+DATA_LIMIT = 4096
 
 
 def sections(path):
@@ -53,6 +58,10 @@ def main():
         print(f"  {name:<16} 0x{addr:08x} {size:>9} B")
     print(f"flash: {flash} B of {flash_size} ({100 * flash / flash_size:.1f} %)")
     print(f"RAM:   {ram} B of {ram_size} ({100 * ram / ram_size:.1f} %) static; the stack has the rest")
+    data = sum(size for name, _, size, _ in rows if name == ".data")
+    if data > DATA_LIMIT:
+        print(f"FAILED: .data is {data} B (at most {DATA_LIMIT}): a static planner or storage is not all-zero bytes")
+        sys.exit(1)
 
 
 if __name__ == "__main__":

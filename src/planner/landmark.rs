@@ -11,7 +11,7 @@
 use super::popup::{Popup, PopupSummary};
 use super::search::{Arrival, Ends};
 use super::state::{LandmarkState, ModeState, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
-use super::{Meter, PlanError, Planner, Query, RouteSummary};
+use super::{Meter, PlanError, Planner, Query, RouteSummary, SummarySlot};
 use crate::geometry::{wrap_to_pi, Vec2};
 use crate::network::format::LandmarkRecord;
 use heapless::Vec;
@@ -285,7 +285,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.paths.clear();
         self.route.clear();
         if !complete {
-            self.summary = None;
+            self.summary = SummarySlot::Empty;
             return Err(PlanError::Internal);
         }
         let _ = from;
@@ -298,7 +298,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             work: meter.work,
             exit: None,
         };
-        self.summary = Some(summary);
+        self.summary = SummarySlot::Full(summary);
         Ok(summary)
     }
 

@@ -246,9 +246,38 @@ pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: 
     paths: Vec<DubinsPath, R>,
     /// The same route as lines and arcs.
     route: Vec<Primitive, R>,
-    summary: Option<RouteSummary>,
+    summary: SummarySlot,
     /// What only the loaded network's mode keeps (altitude, weather, rosettes, ...).
     state: ModeState<'n, R>,
+}
+
+/// The last route's summary, if any: an enum with an explicit `u8` tag whose empty variant is
+/// 0. (An `Option<RouteSummary>` would take a spare value of the exit's violation tag for
+/// `None`, 3; all-zero bytes keep a new planner all-zero, so that a `static` one lands in
+/// `.bss` instead of also costing its size in flash for `.data`.)
+#[repr(u8)]
+#[derive(Clone, Copy, Debug)]
+enum SummarySlot {
+    /// No route yet, or the last one was cleared.
+    Empty = 0,
+    /// The summary of the route in [`Planner::route`].
+    Full(RouteSummary) = 1,
+}
+
+impl SummarySlot {
+    fn get(&self) -> Option<&RouteSummary> {
+        match self {
+            Self::Full(summary) => Some(summary),
+            Self::Empty => None,
+        }
+    }
+
+    fn get_mut(&mut self) -> Option<&mut RouteSummary> {
+        match self {
+            Self::Full(summary) => Some(summary),
+            Self::Empty => None,
+        }
+    }
 }
 
 /// `via` values at or above this mark a vertex reached straight from start link `via − FROM_START`.
@@ -290,7 +319,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             goal_links: Vec::new(),
             paths: Vec::new(),
             route: Vec::new(),
-            summary: None,
+            summary: SummarySlot::Empty,
             state: ModeState::Roadmap,
         }
     }
@@ -329,7 +358,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.popups.clear();
         self.paths.clear();
         self.route.clear();
-        self.summary = None;
+        self.summary = SummarySlot::Empty;
     }
 
     /// The loaded network.
@@ -365,7 +394,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// The summary of the last route found.
     pub fn route_summary(&self) -> Option<&RouteSummary> {
-        self.summary.as_ref()
+        self.summary.get()
     }
 
     /// Whether the search may use edge `e`: no pop-up blocks it and, in terrain mode, its band

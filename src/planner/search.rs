@@ -4,8 +4,8 @@ use super::heap::ItemState;
 use super::state::ModeState;
 use super::window::ObstacleWindow;
 use super::{
-    Link, Meter, Phase, PlanError, Planner, Query, QueryField, RouteSummary, Search, Work,
-    FROM_START,
+    Link, Meter, Phase, PlanError, Planner, Query, QueryField, RouteSummary, Search, SummarySlot,
+    Work, FROM_START,
 };
 use crate::geometry::{DubinsPath, Primitive, Vec2};
 
@@ -158,7 +158,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         observe(Phase::Route, &meter.work);
         let mut summary = self.write_route(arrival, exit.as_ref().map(|(path, _)| path), meter)?;
         summary.exit = exit.map(|(_, e)| e);
-        self.summary = Some(summary);
+        self.summary = SummarySlot::Full(summary);
         Ok(summary)
     }
 
@@ -582,7 +582,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             work: meter.work,
             exit: None,
         };
-        self.summary = Some(summary);
+        self.summary = SummarySlot::Full(summary);
         summary
     }
 
@@ -600,6 +600,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     pub(super) fn clear_route(&mut self) {
         self.paths.clear();
         self.route.clear();
-        self.summary = None;
+        self.summary = SummarySlot::Empty;
     }
 }

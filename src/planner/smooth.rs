@@ -162,7 +162,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let result = result.and_then(|()| meter.check());
         self.flatten_route();
         let length_after = self.route_length();
-        if let Some(s) = self.summary.as_mut() {
+        if let Some(s) = self.summary.get_mut() {
             s.length = length_after;
             s.primitives = self.route.len() as u32;
         }

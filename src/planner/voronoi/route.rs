@@ -11,7 +11,9 @@ use crate::network::Obstacle;
 use crate::planner::search::{Arrival, Ends};
 use crate::planner::state::ModeState;
 use crate::planner::threats::MAX_ROUTE_PIECES;
-use crate::planner::{Link, Meter, PlanError, Planner, Query, QueryField, RouteSummary};
+use crate::planner::{
+    Link, Meter, PlanError, Planner, Query, QueryField, RouteSummary, SummarySlot,
+};
 use crate::planner::{MAX_CANDIDATES, MAX_LINKS};
 use heapless::Vec;
 
@@ -382,7 +384,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             work: meter.work,
             exit: None,
         };
-        self.summary = Some(summary);
+        self.summary = SummarySlot::Full(summary);
         Ok(summary)
     }
 
