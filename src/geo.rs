@@ -2,8 +2,8 @@
 //!
 //! The local frame of a network (and of the ground tool, which builds networks in it) is metres
 //! east (`x`) and north (`y`) of the frame origin stored in the network header
-//! ([`Network::origin_deg`](crate::Network::origin_deg)). [`Network::local_frame`]
-//! (crate::Network::local_frame) gives the frame; [`LocalFrame::position`],
+//! ([`Network::origin_deg`](crate::Network::origin_deg)).
+//! [`Network::local_frame`](crate::Network::local_frame) gives the frame; [`LocalFrame::position`],
 //! [`LocalFrame::heading`] and [`LocalFrame::pose`] turn an autopilot's latitude, longitude and
 //! compass heading into the planner's [`Vec2`] and [`Pose`], and [`LocalFrame::lon_lat`] and
 //! [`LocalFrame::compass_deg`] turn the planner's positions and headings back. They reject
@@ -447,7 +447,7 @@ impl LocalFrame {
     /// heading (radians counter-clockwise from the frame's `x` axis, in (−π, π]): the grid
     /// heading `compass − γ` ([`LocalFrame::heading_to_local`], γ the meridian convergence of
     /// Karney 2011 eq. (29)) through
-    /// [`heading_from_compass_deg`](crate::geometry::heading_from_compass_deg).
+    /// [`heading_from_compass_deg`].
     ///
     /// Refuses what [`LocalFrame::position`] refuses, and a heading that is not finite
     /// ([`GeoError::NonFinite`]) or outside [−360, 360] ([`GeoError::Heading`]).
@@ -498,7 +498,7 @@ impl LocalFrame {
 
     /// A planner heading (radians counter-clockwise from the frame's `x` axis) at the pose's
     /// position as a compass heading (degrees clockwise from true north, in [0, 360)): the grid
-    /// heading through [`compass_deg_from_heading`](crate::geometry::compass_deg_from_heading),
+    /// heading through [`compass_deg_from_heading`],
     /// plus the meridian convergence γ ([`LocalFrame::heading_to_geo`]).
     ///
     /// Refuses what [`LocalFrame::lon_lat`] refuses, and a non-finite heading
