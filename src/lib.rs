@@ -14,10 +14,13 @@
 //!   geographic origin (stored in the network header).
 //! * Angles are `f32` radians. A **heading** is the *mathematical* direction of flight, counter-
 //!   clockwise from east (`x`). Compass headings (clockwise from north) are converted at the
-//!   interface with [`geometry::heading_from_compass_deg`].
+//!   interface with [`geometry::heading_from_compass_deg`], or from latitude/longitude with
+//!   [`LocalFrame::pose`], which also corrects for the meridian convergence.
 //! * A positive arc sweep turns left (counter-clockwise).
 //!
 //! ## Modules
+//! * [`geo`]: WGS-84 longitude/latitude and compass headings to the network's local frame and
+//!   back (the ground tool's transverse Mercator), for an autopilot that navigates in degrees.
 //! * [`geometry`]: poses, lines, arcs, Dubins paths and the exact collision predicates.
 //! * [`network`]: the network format v1 (see `docs/FORMAT.md`), its validating loader and accessors.
 //! * [`planner`]: the fixed-memory planner: pop-ups, endpoint connection, search, routes.
@@ -30,10 +33,12 @@
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod geo;
 pub mod geometry;
 pub mod network;
 pub mod planner;
 
+pub use geo::{GeoError, LocalFrame};
 pub use geometry::{Arc, DubinsPath, DubinsWord, Pose, Primitive, Segment, Turn, Vec2};
 pub use network::{LoadError, Network};
 pub use planner::{

@@ -1,24 +1,21 @@
 //! The local metric frame of a scenario: WGS-84 longitude/latitude (degrees) to metres east (`x`)
 //! and north (`y`) of a frame origin, and back.
 //!
-//! # Method
-//!
-//! A **transverse Mercator projection on the WGS-84 ellipsoid** whose central meridian is the
-//! origin's meridian, with scale factor 1 on that meridian and the false origin at the frame
-//! origin (so the origin maps to `(0, 0)`, `x` grows east and `y` north). The projection is
-//! evaluated with Krüger's series in the third flattening `n`, taken to **6th order** as in
-//! C. F. F. Karney, "Transverse Mercator with an accuracy of a few nanometers", J. Geodesy 85
-//! (2011) 475–485, eqs. (7)–(11), (35), (36) (the series the UTM formulas of NGA and JHS 154 use to
-//! 4th order). The inverse solves for the latitude from the conformal latitude by Newton's method
-//! (Karney 2011, eqs. (19)–(21)). The truncation error of the 6th-order series is about 5 nm
-//! within 3 900 km of the central meridian, so over a scenario it is far below anything that
-//! matters; what remains is the projection's own, well-understood distortion.
+//! The projection is the onboard core's ([`skyroute::geo`]): a transverse Mercator on WGS-84
+//! centred on the origin's meridian, scale 1 there, false origin at the frame origin, evaluated
+//! with Krüger's 6th-order series (C. F. F. Karney, "Transverse Mercator with an accuracy of a few
+//! nanometers", J. Geodesy 85 (2011) 475–485), so the ground tool and the flight computer convert
+//! the same way. [`LocalFrame`] adds what the ground tool needs around it: origins chosen from a
+//! scenario's extent ([`LocalFrame::centred_on`]) and constructors that panic on a bad origin
+//! instead of returning an error.
 //!
 //! # Error bounds
 //!
 //! * **Round trip.** [`LocalFrame::to_geo`] ∘ [`LocalFrame::to_local`] reproduces a point to well
 //!   under a micrometre anywhere within ±100 km of the origin (the unit tests assert ≤ 1 mm over
 //!   ±100 km and measure at most 7 nm).
+//! * **Against PROJ.** See [`skyroute::geo`]: within a few nanometres of PROJ's `tmerc` over
+//!   ±50 km around every shipped scenario's origin.
 //! * **Scale.** The projection is conformal, so a short length `ds` on the ellipsoid maps to
 //!   `k·ds` in the frame with the point scale `k` the same in every direction. `k` is exactly 1 on
 //!   the origin's meridian and grows with the east–west distance `x` from it:
@@ -41,163 +38,7 @@
 //! Put the origin at the centre of the scenario's extent ([`LocalFrame::centred_on`]) to halve
 //! the largest `|x|` and quarter the scale error.
 
-/// WGS-84 semi-major axis, metres.
-const WGS84_A: f64 = 6_378_137.0;
-/// WGS-84 flattening.
-const WGS84_F: f64 = 1.0 / 298.257_223_563;
-
-/// The projection constants, which depend only on the ellipsoid.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Ellipsoid {
-    /// First eccentricity `e`.
-    e: f64,
-    /// `e²`.
-    e2: f64,
-    /// Rectifying radius `A` (metres): the meridian distance from the equator to the pole is `A·π/2`.
-    a_rect: f64,
-    /// Krüger's forward series coefficients α₁…α₆.
-    alpha: [f64; 6],
-    /// Krüger's reverse series coefficients β₁…β₆.
-    beta: [f64; 6],
-}
-
-impl Ellipsoid {
-    fn wgs84() -> Self {
-        let f = WGS84_F;
-        let n = f / (2.0 - f);
-        let (n2, n3) = (n * n, n * n * n);
-        let (n4, n5, n6) = (n3 * n, n3 * n2, n3 * n3);
-        let e2 = f * (2.0 - f);
-        // Karney (2011) eq. (14).
-        let a_rect = WGS84_A / (1.0 + n) * (1.0 + n2 / 4.0 + n4 / 64.0 + n6 / 256.0);
-        // Karney (2011) eq. (35).
-        let alpha = [
-            n / 2.0 - 2.0 / 3.0 * n2 + 5.0 / 16.0 * n3 + 41.0 / 180.0 * n4 - 127.0 / 288.0 * n5
-                + 7891.0 / 37800.0 * n6,
-            13.0 / 48.0 * n2 - 3.0 / 5.0 * n3 + 557.0 / 1440.0 * n4 + 281.0 / 630.0 * n5
-                - 1_983_433.0 / 1_935_360.0 * n6,
-            61.0 / 240.0 * n3 - 103.0 / 140.0 * n4
-                + 15061.0 / 26880.0 * n5
-                + 167_603.0 / 181_440.0 * n6,
-            49561.0 / 161_280.0 * n4 - 179.0 / 168.0 * n5 + 6_601_661.0 / 7_257_600.0 * n6,
-            34729.0 / 80640.0 * n5 - 3_418_889.0 / 1_995_840.0 * n6,
-            212_378_941.0 / 319_334_400.0 * n6,
-        ];
-        // Karney (2011) eq. (36).
-        let beta = [
-            n / 2.0 - 2.0 / 3.0 * n2 + 37.0 / 96.0 * n3 - 1.0 / 360.0 * n4 - 81.0 / 512.0 * n5
-                + 96199.0 / 604_800.0 * n6,
-            n2 / 48.0 + n3 / 15.0 - 437.0 / 1440.0 * n4 + 46.0 / 105.0 * n5
-                - 1_118_711.0 / 3_870_720.0 * n6,
-            17.0 / 480.0 * n3 - 37.0 / 840.0 * n4 - 209.0 / 4480.0 * n5 + 5569.0 / 90720.0 * n6,
-            4397.0 / 161_280.0 * n4 - 11.0 / 504.0 * n5 - 830_251.0 / 7_257_600.0 * n6,
-            4583.0 / 161_280.0 * n5 - 108_847.0 / 3_991_680.0 * n6,
-            20_648_693.0 / 638_668_800.0 * n6,
-        ];
-        Self {
-            e: e2.sqrt(),
-            e2,
-            a_rect,
-            alpha,
-            beta,
-        }
-    }
-
-    /// tan of the conformal latitude from tan φ (Karney 2011 eqs. (7)–(9)).
-    fn taup(&self, tau: f64) -> f64 {
-        let tau1 = tau.hypot(1.0);
-        let sig = (self.e * (self.e * tau / tau1).atanh()).sinh();
-        tau * sig.hypot(1.0) - sig * tau1
-    }
-
-    /// tan φ from tan of the conformal latitude, by Newton's method (Karney 2011 eqs. (19)–(21)).
-    fn tau_from_taup(&self, taup: f64) -> f64 {
-        let e2m = 1.0 - self.e2;
-        let mut tau = taup / e2m;
-        for _ in 0..8 {
-            let taupa = self.taup(tau);
-            let dtau = (taup - taupa) * (1.0 + e2m * tau * tau)
-                / (e2m * tau.hypot(1.0) * taupa.hypot(1.0));
-            tau += dtau;
-            if dtau.abs() <= 1e-15 * tau.abs().max(1.0) {
-                break;
-            }
-        }
-        tau
-    }
-
-    /// Forward projection with scale 1 on the central meridian and the false origin on the
-    /// equator: `(φ, Δλ)` in radians, `|Δλ| < π/2`, to `(η, ξ, p, q, ξ', η', τ')` where
-    /// `x = A·η`, `y = A·ξ` and `p − iq` is the derivative of the Krüger series.
-    fn forward(&self, phi: f64, lam: f64) -> Forward {
-        let taup = self.taup(phi.tan());
-        let (slam, clam) = lam.sin_cos();
-        let xip = taup.atan2(clam);
-        let etap = (slam / taup.hypot(clam)).asinh();
-        let (mut xi, mut eta) = (xip, etap);
-        let (mut p, mut q) = (1.0, 0.0);
-        for (j, a) in self.alpha.iter().enumerate() {
-            let m = 2.0 * (j + 1) as f64;
-            let (s, c) = (m * xip).sin_cos();
-            let (sh, ch) = ((m * etap).sinh(), (m * etap).cosh());
-            xi += a * s * ch;
-            eta += a * c * sh;
-            p += m * a * c * ch;
-            q += m * a * s * sh;
-        }
-        Forward {
-            xi,
-            eta,
-            p,
-            q,
-            xip,
-            etap,
-            taup,
-        }
-    }
-
-    /// Reverse projection: `(ξ, η)` (metres / A) to `(φ, Δλ)` in radians.
-    fn reverse(&self, xi: f64, eta: f64) -> (f64, f64) {
-        let (mut xip, mut etap) = (xi, eta);
-        for (j, b) in self.beta.iter().enumerate() {
-            let m = 2.0 * (j + 1) as f64;
-            let (s, c) = (m * xi).sin_cos();
-            xip -= b * s * (m * eta).cosh();
-            etap -= b * c * (m * eta).sinh();
-        }
-        let (sxip, cxip) = xip.sin_cos();
-        let shetap = etap.sinh();
-        let taup = sxip / shetap.hypot(cxip);
-        let lam = shetap.atan2(cxip);
-        let phi = self.tau_from_taup(taup).atan();
-        (phi, lam)
-    }
-}
-
-/// Intermediate results of the forward series.
-struct Forward {
-    xi: f64,
-    eta: f64,
-    p: f64,
-    q: f64,
-    xip: f64,
-    etap: f64,
-    taup: f64,
-}
-
-/// Reduces an angle in degrees to [−180, 180).
-fn wrap_deg(d: f64) -> f64 {
-    if (-180.0..180.0).contains(&d) {
-        return d;
-    }
-    let r = (d + 180.0).rem_euclid(360.0) - 180.0;
-    // rem_euclid can round up to exactly 360 for tiny negative inputs.
-    if r >= 180.0 {
-        r - 360.0
-    } else {
-        r
-    }
-}
+use skyroute::geo::{self, wrap_deg};
 
 /// A longitude/latitude bounding box in degrees.
 ///
@@ -263,21 +104,15 @@ impl GeoBBox {
     }
 }
 
-/// A local metric frame: transverse Mercator on WGS-84 centred on the origin's meridian, scale 1
-/// there, false origin at the frame origin. See the [module documentation](self) for the method
-/// and its error bounds.
+/// A local metric frame: the core's [`skyroute::geo::LocalFrame`] (transverse Mercator on
+/// WGS-84 centred on the origin's meridian, scale 1 there, false origin at the frame origin).
+/// See the [module documentation](self) for its error bounds.
 ///
 /// Coordinates are `(lon, lat)` in degrees (GeoJSON order) on the geographic side and `(x, y)` in
 /// metres, `x` east and `y` north (grid north, see [`LocalFrame::convergence_deg`]), on the
 /// local side. Only [`LocalFrame::new`] and [`LocalFrame::origin`] put latitude first.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LocalFrame {
-    lat0_deg: f64,
-    lon0_deg: f64,
-    /// Northing of the origin in the equator-based projection, metres.
-    y0: f64,
-    ell: Ellipsoid,
-}
+pub struct LocalFrame(geo::LocalFrame);
 
 impl LocalFrame {
     /// The frame with its origin at latitude `origin_lat_deg`, longitude `origin_lon_deg`
@@ -287,21 +122,9 @@ impl LocalFrame {
     ///
     /// If either is not finite or the latitude is outside [−90, 90].
     pub fn new(origin_lat_deg: f64, origin_lon_deg: f64) -> Self {
-        assert!(
-            origin_lat_deg.is_finite() && origin_lon_deg.is_finite(),
-            "LocalFrame::new: non-finite origin ({origin_lat_deg}, {origin_lon_deg})"
-        );
-        assert!(
-            (-90.0..=90.0).contains(&origin_lat_deg),
-            "LocalFrame::new: latitude {origin_lat_deg} outside [-90, 90]"
-        );
-        let ell = Ellipsoid::wgs84();
-        let y0 = ell.a_rect * ell.forward(origin_lat_deg.to_radians(), 0.0).xi;
-        Self {
-            lat0_deg: origin_lat_deg,
-            lon0_deg: wrap_deg(origin_lon_deg),
-            y0,
-            ell,
+        match geo::LocalFrame::new(origin_lat_deg, origin_lon_deg) {
+            Ok(f) => Self(f),
+            Err(e) => panic!("LocalFrame::new({origin_lat_deg}, {origin_lon_deg}): {e}"),
         }
     }
 
@@ -327,76 +150,64 @@ impl LocalFrame {
         Self::new(lat, lon)
     }
 
+    /// The core's frame, for its checked `f32` conversions
+    /// ([`position`](skyroute::geo::LocalFrame::position),
+    /// [`pose`](skyroute::geo::LocalFrame::pose), …).
+    pub fn core(&self) -> &geo::LocalFrame {
+        &self.0
+    }
+
     /// The origin `(lat, lon)` in degrees: latitude first, the order [`LocalFrame::new`] takes.
     pub fn origin(&self) -> (f64, f64) {
-        (self.lat0_deg, self.lon0_deg)
+        self.0.origin()
     }
 
-    fn dlam(&self, lon: f64) -> f64 {
-        wrap_deg(lon - self.lon0_deg).to_radians()
-    }
-
-    /// `(lon, lat)` in degrees to `(x, y)` in metres east and north of the origin.
+    /// `(lon, lat)` in degrees to `(x, y)` in metres east and north of the origin
+    /// ([`skyroute::geo::LocalFrame::to_local`]).
     ///
     /// Meaningful for points within a few thousand kilometres of the origin's meridian (and
     /// accurate as documented within a few hundred); returns non-finite values for a point 90°
     /// or more of longitude away.
     pub fn to_local(&self, lon: f64, lat: f64) -> (f64, f64) {
-        let f = self.ell.forward(lat.to_radians(), self.dlam(lon));
-        (self.ell.a_rect * f.eta, self.ell.a_rect * f.xi - self.y0)
+        self.0.to_local(lon, lat)
     }
 
     /// `(x, y)` in metres east and north of the origin to `(lon, lat)` in degrees, longitude in
-    /// [−180, 180).
+    /// [−180, 180) ([`skyroute::geo::LocalFrame::to_geo`]).
     pub fn to_geo(&self, x: f64, y: f64) -> (f64, f64) {
-        let (phi, lam) = self
-            .ell
-            .reverse((y + self.y0) / self.ell.a_rect, x / self.ell.a_rect);
-        (wrap_deg(self.lon0_deg + lam.to_degrees()), phi.to_degrees())
+        self.0.to_geo(x, y)
     }
 
     /// The point scale `k` at `(lon, lat)`: a short length `ds` on the ellipsoid there is `k·ds`
-    /// long in the frame (Karney 2011 eq. (28)). 1 on the origin's meridian, about
-    /// `1 + x²/(2R²)` at `x` metres east or west of it.
+    /// long in the frame ([`skyroute::geo::LocalFrame::scale_factor`]). 1 on the origin's
+    /// meridian, about `1 + x²/(2R²)` at `x` metres east or west of it.
     pub fn scale_factor(&self, lon: f64, lat: f64) -> f64 {
-        let phi = lat.to_radians();
-        let lam = self.dlam(lon);
-        let f = self.ell.forward(phi, lam);
-        let tau = phi.tan();
-        let s = phi.sin();
-        (self.ell.a_rect / WGS84_A)
-            * (1.0 - self.ell.e2 * s * s).sqrt()
-            * tau.hypot(1.0)
-            * f.p.hypot(f.q)
-            / f.taup.hypot(lam.cos())
+        self.0.scale_factor(lon, lat)
     }
 
     /// The meridian convergence γ at `(lon, lat)` in degrees: the direction of grid north (+`y`)
-    /// measured clockwise from true north (Karney 2011 eq. (29)). Positive east of the origin's
-    /// meridian in the northern hemisphere, about `Δλ·sin φ`.
+    /// measured clockwise from true north ([`skyroute::geo::LocalFrame::convergence_deg`]).
     pub fn convergence_deg(&self, lon: f64, lat: f64) -> f64 {
-        let f = self.ell.forward(lat.to_radians(), self.dlam(lon));
-        let gamma1 = (f.xip.sin() * f.etap.sinh()).atan2(f.xip.cos() * f.etap.cosh());
-        (gamma1 + f.q.atan2(f.p)).to_degrees()
+        self.0.convergence_deg(lon, lat)
     }
 
     /// A compass heading at `(lon, lat)` (degrees clockwise from true north) as a grid heading
     /// (degrees clockwise from +`y`), in [0, 360).
     pub fn heading_to_local(&self, lon: f64, lat: f64, heading_deg: f64) -> f64 {
-        (heading_deg - self.convergence_deg(lon, lat)).rem_euclid(360.0)
+        self.0.heading_to_local(lon, lat, heading_deg)
     }
 
     /// A grid heading at local `(x, y)` (degrees clockwise from +`y`) as a compass heading
     /// (degrees clockwise from true north), in [0, 360).
     pub fn heading_to_geo(&self, x: f64, y: f64, grid_heading_deg: f64) -> f64 {
-        let (lon, lat) = self.to_geo(x, y);
-        (grid_heading_deg + self.convergence_deg(lon, lat)).rem_euclid(360.0)
+        self.0.heading_to_geo(x, y, grid_heading_deg)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use skyroute::geo::{WGS84_A, WGS84_F};
 
     /// Geodesic distance on WGS-84 by Vincenty's inverse formula (T. Vincenty, "Direct and
     /// inverse solutions of geodesics on the ellipsoid with application of nested equations",

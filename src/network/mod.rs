@@ -539,6 +539,16 @@ impl<'a> Network<'a> {
         (self.header.origin_lat_deg, self.header.origin_lon_deg)
     }
 
+    /// The network's local frame: the transverse Mercator centred on the header's origin
+    /// ([`Network::origin_deg`]) in which every position and heading of the network is expressed.
+    /// Its [`pose`](crate::geo::LocalFrame::pose) and [`position`](crate::geo::LocalFrame::position)
+    /// turn latitude, longitude and compass heading into the planner's coordinates.
+    pub fn local_frame(&self) -> crate::geo::LocalFrame {
+        // The loader refused a non-finite origin or a latitude outside [−90, 90]
+        // (`Parameter::Origin`).
+        crate::geo::LocalFrame::new_valid(self.header.origin_lat_deg, self.header.origin_lon_deg)
+    }
+
     /// Vertex `i`'s pose.
     pub fn vertex(&self, i: u32) -> Option<Pose> {
         if i >= self.header.vertex_count {

@@ -16,6 +16,8 @@ mod decision;
 mod drift_exit;
 /// Dubins paths against OMPL's CSV and an f64 brute force.
 mod dubins;
+/// `skyroute::geo` (WGS-84 to the local frame) against PROJ's CSV; its refusals by name.
+mod geo;
 /// `geometry::grid` traversals against sampled and exact f64 references.
 mod grid_traversal;
 /// Quintic Hermite segments against f64 derivations.
