@@ -149,6 +149,11 @@ enum Command {
         /// A circular pop-up obstacle, `LON,LAT,RADIUS_M` (repeatable).
         #[arg(long, value_parser = parse_popup)]
         popup: Vec<(f64, f64, f64)>,
+        /// Plan from `LON,LAT,HEADING_DEG` (compass heading) instead of the scenario's start:
+        /// re-planning from where the aircraft is. Roadmap, terrain and Voronoi networks (a
+        /// landmark network has its start built in).
+        #[arg(long, value_parser = parse_start, allow_hyphen_values = true)]
+        start: Option<(f64, f64, f64)>,
         /// Leave the scenario's `popup` features out (plan the nominal route); the route file
         /// says so.
         #[arg(long)]
@@ -329,6 +334,19 @@ fn parse_popup(s: &str) -> Result<(f64, f64, f64), String> {
         }
         _ => Err(format!(
             "expected LON,LAT,RADIUS_M with |lon| <= 180, |lat| <= 90, radius > 0, got {s:?}"
+        )),
+    }
+}
+
+fn parse_start(s: &str) -> Result<(f64, f64, f64), String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [lon, lat, h] if lon.abs() <= 180.0 && lat.abs() <= 90.0 && h.is_finite() => Ok((lon, lat, h)),
+        _ => Err(format!(
+            "expected LON,LAT,HEADING_DEG with |lon| <= 180, |lat| <= 90, a finite heading, got {s:?}"
         )),
     }
 }
@@ -561,6 +579,7 @@ fn demo_command(dir: &Path) -> CliResult {
         network: &network,
         scenario: &scenario_path,
         popups: &[],
+        start: None,
         scenario_popups: true,
         connect_radius_m: None,
         turn_rule: None,
@@ -626,6 +645,7 @@ fn run(cli: Cli) -> CliResult {
             network,
             scenario: scenario_path,
             popup,
+            start,
             no_scenario_popups,
             connect_radius,
             turn_rule,
@@ -645,6 +665,7 @@ fn run(cli: Cli) -> CliResult {
                 network: &network,
                 scenario: &scenario_path,
                 popups: &popup,
+                start,
                 scenario_popups: !no_scenario_popups,
                 connect_radius_m: connect_radius,
                 turn_rule,

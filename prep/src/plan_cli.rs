@@ -37,6 +37,8 @@ pub struct PlanRequest<'a> {
     pub network: &'a Path,
     pub scenario: &'a Path,
     pub popups: &'a [(f64, f64, f64)],
+    /// `--start`: `(lon, lat, compass heading)` replacing the scenario's start.
+    pub start: Option<(f64, f64, f64)>,
     pub scenario_popups: bool,
     pub connect_radius_m: Option<f32>,
     /// `--turn-rule`: terrain networks' turn rule (`None`: the paper's).
@@ -121,6 +123,7 @@ pub fn plan_command(req: &PlanRequest) -> CliResult {
     }
     let on = || format!("{} on {}", req.scenario.display(), req.network.display());
     check_binding(&s, &net).map_err(|e| format!("{}: {e}", on()))?;
+    let s = with_start(s, req.start, &net, req.network)?;
     let frame = crate::export::network_frame(&net);
     let popups = gather_popups(&s, req.popups, req.scenario_popups);
     check_query(&s, &net, &frame, &popups).map_err(|e| format!("{}: {e}", on()))?;
@@ -406,6 +409,39 @@ fn plan_voronoi_route(
 
 /// Reads a scenario, repairing self-intersecting no-fly polygons by their hulls when asked (and
 /// saying so), and taking it as `mode` instead of its `planner.mode` when given (`--mode`).
+/// The scenario with its start replaced by `--start` (after the network's binding to the
+/// scenario was checked, so that the new start is checked like any query's). Refused for a
+/// landmark network, whose start and its range to the first landmark are built into it.
+fn with_start(
+    mut s: scenario::Scenario,
+    start: Option<(f64, f64, f64)>,
+    net: &skyroute::Network,
+    network: &Path,
+) -> Result<scenario::Scenario, String> {
+    let Some((lon, lat, heading_deg)) = start else {
+        return Ok(s);
+    };
+    if net.landmark().is_some() {
+        return Err(format!(
+            "--start: {} is a landmark network, whose start (and its range to the first \
+             landmark) is built into it: rebuild it from a scenario with that start",
+            network.display()
+        ));
+    }
+    let name = s
+        .start
+        .as_ref()
+        .map_or_else(|| "start".to_string(), |e| e.name.clone());
+    s.start = Some(scenario::Endpoint {
+        name,
+        lon,
+        lat,
+        heading_deg: Some(heading_deg),
+        dist_m: None,
+    });
+    Ok(s)
+}
+
 pub fn load_scenario(
     path: &Path,
     hull_repair: bool,

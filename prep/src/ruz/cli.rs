@@ -314,6 +314,13 @@ pub fn risk_for(a: &ScoredRoute, appearance: f32) -> f32 {
 /// ([`crate::ruz::cli`]), on roadmap and terrain networks.
 pub fn plan_decided_command(req: &PlanRequest) -> CliResult {
     let t0 = Instant::now();
+    if req.start.is_some() {
+        return Err(
+            "--start with --popup-appears: the bypass alternatives are computed for the \
+                    scenario's nominal route, from its start"
+                .into(),
+        );
+    }
     refuse_overwriting_inputs(req.output, &[req.network, req.scenario])?;
     let format = RouteFormat::of(req.output)?;
     let bytes =
