@@ -421,12 +421,18 @@ fn with_start(
     let Some((lon, lat, heading_deg)) = start else {
         return Ok(s);
     };
-    if net.landmark().is_some() {
-        return Err(format!(
-            "--start: {} is a landmark network, whose start (and its range to the first \
-             landmark) is built into it: rebuild it from a scenario with that start",
-            network.display()
-        ));
+    match net.mode() {
+        skyroute::network::Mode::Landmark => {
+            return Err(format!(
+                "--start: {} is a landmark network, whose start (and its range to the first \
+                 landmark) is built into it: rebuild it from a scenario with that start",
+                network.display()
+            ))
+        }
+        skyroute::network::Mode::Roadmap
+        | skyroute::network::Mode::Terrain
+        | skyroute::network::Mode::Voronoi
+        | skyroute::network::Mode::Unknown(_) => {}
     }
     let name = s
         .start
