@@ -360,6 +360,7 @@ step "ruz decision firmware clippy (bin ruz)" firmware_clippy ruz
 step "ruz decision firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/ruz"
 step "ruz decision firmware size" firmware_size "$firmware_release/ruz"
 step "no recursion in the core (the five firmware binaries' call graphs)" scripts/no-recursion.sh
+step "no panic path in the core (the five firmware binaries' disassembly)" scripts/prove-no-panic.sh
 step "stack bound (static, from the five firmware binaries' disassembly)" stack_bound
 
 step "fuzz smoke run (each cargo-fuzz target for FUZZ_SECONDS, default 20 s)" \
