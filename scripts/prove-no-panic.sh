@@ -17,12 +17,12 @@ firmware_elfs "$@"
 status=0
 for elf in "${elfs[@]}"; do
     disassemble "$elf" "$elf.dis"
-    python3 - "$elf.dis" "$(basename "$elf")" <<'PY' || status=1
+    python3 - "$elf.dis" "$(basename "$elf")" "$root/scripts/lib" <<'PY' || status=1
 import collections, re, sys
-path, name = sys.argv[1:]
-entry = re.compile(r"<(core::panicking::[^>]+|core::slice::index::slice_index_fail|"
-                   r"core::option::expect_failed|core::option::unwrap_failed|"
-                   r"core::result::unwrap_failed|core::panicking::panic_const::[a-z_]+)>")
+sys.path.insert(0, sys.argv[3])
+from panic_entries import ENTRY
+path, name = sys.argv[1:3]
+entry = re.compile("<" + ENTRY.pattern + ">")
 cur, callers = None, collections.defaultdict(set)
 for line in open(path, errors="replace"):
     m = re.match(r"^([0-9a-f]+) <(.*)>:$", line)

@@ -9,6 +9,8 @@ import struct
 import subprocess
 import sys
 
+from panic_entries import ENTRY
+
 HEAD = re.compile(r"^([0-9a-f]+) <(.*)>:$")
 INSN = re.compile(r"^\s*[0-9a-f]+:\s+(\S+)\s*(.*)$")
 TARGET = re.compile(r"<([^>+]+)(\+0x[0-9a-f]+)?>")
@@ -23,15 +25,6 @@ EXCEPTION_ENTRY = 26 * 4
 # Handlers that run on the thread's stack besides `main`'s tree; HardFault does not return,
 # so its frame adds to whatever was in use when it was taken, like SysTick's.
 HANDLERS = ("SysTick", "HardFault")
-# Panic entry points (as scripts/prove-no-panic.sh lists them): a call to one ends the program
-# (the panic handler logs and exits, and may itself panic, the one call cycle of the firmware),
-# so the bound covers every path that does not panic and calls into these are cut.
-PANIC = re.compile(
-    r"(core::panicking::|core::slice::index::slice_index_fail|core::option::expect_failed|"
-    r"core::option::unwrap_failed|core::result::unwrap_failed|__rustc::rust_begin_unwind)"
-)
-
-
 def register_count(operands):
     """Registers in a `{r4, r5, lr}` or `{d8-d11}` list."""
     body = operands[operands.index("{") + 1 : operands.index("}")]
@@ -89,7 +82,9 @@ def parse(path):
         if mnemonic in ("bl", "blx") or mnemonic in BRANCHES:
             t = TARGET.search(operands)
             if t and not t.group(2) and not t.group(1).startswith("$") and t.group(1) != current:
-                if not PANIC.match(t.group(1)):
+                # A panic ends the program (the handler logs and exits, and may itself panic:
+                # the firmware's one call cycle), so the bound covers the paths that do not.
+                if not ENTRY.match(t.group(1)):
                     calls[current].add(t.group(1))
             elif t is None and mnemonic == "blx":
                 indirect[current] += 1
@@ -179,7 +174,7 @@ def main():
     path, name, elf = sys.argv[1:4]
     peaks = dict(p.split(":") for p in (sys.argv[4] if len(sys.argv) > 4 else "").split())
     frames, calls, indirect, starts = parse(path)
-    taken = {f for f in address_taken(elf, path, starts) if not PANIC.match(f)}
+    taken = {f for f in address_taken(elf, path, starts) if not ENTRY.match(f)}
     for fn in indirect:
         calls[fn] |= taken - {fn}
     bound, deepest, cycles = bounds(frames, calls)

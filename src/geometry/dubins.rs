@@ -274,7 +274,7 @@ impl DubinsPath {
         let mut pose = self.start;
         let mut out = [None; 3];
         let kinds = [Some(k1), middle, Some(k3)];
-        for (i, (kind, &len)) in kinds.iter().zip(self.lengths.iter()).enumerate() {
+        for ((kind, &len), slot) in kinds.iter().zip(self.lengths.iter()).zip(out.iter_mut()) {
             // A piece of zero length (or an arc whose turn angle rounds to zero) is skipped, not
             // built: a zero-length right arc has sweep −0.0, which `Arc::turn` reads as a *left*
             // turn, so its end heading came out flipped by π and every later piece was built on
@@ -301,9 +301,7 @@ impl DubinsPath {
                 },
                 Primitive::Arc(_) => end,
             };
-            if let Some(slot) = out.get_mut(i) {
-                *slot = Some((prim, heading));
-            }
+            *slot = Some((prim, heading));
         }
         out
     }
