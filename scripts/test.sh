@@ -6,9 +6,9 @@
 #   `terrain`; thinned for the STM32F405, and whole on the larger target: QEMU's mps2-an500,
 #   a Cortex-M7 with an STM32H743's 2 MiB flash and 1 MiB RAM) and for landmarks (babel-II-N, binary `landmark`: plan, lose a landmark in
 #   flight, re-plan) and for radar threats (ruz-popups as a Voronoi network, binary `voronoi`:
-#   plan, a radar pops up in flight, re-plan) and for the pop-up decision (ruz-popups' bypass
-#   alternatives as constants, binary `ruz`: decide a sequence of announcements and a worst
-#   case as the host does) → a short run of every fuzz target
+#   plan, a radar pops up in flight, re-plan) and for the pop-up switch (ruz-popups with its
+#   stored bypass alternatives, binary `ruz`: decide a sequence of announcements, fly the
+#   choices and re-plan, and a worst-case decision, as the host does) → a short run of every fuzz target
 #   (scripts/fuzz-smoke.sh; skipped, with a message, where no nightly toolchain is installed).
 # Runnable from any directory. Stops at the first failing step; KEEP_GOING=1 runs every step
 # and fails at the end instead.
@@ -62,9 +62,11 @@ landmark_fixture_dir=firmware-example/fixture-landmark
 voronoi_scenario=scenarios/ruz-popups.geojson
 voronoi_src=target/fixture/voronoi-src.bin
 voronoi_fixture_dir=firmware-example/fixture-voronoi
-# The pop-up decision firmware (Ruz et al.): the alternatives of ruz-popups' pop-ups, planned on
-# its roadmap network by the fixture tool, as constants (no network image in the firmware).
+# The pop-up switch firmware (Ruz et al.): a ruz-popups roadmap whose image stores the pop-ups'
+# bypass alternatives, samples 2 km apart (198 KB; the scenario's 1.5 km make 934 KB, most of
+# the STM32F405's 1 MiB flash).
 ruz_scenario=scenarios/ruz-popups.geojson
+ruz_sample_spacing=2000
 ruz_src=target/fixture/ruz-src.bin
 ruz_fixture_dir=firmware-example/fixture-ruz
 # The firmware binaries' ELFs: $firmware_release/{roadmap,terrain,landmark,voronoi,ruz}.
@@ -270,12 +272,14 @@ voronoi_fixture() {
         --threat-on-route 3000 --replan-after 5000
 }
 
-# The Ruz decision's fixture: ruz-popups as a roadmap network; the host plans every pop-up's
-# bypass alternatives with the ground tool's code and decides a sequence of announcements and a
-# worst case, as the firmware will (only query.rs: the firmware embeds no network).
+# The Ruz switch's fixture: ruz-popups as a roadmap network whose image stores every pop-up's
+# bypass alternatives (`skyroute build` plans and scores them); the host plans the nominal
+# route, decides a sequence of announcements, flies each choice and re-plans, and decides a
+# worst case, with the core calls the firmware makes (network.bin and query.rs).
 ruz_fixture() {
     mkdir -p "$(dirname "$ruz_src")"
-    cargo run --release -q -p skyroute-prep --bin skyroute -- build "$ruz_scenario" -o "$ruz_src"
+    cargo run --release -q -p skyroute-prep --bin skyroute -- build "$ruz_scenario" -o "$ruz_src" \
+        --sample-spacing "$ruz_sample_spacing"
     cargo run --release -q -p host-tests --bin firmware_fixture -- \
         "$ruz_src" "$ruz_fixture_dir" --ruz --scenario "$ruz_scenario"
 }
@@ -354,11 +358,11 @@ step "voronoi firmware build (release, bin voronoi)" firmware_build voronoi
 step "voronoi firmware clippy (bin voronoi)" firmware_clippy voronoi
 step "voronoi firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/voronoi"
 step "voronoi firmware size" firmware_size "$firmware_release/voronoi"
-step "ruz decision firmware fixture (ruz-popups)" ruz_fixture
-step "ruz decision firmware build (release, bin ruz)" firmware_build ruz
-step "ruz decision firmware clippy (bin ruz)" firmware_clippy ruz
-step "ruz decision firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/ruz"
-step "ruz decision firmware size" firmware_size "$firmware_release/ruz"
+step "ruz switch firmware fixture (ruz-popups)" ruz_fixture
+step "ruz switch firmware build (release, bin ruz)" firmware_build ruz
+step "ruz switch firmware clippy (bin ruz)" firmware_clippy ruz
+step "ruz switch firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/ruz"
+step "ruz switch firmware size" firmware_size "$firmware_release/ruz"
 step "no recursion in the core (the five firmware binaries' call graphs)" scripts/no-recursion.sh
 step "no panic path in the core (the five firmware binaries' disassembly)" scripts/prove-no-panic.sh
 step "stack bound (static, from the five firmware binaries' disassembly)" stack_bound

@@ -27,7 +27,7 @@
 
 // Bytes that suffice for a planner on every target this library builds for (at least
 // `sr_planner_size()`; checked at compile time).
-#define SR_PLANNER_STORAGE_SIZE 81160
+#define SR_PLANNER_STORAGE_SIZE 81192
 
 // An alignment that suffices for a planner on every target this library builds for (a
 // multiple of `sr_planner_align()`; checked at compile time).
@@ -187,6 +187,9 @@ enum sr_status
   // (the box of half-side `length/2` around the midpoint of its ends, which holds every curve of
   // that length between them), so pop-up pruning could miss it.
   SR_STATUS_LOAD_EDGE_OUTSIDE_GRID = 140,
+  // `LoadError::BadPopupAlternatives`: a stored pop-up, bypass alternative or blocking disc is
+  // out of its domain, or the alternatives tables' counts do not add up to their record's.
+  SR_STATUS_LOAD_BAD_POPUP_ALTERNATIVES = 141,
   // `PlanError::NonFinite`: A position or heading is NaN or infinite.
   SR_STATUS_PLAN_NON_FINITE = 200,
   // `PlanError::OutOfRange`: A position lies beyond `MAX_COORDINATE_M` of the network's origin.

@@ -137,6 +137,9 @@ pub enum SrStatus {
     /// (the box of half-side `length/2` around the midpoint of its ends, which holds every curve of
     /// that length between them), so pop-up pruning could miss it.
     LoadEdgeOutsideGrid = 140,
+    /// `LoadError::BadPopupAlternatives`: a stored pop-up, bypass alternative or blocking disc is
+    /// out of its domain, or the alternatives tables' counts do not add up to their record's.
+    LoadBadPopupAlternatives = 141,
     /// `PlanError::NonFinite`: A position or heading is NaN or infinite.
     PlanNonFinite = 200,
     /// `PlanError::OutOfRange`: A position lies beyond `MAX_COORDINATE_M` of the network's origin.
@@ -252,6 +255,7 @@ pub fn load_status(e: &LoadError) -> SrStatus {
         LoadError::ChainMissesVertex { .. } => SrStatus::LoadChainMissesVertex,
         LoadError::ChainShorterThanChords { .. } => SrStatus::LoadChainShorterThanChords,
         LoadError::EdgeOutsideGrid { .. } => SrStatus::LoadEdgeOutsideGrid,
+        LoadError::BadPopupAlternatives { .. } => SrStatus::LoadBadPopupAlternatives,
     }
 }
 
@@ -346,6 +350,7 @@ impl SrStatus {
             SrStatus::LoadChainMissesVertex => c"SR_STATUS_LOAD_CHAIN_MISSES_VERTEX",
             SrStatus::LoadChainShorterThanChords => c"SR_STATUS_LOAD_CHAIN_SHORTER_THAN_CHORDS",
             SrStatus::LoadEdgeOutsideGrid => c"SR_STATUS_LOAD_EDGE_OUTSIDE_GRID",
+            SrStatus::LoadBadPopupAlternatives => c"SR_STATUS_LOAD_BAD_POPUP_ALTERNATIVES",
             SrStatus::PlanNonFinite => c"SR_STATUS_PLAN_NON_FINITE",
             SrStatus::PlanOutOfRange => c"SR_STATUS_PLAN_OUT_OF_RANGE",
             SrStatus::PlanInsideObstacle => c"SR_STATUS_PLAN_INSIDE_OBSTACLE",
@@ -396,7 +401,7 @@ impl SrStatus {
 }
 
 /// Every status, in the order of their numbers.
-const ALL: [SrStatus; 75] = [
+const ALL: [SrStatus; 76] = [
     SrStatus::Ok,
     SrStatus::NullPointer,
     SrStatus::MemoryMisaligned,
@@ -444,6 +449,7 @@ const ALL: [SrStatus; 75] = [
     SrStatus::LoadChainMissesVertex,
     SrStatus::LoadChainShorterThanChords,
     SrStatus::LoadEdgeOutsideGrid,
+    SrStatus::LoadBadPopupAlternatives,
     SrStatus::PlanNonFinite,
     SrStatus::PlanOutOfRange,
     SrStatus::PlanInsideObstacle,

@@ -1,28 +1,31 @@
-//! The pop-up decision of Ruz et al. on the flight computer: pop-ups are announced with their
-//! appearance probabilities, the aircraft picks one bypass alternative per pop-up.
+//! The pop-up switch of Ruz et al. on the flight computer: the network image stores each
+//! potential pop-up's bypass alternatives (figures and discs, from the ground tool); pop-ups
+//! are announced in flight with their appearance probabilities; the aircraft decides one
+//! alternative per pop-up and re-plans round the chosen ones.
 //!
-//! For every announcement of the fixture:
+//! 1. the nominal route: the scenario's start → goal planned as the ground tool plans a
+//!    mission's leg ([`plan_leg`]: A*, connection widened when an end does not connect, then
+//!    the shortcut and heading-smoothing passes);
+//! 2. for every announcement of the fixture: `decide_stored` recomputes each announced pop-up's
+//!    alternatives' R_K, f_t, F_c from the stored figures and decides (timed); on a choice,
+//!    `fly_alternatives` adds the chosen alternatives' discs as pop-ups (timed), the leg is
+//!    planned again (timed) and the discs removed;
+//! 3. the verdict: every decision (choice, total risk, mean factors and work, or the
+//!    infeasibility with its tightest limit) and every route (length, primitives, counted work)
+//!    equals the host's bit for bit, and the decision's work is within `decision_work_bound`.
 //!
-//! 1. the alternatives' figures for the decision are recomputed from the stored ones (steps,
-//!    P_S,known, P_S,PU, F_c of each alternative, the nominal route's steps) and the announced
-//!    probabilities with `skyroute::planner::risk::alternative` (R_K, f_t, F_c; timed);
-//! 2. `decide` picks the least total risk within the mean time and fuel limits (timed);
-//! 3. the verdict: every recomputed figure, the choice, the total risk, the mean factors and
-//!    the work (or the infeasibility with its tightest limit) equal the host's bit for bit, and
-//!    the work is within `decision_work_bound`.
-//!
-//! Then the worst case: a synthetic instance of the most pop-ups and alternatives whose search
-//! cuts nothing, timed against `decision_work_bound`.
-//!
-//! The alternatives are constants of the fixture (`query.rs`), not read from a network image.
+//! Then the worst case of the decision alone: a synthetic instance of the most pop-ups and
+//! alternatives whose search cuts nothing, timed against `decision_work_bound`.
 
 use crate::clock::{self, Clock};
 use crate::log_stack;
+use skyroute::planner::alternatives::{decide_stored, Announced, SwitchError};
 use skyroute::planner::decision::{
     decide, decision_work_bound, Alternative, Decision, DecisionError, DecisionLimits,
     MAX_ALTERNATIVES, MAX_DECISION_POPUPS,
 };
-use skyroute::planner::risk::{alternative, RouteFigures};
+use skyroute::planner::{PlanError, PlannerConfig};
+use skyroute::{Planner, Query};
 
 /// What the host decided: the choice and its figures.
 #[derive(Clone, Copy, Debug)]
@@ -39,31 +42,52 @@ pub struct Expected {
     pub work: u64,
 }
 
-/// One announcement: the appearance probabilities and limits, and the host's figures.
+/// A route the host planned: the discs flown round, its length, primitives and counted work
+/// (plan, shortcut and smoothing).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Flown {
+    /// Pop-up discs active.
+    pub discs: u8,
+    /// Length, metres.
+    pub length: f32,
+    /// Lines and arcs.
+    pub primitives: u32,
+    /// Work counted.
+    pub work: u64,
+}
+
+/// One announcement: the pop-ups and their appearance probabilities, the limits, and the
+/// host's answers.
 pub struct Announcement {
     /// What happened, for the log.
     pub what: &'static str,
-    /// P_A of each pop-up, in the order of the stored alternatives.
-    pub appearance: &'static [f32],
+    /// The announced pop-ups (indices into the image's stored ones) with P_A.
+    pub announced: &'static [Announced],
     /// T_max and F_cmax.
     pub limits: DecisionLimits,
-    /// The host's recomputed figures of every alternative.
-    pub inputs: &'static [&'static [Alternative]],
     /// The host's decision.
     pub expected: Result<Expected, DecisionError>,
+    /// The route flying the host's choice (none when infeasible).
+    pub flown: Option<Flown>,
 }
 
 /// Everything the `ruz` binary's `query.rs` holds.
 pub struct RuzFixture {
-    /// The pop-ups' names.
+    /// The stored pop-ups' names.
     pub names: &'static [&'static str],
-    /// M of the nominal route.
-    pub nominal_steps: u32,
-    /// Each pop-up's alternatives' stored figures.
-    pub alternatives: &'static [&'static [RouteFigures]],
+    /// The scenario's start → goal.
+    pub query: Query,
+    /// The connection settings when an end does not connect with the default's.
+    pub wide_config: PlannerConfig,
+    /// Candidate headings of the heading-smoothing pass.
+    pub smoothing_headings: u16,
+    /// Work budget of each pass.
+    pub budget: u64,
+    /// The nominal route as the host planned it.
+    pub nominal: Flown,
     /// The announcements, in order.
     pub announcements: &'static [Announcement],
-    /// The worst-case instance.
+    /// The decision's worst-case instance.
     pub worst: &'static [&'static [Alternative]],
     /// Its limits.
     pub worst_limits: DecisionLimits,
@@ -111,21 +135,81 @@ impl Inputs {
     }
 }
 
-/// Recomputes every alternative's R_K, f_t and F_c for `appearance` from the stored figures.
-fn recompute(fixture: &RuzFixture, appearance: &[f32]) -> Inputs {
-    let mut s = Inputs::from_rows(&[]);
-    s.popups = fixture.alternatives.len().min(MAX_DECISION_POPUPS);
-    for (u, figures) in fixture.alternatives.iter().enumerate().take(s.popups) {
-        let p = appearance.get(u).copied().unwrap_or(1.0);
-        let (Some(dst), Some(count)) = (s.alts.get_mut(u), s.counts.get_mut(u)) else {
-            break;
-        };
-        for (d, f) in dst.iter_mut().zip(figures.iter()) {
-            *d = alternative(f, fixture.nominal_steps, p);
-        }
-        *count = figures.len().min(MAX_ALTERNATIVES);
+/// The decision's work bound for the stored alternatives of `announced`.
+fn stored_bound<const V: usize, const E: usize, const P: usize, const R: usize>(
+    planner: &Planner<'_, V, E, P, R>,
+    announced: &[Announced],
+) -> u64 {
+    let net = planner.network();
+    let mut counts = [0usize; MAX_DECISION_POPUPS];
+    for (c, a) in counts.iter_mut().zip(announced) {
+        *c = net
+            .stored_popup(a.popup as u32)
+            .map_or(0, |p| p.alternatives as usize);
     }
-    s
+    decision_work_bound(counts.get(..announced.len()).unwrap_or(&[]))
+}
+
+/// Plans `fixture.query` as the ground tool plans a mission's leg: A* with the default
+/// connection, again with [`RuzFixture::wide_config`] when an end does not connect, then the
+/// shortcut and heading-smoothing passes (Niendorf et al. §V). Returns the route's figures and
+/// the SysTick ticks it took.
+pub fn plan_leg<const V: usize, const E: usize, const P: usize, const R: usize>(
+    planner: &mut Planner<'_, V, E, P, R>,
+    clock: Clock,
+    fixture: &RuzFixture,
+    discs: u8,
+) -> Result<(Flown, u64), PlanError> {
+    let t = clock.now();
+    let planned = match planner.plan(&fixture.query, fixture.budget) {
+        Err(PlanError::StartUnconnected | PlanError::GoalUnconnected) => {
+            planner.set_config(fixture.wide_config);
+            let second = planner.plan(&fixture.query, fixture.budget);
+            planner.set_config(PlannerConfig::DEFAULT);
+            second
+        }
+        other => other,
+    }?;
+    let shortcut = planner.shortcut(fixture.budget)?;
+    let smooth = planner.smooth_headings(fixture.smoothing_headings, fixture.budget)?;
+    let ticks = clock.now() - t;
+    let s = planner.route_summary().ok_or(PlanError::Internal)?;
+    let flown = Flown {
+        discs,
+        length: s.length,
+        primitives: s.primitives,
+        work: planned.work.total() + shortcut.work.total() + smooth.work.total(),
+    };
+    Ok((flown, ticks))
+}
+
+/// Whether a route equals the host's bit for bit; logs it.
+fn same_route(what: &str, got: &Flown, ticks: u64, want: &Flown) -> bool {
+    defmt::info!(
+        "{=str}: {=u8} discs, route {=f32} m, {=u32} primitives, work {=u64}; {=u64} ticks = {=u64} us",
+        what,
+        got.discs,
+        got.length,
+        got.primitives,
+        got.work,
+        ticks,
+        Clock::ticks_to_us(ticks)
+    );
+    let ok = got.discs == want.discs
+        && got.length.to_bits() == want.length.to_bits()
+        && got.primitives == want.primitives
+        && got.work == want.work;
+    if !ok {
+        defmt::error!(
+            "{=str}: the host flew {=u8} discs, {=f32} m, {=u32} primitives, work {=u64}",
+            what,
+            want.discs,
+            want.length,
+            want.primitives,
+            want.work
+        );
+    }
+    ok
 }
 
 /// Whether two decision answers are the same bit for bit.
@@ -153,37 +237,16 @@ fn same(got: &Result<Decision, DecisionError>, want: &Result<Expected, DecisionE
     }
 }
 
-/// Whether the recomputed inputs equal the host's bit for bit.
-fn same_inputs(got: &Inputs, want: &[&[Alternative]]) -> bool {
-    let rows = got.rows();
-    got.popups == want.len()
-        && rows.iter().zip(want).all(|(g, w)| {
-            g.len() == w.len()
-                && g.iter().zip(w.iter()).all(|(a, b)| {
-                    a.risk.to_bits() == b.risk.to_bits()
-                        && a.time.to_bits() == b.time.to_bits()
-                        && a.fuel.to_bits() == b.fuel.to_bits()
-                })
-        })
-}
-
-/// Decides `inputs` under `limits` (timed), logs it against the host's, returns the verdict.
-fn decide_and_check(
-    clock: Clock,
+/// Logs a decision against the host's and returns the verdict: the same answer bit for bit,
+/// and the work within `bound`.
+fn check_decision(
     what: &str,
-    inputs: &Inputs,
-    limits: &DecisionLimits,
+    got: &Result<Decision, DecisionError>,
+    ticks: u64,
+    bound: u64,
     expected: &Result<Expected, DecisionError>,
 ) -> bool {
-    let rows = inputs.rows();
-    let rows = rows.get(..inputs.popups).unwrap_or(&[]);
-    let (got, ticks) = crate::with_stack_peak("decide", || {
-        let t = clock.now();
-        let got = decide(rows, limits);
-        (got, clock.now() - t)
-    });
-    let bound = inputs.bound();
-    match &got {
+    match got {
         Ok(d) => defmt::info!(
             "{=str}: choice {=[u8]}, risk {=f32}, mean time {=f32}, mean fuel {=f32}; work {=u64} of bound {=u64}; {=u64} ticks = {=u64} us",
             what,
@@ -205,7 +268,7 @@ fn decide_and_check(
             Clock::ticks_to_us(ticks)
         ),
     }
-    let ok = same(&got, expected);
+    let ok = same(got, expected);
     if !ok {
         defmt::error!(
             "{=str}: the host decided {}",
@@ -216,37 +279,101 @@ fn decide_and_check(
     ok && got.as_ref().map_or(true, |d| d.work <= bound)
 }
 
-/// Runs every announcement and the worst case; true only if all equal the host's.
-pub fn run(clock: Clock, fixture: &RuzFixture) -> bool {
+/// Decides one announcement from the stored alternatives, flies the choice, re-plans and
+/// removes the discs; true only if everything equals the host's.
+fn announce<const V: usize, const E: usize, const P: usize, const R: usize>(
+    planner: &mut Planner<'_, V, E, P, R>,
+    clock: Clock,
+    fixture: &RuzFixture,
+    a: &Announcement,
+) -> bool {
+    defmt::info!("announced: {=str}", a.what);
+    for x in a.announced {
+        let name = fixture.names.get(x.popup as usize).copied().unwrap_or("?");
+        defmt::info!("  {=str}: P_A {=f32}", name, x.appearance);
+    }
+    let net = *planner.network();
+    let (got, ticks) = crate::with_stack_peak("decide_stored", || {
+        let t = clock.now();
+        let got = decide_stored(&net, a.announced, &a.limits);
+        (got, clock.now() - t)
+    });
+    let got = match got {
+        Ok(d) => Ok(d),
+        Err(SwitchError::Decision(e)) => Err(e),
+        Err(e) => {
+            defmt::error!("  decide_stored refused the announcement: {}", e);
+            return false;
+        }
+    };
+    let bound = stored_bound(planner, a.announced);
+    let mut ok = check_decision("  decision", &got, ticks, bound, &a.expected);
+    let (Ok(d), Some(want)) = (&got, &a.flown) else {
+        return ok && got.is_err() && a.flown.is_none();
+    };
+    let (ids, ticks) = crate::with_stack_peak("fly_alternatives", || {
+        let t = clock.now();
+        let ids = planner.fly_alternatives(a.announced, &d.choice);
+        (ids, clock.now() - t)
+    });
+    let ids = match ids {
+        Ok(ids) => ids,
+        Err(e) => {
+            defmt::error!("  fly_alternatives failed: {}", e);
+            return false;
+        }
+    };
     defmt::info!(
-        "ruz decision: {=usize} pop-ups, nominal route {=u32} steps; at most {=usize} pop-ups of {=usize} alternatives",
-        fixture.alternatives.len(),
-        fixture.nominal_steps,
+        "  fly_alternatives: {=usize} discs added as pop-ups in {=u64} ticks = {=u64} us",
+        ids.len(),
+        ticks,
+        Clock::ticks_to_us(ticks)
+    );
+    let discs = ids.len() as u8;
+    match crate::with_stack_peak("plan_leg", || plan_leg(planner, clock, fixture, discs)) {
+        Ok((flown, ticks)) => ok &= same_route("  re-planned", &flown, ticks, want),
+        Err(e) => {
+            defmt::error!("  re-plan failed: {}", e);
+            ok = false;
+        }
+    }
+    for id in ids {
+        ok &= planner.remove_popup(id).is_ok();
+    }
+    ok
+}
+
+/// Plans the nominal route, runs every announcement and the decision's worst case; true only
+/// if all equal the host's.
+pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
+    planner: &mut Planner<'_, V, E, P, R>,
+    clock: Clock,
+    fixture: &RuzFixture,
+) -> bool {
+    let stored = planner.network().alternatives_summary();
+    let Some(stored) = stored else {
+        defmt::error!("the network stores no pop-up alternatives");
+        return false;
+    };
+    defmt::info!(
+        "ruz switch: {=u32} stored pop-ups, nominal route {=u32} steps, limits {=f32} (time) {=f32} (fuel); at most {=usize} pop-ups of {=usize} alternatives",
+        stored.popups,
+        stored.nominal_steps,
+        stored.time_limit,
+        stored.fuel_limit,
         MAX_DECISION_POPUPS,
         MAX_ALTERNATIVES
     );
-    let mut verdict = fixture.alternatives.len() <= MAX_DECISION_POPUPS;
-    for a in fixture.announcements {
-        defmt::info!("announced: {=str}", a.what);
-        for (name, p) in fixture.names.iter().zip(a.appearance) {
-            defmt::info!("  {=str}: P_A {=f32}", name, p);
-        }
-        let t = clock.now();
-        let inputs = recompute(fixture, a.appearance);
-        let ticks = clock.now() - t;
-        let ok = same_inputs(&inputs, a.inputs);
-        defmt::info!(
-            "  R_K, f_t, F_c of every alternative recomputed in {=u64} ticks = {=u64} us: {=str}",
-            ticks,
-            Clock::ticks_to_us(ticks),
-            if ok {
-                "equal to the host's"
-            } else {
-                "DIFFERENT from the host's"
+    let mut verdict =
+        match crate::with_stack_peak("plan_leg", || plan_leg(planner, clock, fixture, 0)) {
+            Ok((flown, ticks)) => same_route("nominal route", &flown, ticks, &fixture.nominal),
+            Err(e) => {
+                defmt::error!("the nominal route: {}", e);
+                false
             }
-        );
-        verdict &= ok;
-        verdict &= decide_and_check(clock, "  decision", &inputs, &a.limits, &a.expected);
+        };
+    for a in fixture.announcements {
+        verdict &= announce(planner, clock, fixture, a);
     }
     let worst = Inputs::from_rows(fixture.worst);
     defmt::info!(
@@ -254,18 +381,25 @@ pub fn run(clock: Clock, fixture: &RuzFixture) -> bool {
         worst.popups,
         fixture.worst.first().map_or(0, |r| r.len())
     );
-    verdict &= decide_and_check(
-        clock,
+    let rows = worst.rows();
+    let rows = rows.get(..worst.popups).unwrap_or(&[]);
+    let (got, ticks) = crate::with_stack_peak("decide", || {
+        let t = clock.now();
+        let got = decide(rows, &fixture.worst_limits);
+        (got, clock.now() - t)
+    });
+    verdict &= check_decision(
         "  decision",
-        &worst,
-        &fixture.worst_limits,
+        &got,
+        ticks,
+        worst.bound(),
         &fixture.worst_expected,
     );
     defmt::info!("SysTick at {=u32} Hz", clock::CORE_HZ);
     log_stack();
     if verdict {
         defmt::info!(
-            "PASS: {=usize} announcements and the worst case decided as on the host",
+            "PASS: the nominal route, {=usize} announcements and the worst case as on the host",
             fixture.announcements.len()
         );
     }

@@ -67,6 +67,9 @@ pub enum BuildError {
     ZoneInTerrain(String, String),
     /// Voronoi mode: the threats cannot be built into a diagram: (scenario file, why).
     Voronoi(String, String),
+    /// Roadmap mode: the pop-ups' bypass alternatives could not be planned or stored:
+    /// (scenario file, why).
+    Alternatives(String, String),
     /// Out of the builder's limits ([`crate::build_limits`]), no vertices, or refused by the
     /// writer.
     Limit(crate::build_limits::LimitError),
@@ -98,7 +101,9 @@ impl fmt::Display for BuildError {
                  network that left it out would fly through it; remove it from the scenario or \
                  give it as a `popup` feature"
             ),
-            BuildError::Voronoi(file, why) => write!(f, "{file}: {why}"),
+            BuildError::Voronoi(file, why) | BuildError::Alternatives(file, why) => {
+                write!(f, "{file}: {why}")
+            }
             BuildError::Limit(e) => write!(f, "{e}"),
         }
     }
@@ -232,7 +237,11 @@ fn build_roadmap_network(
         provenance,
     };
     let why = "every sample lies within planner.clearance_m of a no-fly zone or threat";
-    let bytes = encode_checked(&spec, &file, grid_field, why)?;
+    let mut bytes = encode_checked(&spec, &file, grid_field, why)?;
+    if !s.popups.is_empty() {
+        bytes = crate::ruz::stored::with_alternatives(s, &frame, &spec, &bytes)
+            .map_err(|e| BuildError::Alternatives(file.clone(), e))?;
+    }
     Ok(Built {
         bytes,
         frame,

@@ -51,6 +51,7 @@ pub fn describe(path: &Path, bytes: &[u8]) -> Result<String, String> {
         net.max_cell_entries()
     );
     mode_section(w, &net);
+    alternatives_section(w, &net);
     let _ = writeln!(
         w,
         "  provenance: {} digests of what it was built from (checked by `skyroute plan`)",
@@ -167,5 +168,46 @@ fn onboard(w: &mut String, bytes: &[u8], net: &Network) {
                 Mode::Roadmap | Mode::Landmark | Mode::Voronoi | Mode::Unknown(_) => "",
             }
         );
+    }
+}
+
+/// The pop-up alternatives (Ruz et al.) the image stores, if any: per pop-up its disc, P_A and
+/// each alternative's length, steps, survival figures, fuel factor and blocking discs.
+fn alternatives_section(w: &mut String, net: &Network) {
+    let Some(a) = net.alternatives_summary() else {
+        return;
+    };
+    let _ = writeln!(
+        w,
+        "  pop-up alternatives (Ruz et al.): {} pop-ups; nominal route {} steps; limits: mean \
+         time factor {}, mean fuel factor {}",
+        a.popups, a.nominal_steps, a.time_limit, a.fuel_limit
+    );
+    for u in 0..a.popups {
+        let Some(p) = net.stored_popup(u) else {
+            continue;
+        };
+        let _ = writeln!(
+            w,
+            "    pop-up {u}: disc ({:.0}, {:.0}) m, radius {} m, P_A {}",
+            p.centre.x, p.centre.y, p.radius, p.probability
+        );
+        for k in 0..p.alternatives {
+            let Some(alt) = net.stored_alternative(u, k) else {
+                continue;
+            };
+            let _ = writeln!(
+                w,
+                "      alternative {}: {:.0} m, {} steps, P_S,known {}, P_S,PU {}, F_c {}, {} \
+                 blocking discs",
+                k + 1,
+                alt.length_m,
+                alt.steps,
+                alt.survival_known,
+                alt.survival_popup,
+                alt.fuel,
+                alt.discs
+            );
+        }
     }
 }

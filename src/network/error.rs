@@ -42,6 +42,14 @@ pub enum Section {
     Threats,
     /// Voronoi mode: the spline corner table.
     CornerTable,
+    /// The pop-up alternatives' record.
+    PopupAlternatives,
+    /// The stored pop-ups.
+    StoredPopups,
+    /// The stored bypass alternatives.
+    StoredAlternatives,
+    /// The alternatives' blocking discs.
+    BlockingDiscs,
 }
 
 /// A scalar header parameter, named in [`LoadError::InvalidParameter`].
@@ -60,8 +68,13 @@ pub enum Parameter {
     GridCell,
     /// The grid must have at least one cell along each axis.
     GridDimensions,
-    /// The reserved flags must be zero.
+    /// The flags must be zero but for
+    /// [`FLAG_POPUP_ALTERNATIVES`](super::format::FLAG_POPUP_ALTERNATIVES).
     Flags,
+    /// The pop-up alternatives' record must store 1 to
+    /// [`MAX_STORED_POPUPS`](super::format::MAX_STORED_POPUPS) pop-ups, a nominal route of at
+    /// least one step and finite limits of magnitude at most 10⁶.
+    PopupAlternatives,
     /// Terrain mode: the elevation grid must be valid (finite origin, positive cell, 1 to 2²⁴
     /// cells per axis), the coding finite with a positive step, the widening, altitude and
     /// safety height finite and not negative where that matters.
@@ -167,6 +180,17 @@ pub enum LoadError {
         /// Which offset table.
         section: Section,
         /// The first offending entry.
+        index: u32,
+    },
+    /// A stored pop-up, bypass alternative or blocking disc is out of its domain (a disc not
+    /// finite, out of range or of no positive radius; a probability outside [0, 1]; a count
+    /// beyond the format's maxima; no steps, a negative or non-finite fuel factor or length),
+    /// or the tables' counts do not add up to the record's totals (`section`
+    /// [`Section::PopupAlternatives`], index 0).
+    BadPopupAlternatives {
+        /// Which table.
+        section: Section,
+        /// Record index.
         index: u32,
     },
     /// An index points past the end of what it indexes.
@@ -422,6 +446,9 @@ impl fmt::Display for LoadError {
                     f,
                     "{section:?} record {index} holds a NaN or infinite value"
                 )
+            }
+            BadPopupAlternatives { section, index } => {
+                write!(f, "{section:?} record {index} is out of its domain")
             }
             BadOffsets { section, index } => {
                 write!(f, "{section:?} offset {index} is out of order")

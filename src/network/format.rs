@@ -178,6 +178,114 @@ impl EdgeRecord {
     pub const SIZE: usize = 7;
 }
 
+/// Header flag: the body holds the pop-up alternatives section ([`AlternativesRecord`]) after
+/// the mode's section, before the provenance records. No other flag is defined.
+pub const FLAG_POPUP_ALTERNATIVES: u8 = 1;
+
+/// The most pop-ups the alternatives section stores (the decision's
+/// [`MAX_DECISION_POPUPS`](crate::planner::decision::MAX_DECISION_POPUPS)).
+pub const MAX_STORED_POPUPS: u32 = 8;
+
+/// The most alternatives a stored pop-up has (the decision's
+/// [`MAX_ALTERNATIVES`](crate::planner::decision::MAX_ALTERNATIVES)).
+pub const MAX_STORED_ALTERNATIVES: u32 = 4;
+
+/// The most blocking discs an alternative stores.
+pub const MAX_BLOCKING_DISCS: u32 = 8;
+
+/// The pop-up alternatives of Ruz et al.: for each potential pop-up threat, bypass routes the
+/// ground tool planned around it and scored, from which the aircraft picks one per announced
+/// pop-up (`crate::planner::alternatives`). Present when the header has
+/// [`FLAG_POPUP_ALTERNATIVES`]; follows the mode's section. Then come `popup_count`
+/// [`PopupRecord`]s, `alternative_count` [`AlternativeRecord`]s (pop-up by pop-up, in order)
+/// and `disc_count` [`DiscRecord`]s (alternative by alternative, in order).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AlternativesRecord {
+    /// Pop-ups, 1 to [`MAX_STORED_POPUPS`].
+    #[serde(with = "postcard::fixint::le")]
+    pub popup_count: u32,
+    /// Alternatives over all pop-ups.
+    #[serde(with = "postcard::fixint::le")]
+    pub alternative_count: u32,
+    /// Blocking discs over all alternatives.
+    #[serde(with = "postcard::fixint::le")]
+    pub disc_count: u32,
+    /// M of the nominal route (no pop-ups): the time factors' τ = M·Δt.
+    #[serde(with = "postcard::fixint::le")]
+    pub nominal_steps: u32,
+    /// The mission's limit on the mean time factor, T_max.
+    pub time_limit: f32,
+    /// The mission's limit on the mean fuel factor, F_cmax.
+    pub fuel_limit: f32,
+}
+
+impl AlternativesRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 24;
+}
+
+/// A potential pop-up threat: its lethal disc and its prior appearance probability.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PopupRecord {
+    /// Centre east, metres.
+    pub x: f32,
+    /// Centre north, metres.
+    pub y: f32,
+    /// Radius of the disc every alternative keeps clear of (with the clearance), metres.
+    pub radius: f32,
+    /// P_A known on the ground, in [0, 1].
+    pub probability: f32,
+    /// Its alternatives, 1 to [`MAX_STORED_ALTERNATIVES`].
+    #[serde(with = "postcard::fixint::le")]
+    pub alternative_count: u32,
+}
+
+impl PopupRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 20;
+}
+
+/// A bypass alternative: its risk, time and fuel figures (`crate::planner::risk`) and the
+/// blocking discs that, with its pop-up's disc, make the planner fly it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AlternativeRecord {
+    /// M, its steps of Δt (at least 1).
+    #[serde(with = "postcard::fixint::le")]
+    pub steps: u32,
+    /// P_S,known: survival against the known radars, in [0, 1].
+    pub survival_known: f32,
+    /// P_S,PU: survival against its pop-up's radar alone, in [0, 1].
+    pub survival_popup: f32,
+    /// F_c, its fuel factor (finite, not negative).
+    pub fuel: f32,
+    /// Its length as planned on the ground, metres.
+    pub length_m: f32,
+    /// Its blocking discs, 0 to [`MAX_BLOCKING_DISCS`].
+    #[serde(with = "postcard::fixint::le")]
+    pub disc_count: u32,
+}
+
+impl AlternativeRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 24;
+}
+
+/// A blocking disc of an alternative.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DiscRecord {
+    /// Centre east, metres.
+    pub x: f32,
+    /// Centre north, metres.
+    pub y: f32,
+    /// Radius, metres.
+    pub radius: f32,
+}
+
+impl DiscRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 12;
+}
+
 /// A static obstacle.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ObstacleRecord {
@@ -437,6 +545,44 @@ mod tests {
             postcard::to_stdvec(&p).unwrap().len(),
             ProvenanceRecord::SIZE
         );
+        let a = AlternativesRecord {
+            popup_count: u32::MAX,
+            alternative_count: 1,
+            disc_count: 2,
+            nominal_steps: 3,
+            time_limit: 0.35,
+            fuel_limit: 0.4,
+        };
+        assert_eq!(
+            postcard::to_stdvec(&a).unwrap().len(),
+            AlternativesRecord::SIZE
+        );
+        let p = PopupRecord {
+            x: 1.0,
+            y: 2.0,
+            radius: 3.0,
+            probability: 0.5,
+            alternative_count: u32::MAX,
+        };
+        assert_eq!(postcard::to_stdvec(&p).unwrap().len(), PopupRecord::SIZE);
+        let alt = AlternativeRecord {
+            steps: u32::MAX,
+            survival_known: 0.9,
+            survival_popup: 0.8,
+            fuel: 0.1,
+            length_m: 1.0,
+            disc_count: u32::MAX,
+        };
+        assert_eq!(
+            postcard::to_stdvec(&alt).unwrap().len(),
+            AlternativeRecord::SIZE
+        );
+        let d = DiscRecord {
+            x: 1.0,
+            y: 2.0,
+            radius: 3.0,
+        };
+        assert_eq!(postcard::to_stdvec(&d).unwrap().len(), DiscRecord::SIZE);
         let v = VertexRecord {
             x: 1.0,
             y: 2.0,

@@ -6,6 +6,7 @@
 //! index below the corresponding count — except the Dubins views of a Hermite chain
 //! ([`Network::edge`], [`Network::edge_path`]), which has none.
 
+mod alternatives;
 mod crc;
 pub mod elevation;
 mod error;
@@ -22,6 +23,7 @@ pub use verify::{ImageVerifier, VerifyStep};
 #[cfg(feature = "std")]
 pub mod write;
 
+pub use alternatives::{AlternativesSummary, StoredAlternative, StoredPopup};
 pub use crc::{crc32, crc32_parts};
 pub use error::{LoadError, Parameter, Section};
 pub use mode::Mode;
@@ -70,12 +72,47 @@ struct Layout {
     voronoi: usize,
     threats: usize,
     corner_table: usize,
+    /// The pop-up alternatives' record and tables, when the header's flag says so (0
+    /// otherwise).
+    alternatives: usize,
+    stored_popups: usize,
+    stored_alternatives: usize,
+    blocking_discs: usize,
     /// The provenance records that close the body.
     provenance: usize,
     end: usize,
 }
 
 impl Layout {
+    /// Every section at offset 0: the layout of [`Network::empty`], and the sections a mode
+    /// does not have.
+    const ZERO: Layout = Layout {
+        vertices: 0,
+        edge_offsets: 0,
+        edges: 0,
+        obstacles: 0,
+        points: 0,
+        cell_offsets: 0,
+        cell_lists: 0,
+        terrain: 0,
+        elevations: 0,
+        landmark: 0,
+        landmarks: 0,
+        rosettes: 0,
+        chain_offsets: 0,
+        chain_indices: 0,
+        elements: 0,
+        voronoi: 0,
+        threats: 0,
+        corner_table: 0,
+        alternatives: 0,
+        stored_popups: 0,
+        stored_alternatives: 0,
+        blocking_discs: 0,
+        provenance: 0,
+        end: 0,
+    };
+
     /// Section offsets implied by the header's counts, or `None` on arithmetic overflow.
     fn from_header(h: &Header) -> Option<Self> {
         let v = h.vertex_count as usize;
@@ -94,19 +131,8 @@ impl Layout {
             points: next(h.obstacle_point_count as usize, PointRecord::SIZE)?,
             cell_offsets: next(cells.checked_add(1)?, U32Record::SIZE)?,
             cell_lists: next(h.grid_list_bytes as usize, 1)?,
-            terrain: 0,
-            elevations: 0,
-            landmark: 0,
-            landmarks: 0,
-            rosettes: 0,
-            chain_offsets: 0,
-            chain_indices: 0,
-            elements: 0,
-            voronoi: 0,
-            threats: 0,
-            corner_table: 0,
-            provenance: 0,
             end: at,
+            ..Self::ZERO
         })
     }
 
@@ -256,28 +282,7 @@ impl<'a> Network<'a> {
                 body_len: 0,
                 image_crc: 0,
             },
-            layout: Layout {
-                vertices: 0,
-                edge_offsets: 0,
-                edges: 0,
-                obstacles: 0,
-                points: 0,
-                cell_offsets: 0,
-                cell_lists: 0,
-                terrain: 0,
-                elevations: 0,
-                landmark: 0,
-                landmarks: 0,
-                rosettes: 0,
-                chain_offsets: 0,
-                chain_indices: 0,
-                elements: 0,
-                voronoi: 0,
-                threats: 0,
-                corner_table: 0,
-                provenance: 0,
-                end: 0,
-            },
+            layout: Layout::ZERO,
             section: ModeSection::Roadmap,
         }
     }
@@ -339,6 +344,10 @@ impl<'a> Network<'a> {
             Mode::Voronoi => voronoi::read_section(bytes, layout)?,
             Mode::Unknown(mode) => return Err(LoadError::UnknownMode { mode }),
         };
+        let layout = match header.flags & FLAG_POPUP_ALTERNATIVES {
+            0 => layout,
+            _ => alternatives::read_section(bytes, layout)?,
+        };
         let layout = layout
             .with_provenance(header.provenance_count)
             .ok_or(LoadError::CountsTooLarge)?;
@@ -386,6 +395,7 @@ impl<'a> Network<'a> {
         net.validate_edges()?;
         net.validate_obstacles()?;
         net.validate_grid()?;
+        net.validate_alternatives()?;
         Ok(net)
     }
 

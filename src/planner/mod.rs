@@ -11,6 +11,7 @@
 //! figure); place it in a `static` so the linker rejects a build whose RAM does not suffice.
 //! A new planner is all-zero, so such a `static` lands in `.bss` and costs no flash.
 
+pub mod alternatives;
 mod connect;
 pub mod decision;
 mod error;

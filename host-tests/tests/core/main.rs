@@ -43,6 +43,9 @@ mod risk;
 mod robustness;
 /// Cubic spline smoothing: the corner table and the fit against dense f64 sampling.
 mod spline;
+/// The pop-up alternatives stored in a network image and the onboard switch (Ruz et al.):
+/// read back, refused by name, decided as a brute force, flown round their discs.
+mod stored_alternatives;
 /// The core's f32 sine and cosine against f64.
 mod trig;
 /// The Voronoi diagram of threat sites against an exact brute force, SciPy's CSV and closed

@@ -9,6 +9,7 @@ pub mod alternatives;
 pub mod cli;
 pub mod histogram;
 pub mod montecarlo;
+pub mod stored;
 pub mod study_cli;
 
 use crate::scenario::Scenario;

@@ -8,8 +8,11 @@ use crate::geometry::hermite::{FlyLimits, LineElement};
 use crate::geometry::{points_bounding_box, DubinsPath, DubinsWord, Pose, Segment, Vec2};
 use std::vec::Vec;
 
+mod alternatives;
 mod grid;
 mod landmark;
+use alternatives::write_alternatives_section;
+pub use alternatives::{AlternativeSpec, AlternativesSpec, PopupSpec};
 use grid::GridIndex;
 use landmark::{check_landmark, write_landmark_section};
 
@@ -287,6 +290,22 @@ fn push<T: serde::Serialize>(out: &mut Vec<u8>, record: &T) {
 
 /// Encodes a network and validates the result with [`Network::from_bytes`].
 pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
+    encode_image(spec, None)
+}
+
+/// Encodes a network with the pop-up alternatives section (header flag
+/// [`FLAG_POPUP_ALTERNATIVES`]) and validates the result with [`Network::from_bytes`].
+pub fn encode_with_alternatives(
+    spec: &NetworkSpec,
+    alternatives: &AlternativesSpec,
+) -> Result<Vec<u8>, WriteError> {
+    encode_image(spec, Some(alternatives))
+}
+
+fn encode_image(
+    spec: &NetworkSpec,
+    alternatives: Option<&AlternativesSpec>,
+) -> Result<Vec<u8>, WriteError> {
     if spec.vertices.len() as u64 > MAX_VERTICES as u64 {
         return Err(WriteError::TooLarge(
             "vertices (edge targets are 16-bit: at most 65536)",
@@ -387,6 +406,9 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
     if let Some(v) = &spec.voronoi {
         write_voronoi_section(&mut body, v);
     }
+    if let Some(a) = alternatives {
+        write_alternatives_section(&mut body, a)?;
+    }
     for record in &spec.provenance {
         push(&mut body, record);
     }
@@ -395,7 +417,7 @@ pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
         magic: MAGIC,
         version: FORMAT_VERSION,
         mode,
-        flags: 0,
+        flags: alternatives.map_or(0, |_| FLAG_POPUP_ALTERNATIVES),
         origin_lat_deg: spec.origin_lat_deg,
         origin_lon_deg: spec.origin_lon_deg,
         turn_radius_m: spec.turn_radius_m,

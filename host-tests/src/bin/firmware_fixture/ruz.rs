@@ -1,117 +1,267 @@
-//! The onboard decision of Ruz et al. (`--ruz --scenario FILE` on a roadmap network built from
-//! `ruz-popups`): the host computes every pop-up's bypass alternatives with the ground tool's
-//! code ([`skyroute_prep::ruz::alternatives::study`]), keeps the figures the decision needs
-//! (each alternative's [`RouteFigures`]: steps, the two survival figures and the fuel factor,
-//! and the nominal route's steps), and decides with [`decide`] for a sequence of
-//! announcements, exactly as the `ruz` firmware will: R_K recomputed for the announced
-//! appearance probabilities with [`skyroute::planner::risk::alternative`], then `decide`.
-//! `query.rs` records the figures, the announcements, every recomputed alternative and every
-//! answer; the firmware compares them bit for bit.
+//! The onboard switch of Ruz et al. (`--ruz --scenario FILE` on a roadmap network built from
+//! `ruz-popups`, whose image stores every pop-up's bypass alternatives): the host does exactly
+//! what the `ruz` firmware will, with the same core calls on the same image: load, plan the
+//! scenario's start → goal (the nominal route), then for each announcement decide among the
+//! stored alternatives ([`decide_stored`]), fly the choice ([`Planner::fly_alternatives`]: the
+//! chosen alternatives' discs as pop-ups), plan again, and remove the discs. `query.rs`
+//! records the capacities, the query, every answer and route, and a worst-case instance of the
+//! decision; the firmware compares them bit for bit.
 //!
-//! The announcements: every pop-up with its scenario probability under the paper's limits;
-//! the second pop-up appears (P = 1) and the first does not (P = 0); a time limit that binds
-//! (the least-risk choice breaks it); a time limit no choice meets (the tightest named). Then a
-//! synthetic instance of [`MAX_DECISION_POPUPS`] × [`MAX_ALTERNATIVES`] whose risks fall along
-//! the search's order, so that no choice is ever cut: the decision visits exactly
-//! [`decision_work_bound`] nodes, its worst case.
-//!
-//! The alternatives are `const` data in the firmware, not stored in the network image.
+//! The announcements: every pop-up with its stored probability under the paper's limits; the
+//! second pop-up appears (P = 1) and the first does not (P = 0); the same with a time limit
+//! halfway between the least mean time factor any choice reaches and the unconstrained
+//! choice's (so it binds, when they differ); a time limit below that least mean (infeasible,
+//! the time limit named); the last pop-up alone, certain. Then a synthetic instance of
+//! [`MAX_DECISION_POPUPS`] × [`MAX_ALTERNATIVES`] whose risks fall along the search's order, so
+//! that no choice is ever cut: the decision visits exactly [`decision_work_bound`] nodes, its
+//! worst case.
 
-use super::{lit, write_fixture, Args};
+use super::{capacity, lit, write_fixture, Args, HOST_E, HOST_V, R_CAP};
 use skyroute::network::Network;
+use skyroute::planner::alternatives::{decide_stored, Announced, SwitchError};
 use skyroute::planner::decision::{
     decide, decision_work_bound, Alternative, Decision, DecisionError, DecisionLimits, Limit,
     MAX_ALTERNATIVES, MAX_DECISION_POPUPS,
 };
-use skyroute::planner::risk::{alternative, RouteFigures};
-use skyroute_prep::mission::MissionOptions;
-use skyroute_prep::ruz::alternatives::{study, Planning};
+use skyroute::planner::{PlanError, PlannerConfig};
+use skyroute::{Goal, Planner, Pose, Query, Search};
+use skyroute_prep::mission::SMOOTHING_HEADINGS;
 use skyroute_prep::ruz::cli::LIMITS;
 use std::fmt::Write as _;
+use std::path::Path;
 
-/// One announcement: what the firmware is told, and what the host decided.
+/// Pop-up slots of the `ruz` firmware's planner: every chosen alternative's discs (three
+/// pop-ups of at most three discs each on ruz-popups).
+pub(super) const RUZ_P_CAP: usize = 16;
+
+/// The connection settings when an end does not connect with the default's: its candidates,
+/// however far (on a coarse roadmap the scenario's start and goal lie more than the default
+/// 1 km from every vertex).
+const WIDE_CONFIG: PlannerConfig = PlannerConfig {
+    connect_radius_m: f32::INFINITY,
+    ..PlannerConfig::DEFAULT
+};
+
+type RuzPlanner<'n> = Planner<'n, HOST_V, HOST_E, RUZ_P_CAP, R_CAP>;
+
+/// A route the host planned: its length, primitives and counted work, and the discs flown
+/// round.
+#[derive(Clone, Copy, Debug)]
+struct Flown {
+    discs: usize,
+    length: f32,
+    primitives: u32,
+    work: u64,
+}
+
+/// One announcement: what the firmware is told, and what the host decided and flew.
 struct Announcement {
     what: String,
-    appearance: Vec<f32>,
+    announced: Vec<Announced>,
     limits: DecisionLimits,
-    inputs: Vec<Vec<Alternative>>,
     answer: Result<Decision, DecisionError>,
+    flown: Option<Flown>,
 }
 
-/// The pop-ups' names, their scenario probabilities, the nominal route's steps and every
-/// alternative's figures.
-struct Figures {
-    names: Vec<String>,
-    probabilities: Vec<f32>,
-    nominal_steps: u32,
-    alternatives: Vec<Vec<RouteFigures>>,
+/// The scenario's start pose and goal in the network's frame, and the pop-ups' names.
+fn query_of(
+    scenario: Option<&Path>,
+    network: &Network<'_>,
+) -> Result<(Query, Vec<String>), String> {
+    let path = scenario.ok_or("--ruz needs --scenario FILE")?;
+    let s = skyroute_prep::scenario::load(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let frame = skyroute_prep::export::network_frame(network);
+    let st = s.start.as_ref().ok_or("the scenario has no start")?;
+    let g = s.goal.as_ref().ok_or("the scenario has no goal")?;
+    let start: Pose = skyroute_prep::local::local_pose(&frame, st.lon, st.lat, st.heading_deg);
+    let goal = Goal {
+        position: skyroute_prep::local::local(&frame, g.lon, g.lat),
+        heading: g
+            .heading_deg
+            .map(|h| skyroute_prep::local::local_heading(&frame, g.lon, g.lat, h)),
+    };
+    let query = Query {
+        start,
+        goal,
+        search: Search::AStar,
+    };
+    Ok((query, s.popups.iter().map(|p| p.name.clone()).collect()))
 }
 
-/// Decides for `appearance` under `limits` as the firmware does.
-fn announce(f: &Figures, what: &str, appearance: Vec<f32>, limits: DecisionLimits) -> Announcement {
-    let inputs: Vec<Vec<Alternative>> = f
-        .alternatives
-        .iter()
-        .zip(&appearance)
-        .map(|(alts, &p)| {
-            alts.iter()
-                .map(|a| alternative(a, f.nominal_steps, p))
-                .collect()
-        })
-        .collect();
-    let slices: Vec<&[Alternative]> = inputs.iter().map(Vec::as_slice).collect();
-    let answer = decide(&slices, &limits);
-    Announcement {
-        what: what.to_string(),
-        appearance,
-        limits,
-        inputs,
-        answer,
+/// Plans `query` with the planner's discs as the firmware does, and as the ground tool plans a
+/// mission's leg: with the default connection, again with the nearest vertices however far
+/// when an end does not connect, then the shortcut and heading-smoothing passes.
+fn plan(
+    planner: &mut RuzPlanner<'_>,
+    query: &Query,
+    budget: u64,
+    discs: usize,
+) -> Result<Flown, String> {
+    let failed = |e: PlanError| format!("plan with {discs} discs: {e}");
+    let planned = match planner.plan(query, budget) {
+        Err(PlanError::StartUnconnected | PlanError::GoalUnconnected) => {
+            planner.set_config(WIDE_CONFIG);
+            let second = planner.plan(query, budget);
+            planner.set_config(PlannerConfig::DEFAULT);
+            second
+        }
+        other => other,
     }
+    .map_err(failed)?;
+    let shortcut = planner.shortcut(budget).map_err(failed)?;
+    let smooth = planner
+        .smooth_headings(SMOOTHING_HEADINGS, budget)
+        .map_err(failed)?;
+    let s = planner.route_summary().ok_or("no route after smoothing")?;
+    Ok(Flown {
+        discs,
+        length: s.length,
+        primitives: s.primitives,
+        work: planned.work.total() + shortcut.work.total() + smooth.work.total(),
+    })
+}
+
+/// Decides `announced` under `limits` and, when there is a choice, flies it and removes its
+/// discs again.
+fn announce(
+    planner: &mut RuzPlanner<'_>,
+    query: &Query,
+    budget: u64,
+    what: String,
+    announced: Vec<Announced>,
+    limits: DecisionLimits,
+) -> Result<Announcement, String> {
+    let net = *planner.network();
+    let answer = match decide_stored(&net, &announced, &limits) {
+        Ok(d) => Ok(d),
+        Err(SwitchError::Decision(e)) => Err(e),
+        Err(e) => return Err(format!("{what}: {e:?}")),
+    };
+    let flown = match &answer {
+        Ok(d) => {
+            let ids = planner
+                .fly_alternatives(&announced, &d.choice)
+                .map_err(|e| format!("{what}: fly_alternatives: {e:?}"))?;
+            let flown = plan(planner, query, budget, ids.len())?;
+            for id in ids {
+                planner
+                    .remove_popup(id)
+                    .map_err(|e| format!("{what}: {e}"))?;
+            }
+            Some(flown)
+        }
+        Err(_) => None,
+    };
+    Ok(Announcement {
+        what,
+        announced,
+        limits,
+        answer,
+        flown,
+    })
+}
+
+/// The least mean time factor any choice of `announced` reaches.
+fn least_mean_time(net: &Network<'_>, announced: &[Announced]) -> f32 {
+    // The mean is least when each pop-up takes its least time factor.
+    let n = announced.len().max(1) as f32;
+    let nominal = net.alternatives_summary().map_or(0, |s| s.nominal_steps);
+    announced
+        .iter()
+        .map(|a| {
+            (0..MAX_ALTERNATIVES as u32)
+                .filter_map(|k| net.stored_alternative(a.popup as u32, k))
+                .map(|s| skyroute::planner::risk::time_factor(nominal, s.steps))
+                .fold(f32::INFINITY, f32::min)
+        })
+        .sum::<f32>()
+        / n
 }
 
 /// The announcements of the module documentation.
-fn announcements(f: &Figures) -> Vec<Announcement> {
-    let n = f.probabilities.len();
+fn announcements(
+    planner: &mut RuzPlanner<'_>,
+    query: &Query,
+    budget: u64,
+    names: &[String],
+) -> Result<Vec<Announcement>, String> {
+    let net = *planner.network();
+    let stored = net
+        .alternatives_summary()
+        .ok_or("the network stores no pop-up alternatives")?;
+    let n = stored.popups as u8;
+    let prior = |u: u8| net.stored_popup(u as u32).map_or(1.0, |p| p.probability);
+    let all: Vec<Announced> = (0..n)
+        .map(|u| Announced {
+            popup: u,
+            appearance: prior(u),
+        })
+        .collect();
+    let name = |u: usize| names.get(u).cloned().unwrap_or_else(|| format!("#{u}"));
     let mut out = vec![announce(
-        f,
-        "every pop-up announced with its probability, the paper's limits",
-        f.probabilities.clone(),
+        planner,
+        query,
+        budget,
+        "every pop-up announced with its probability, the paper's limits".into(),
+        all.clone(),
         LIMITS,
-    )];
+    )?];
+    let mut second = all.clone();
     if n >= 2 {
-        let mut p = f.probabilities.clone();
-        p[1] = 1.0;
-        p[0] = 0.0;
+        second[1].appearance = 1.0;
+        second[0].appearance = 0.0;
         let what = format!(
             "{} appears (P = 1), {} does not (P = 0): re-decide",
-            f.names[1], f.names[0]
+            name(1),
+            name(0)
         );
-        out.push(announce(f, &what, p, LIMITS));
+        out.push(announce(
+            planner,
+            query,
+            budget,
+            what,
+            second.clone(),
+            LIMITS,
+        )?);
     }
+    let least = least_mean_time(&net, &second);
+    let free = out
+        .last()
+        .and_then(|a| a.answer.as_ref().ok())
+        .map_or(least, |d| d.mean_time);
     let binding = DecisionLimits {
-        time_max: 0.003,
+        time_max: 0.5 * (least + free),
         fuel_max: LIMITS.fuel_max,
     };
+    let what = format!(
+        "the same, a time limit of {:.5} halfway between the least mean time factor ({least:.5}) and the free choice's ({free:.5})",
+        binding.time_max
+    );
     out.push(announce(
-        f,
-        "the same, a time limit that binds (0.003)",
-        out.last()
-            .map_or(f.probabilities.clone(), |a| a.appearance.clone()),
+        planner,
+        query,
+        budget,
+        what,
+        second.clone(),
         binding,
-    ));
-    let tight = DecisionLimits {
-        time_max: 0.001,
+    )?);
+    let below = DecisionLimits {
+        time_max: least - 0.001,
         fuel_max: LIMITS.fuel_max,
     };
-    out.push(announce(
-        f,
-        "the same, a time limit no choice meets (0.001)",
-        out.last()
-            .map_or(f.probabilities.clone(), |a| a.appearance.clone()),
-        tight,
-    ));
-    out
+    let what = format!(
+        "the same, a time limit of {:.5} that no choice meets",
+        below.time_max
+    );
+    out.push(announce(planner, query, budget, what, second, below)?);
+    let last = n.saturating_sub(1);
+    let what = format!("{} alone, certain (P = 1)", name(last as usize));
+    let alone = vec![Announced {
+        popup: last,
+        appearance: 1.0,
+    }];
+    out.push(announce(planner, query, budget, what, alone, LIMITS)?);
+    Ok(out)
 }
 
 /// The synthetic worst case: [`MAX_DECISION_POPUPS`] pop-ups of [`MAX_ALTERNATIVES`]
@@ -134,60 +284,79 @@ fn worst_case() -> Vec<Vec<Alternative>> {
         .collect()
 }
 
-/// Plans the alternatives of every pop-up of the scenario with the ground tool's code.
-fn figures(args: &Args, bytes: &[u8], network: &Network<'_>) -> Result<Figures, String> {
-    let path = args
-        .scenario
-        .as_ref()
-        .ok_or("--ruz needs --scenario FILE")?;
-    let s = skyroute_prep::scenario::load(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let frame = skyroute_prep::export::network_frame(network);
-    let planning = Planning {
-        bytes,
-        scenario: &s,
-        frame: &frame,
-        options: MissionOptions::default(),
-    };
-    let params = skyroute_prep::ruz::risk_params(&s);
-    let which: Vec<usize> = (0..s.popups.len()).collect();
-    let st = study(&planning, &params, &which).map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(Figures {
-        names: st.popups.iter().map(|p| p.name.clone()).collect(),
-        probabilities: st.popups.iter().map(|p| p.probability as f32).collect(),
-        nominal_steps: st.nominal.figures.steps,
-        alternatives: st
-            .popups
-            .iter()
-            .map(|p| p.alternatives.iter().map(|a| a.figures).collect())
-            .collect(),
+/// What the host computed for the firmware.
+struct Answers {
+    names: Vec<String>,
+    query: Query,
+    budget: u64,
+    nominal: Flown,
+    list: Vec<Announcement>,
+}
+
+/// Loads the image into the host planner and answers every announcement (module
+/// documentation).
+fn answers(scenario: Option<&Path>, bytes: &[u8]) -> Result<Answers, String> {
+    let network = Network::from_bytes(bytes).map_err(|e| e.to_string())?;
+    let (query, names) = query_of(scenario, &network)?;
+    let mut planner: Box<RuzPlanner<'_>> = Box::new(Planner::new());
+    planner.load(bytes).map_err(|e| format!("load: {e}"))?;
+    planner.set_config(PlannerConfig::DEFAULT);
+    let budget = planner.worst_case_work();
+    let nominal = plan(&mut planner, &query, budget, 0)?;
+    let list = announcements(&mut planner, &query, budget, &names)?;
+    Ok(Answers {
+        names,
+        query,
+        budget,
+        nominal,
+        list,
     })
 }
 
-/// The fixture of the `ruz` firmware: plans the alternatives, decides every announcement and the
-/// worst case, reports them and writes `OUT_DIR/query.rs`.
+/// The fixture of the `ruz` firmware: answers every announcement and the worst case, reports
+/// them and writes `OUT_DIR/{network.bin,query.rs}`.
 pub(super) fn run_ruz(
     args: &Args,
     bytes: &[u8],
     source: &str,
     network: &Network<'_>,
 ) -> Result<(), String> {
-    let f = figures(args, bytes, network).map_err(|e| format!("{source}: {e}"))?;
-    if f.alternatives.is_empty() || f.alternatives.len() > MAX_DECISION_POPUPS {
-        return Err(format!("{source}: {} pop-ups", f.alternatives.len()));
-    }
-    let list = announcements(&f);
+    let a = std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn({
+            let bytes = bytes.to_vec();
+            let scenario = args.scenario.clone();
+            move || answers(scenario.as_deref(), &bytes)
+        })
+        .map_err(|e| format!("spawning the planning thread: {e}"))?
+        .join()
+        .map_err(|_| "the planning thread panicked".to_string())?
+        .map_err(|e| format!("{source}: {e}"))?;
     let worst = worst_case();
     let slices: Vec<&[Alternative]> = worst.iter().map(Vec::as_slice).collect();
     let worst_answer = decide(&slices, &LIMITS);
-    eprintln!(
-        "firmware_fixture: {source}: ruz decision, pop-ups {}, nominal route {} steps",
-        f.names.join(", "),
-        f.nominal_steps
+    let caps = (
+        capacity(network.vertex_count(), 64),
+        capacity(network.edge_count(), 256),
     );
-    for a in &list {
+    Network::from_bytes_with_capacity(bytes, caps.0, caps.1).map_err(|e| {
+        format!(
+            "{source}: does not load with V={} E={}: {e}",
+            caps.0, caps.1
+        )
+    })?;
+    eprintln!(
+        "firmware_fixture: {source}: ruz switch, pop-ups {}; nominal route {} m, {} primitives, work {} of {}",
+        a.names.join(", "),
+        a.nominal.length,
+        a.nominal.primitives,
+        a.nominal.work,
+        a.budget
+    );
+    for x in &a.list {
         eprintln!(
-            "firmware_fixture: {}: P_A {:?}, limits {:?}: {:?}",
-            a.what, a.appearance, a.limits, a.answer
+            "firmware_fixture: {}: {:?}, limits {:?}: {:?}; flown {:?}",
+            x.what, x.announced, x.limits, x.answer, x.flown
         );
     }
     let counts: Vec<usize> = worst.iter().map(Vec::len).collect();
@@ -198,8 +367,8 @@ pub(super) fn run_ruz(
         worst_answer.as_ref().map(|d| d.work),
         decision_work_bound(&counts)
     );
-    let q = query_rs(source, &f, &list, &worst, &worst_answer);
-    write_fixture(&args.out_dir, None, &q)
+    let q = query_rs(source, caps, &a, &worst, &worst_answer);
+    write_fixture(&args.out_dir, Some(bytes), &q)
 }
 
 /// An f32 literal, infinities included.
@@ -257,11 +426,22 @@ fn answer_rs(answer: &Result<Decision, DecisionError>) -> String {
     }
 }
 
-/// `query.rs`: the figures, the announcements with the host's answers, the worst case.
+/// A [`Flown`] as an `R::Flown` expression.
+fn flown_rs(f: &Flown) -> String {
+    format!(
+        "R::Flown {{ discs: {}, length: {}, primitives: {}, work: {} }}",
+        f.discs,
+        flit(f.length),
+        f.primitives,
+        f.work
+    )
+}
+
+/// `query.rs`: the capacities, the query, the host's answers and routes, the worst case.
 fn query_rs(
     source: &str,
-    f: &Figures,
-    list: &[Announcement],
+    (v_cap, e_cap): (usize, usize),
+    a: &Answers,
     worst: &[Vec<Alternative>],
     worst_answer: &Result<Decision, DecisionError>,
 ) -> String {
@@ -269,57 +449,96 @@ fn query_rs(
     let w = &mut q;
     let _ = writeln!(
         w,
-        "// Generated by host-tests/src/bin/firmware_fixture/ from {source} (the Ruz decision). \
+        "// Generated by host-tests/src/bin/firmware_fixture/ from {source} (the Ruz switch). \
          Do not edit.\n"
     );
+    let _ = writeln!(w, "use skyroute::planner::alternatives::Announced;");
     let _ = writeln!(w, "use skyroute::planner::decision as D;");
-    let _ = writeln!(w, "use skyroute::planner::risk::RouteFigures;");
     let _ = writeln!(w, "use skyroute_firmware_example::ruz as R;\n");
-    let _ = writeln!(w, "/// The pop-ups, in the decision's order.");
-    let _ = writeln!(w, "pub const NAMES: &[&str] = &{:?};", f.names);
+    let _ = writeln!(w, "/// Search-state capacity of the planner.");
+    let _ = writeln!(w, "pub const V_CAP: usize = {v_cap};");
+    let _ = writeln!(w, "/// Edge capacity of the planner.");
+    let _ = writeln!(w, "pub const E_CAP: usize = {e_cap};");
+    let _ = writeln!(w, "/// Pop-up slots: every chosen alternative's discs.");
+    let _ = writeln!(w, "pub const P_CAP: usize = {RUZ_P_CAP};");
+    let _ = writeln!(w, "/// Route primitives the planner holds.");
+    let _ = writeln!(w, "pub const R_CAP: usize = {R_CAP};");
     let _ = writeln!(
         w,
-        "/// M of the nominal route (the time factors' τ = M·Δt)."
+        "/// The connection settings when an end does not connect with the default's."
     );
-    let _ = writeln!(w, "pub const NOMINAL_STEPS: u32 = {};", f.nominal_steps);
     let _ = writeln!(
         w,
-        "/// Each pop-up's alternatives as the ground tool scored them: steps, P_S,known, P_S,PU, F_c."
+        "pub const WIDE_CONFIG: skyroute::planner::PlannerConfig = skyroute::planner::PlannerConfig {{\n    \
+         start_candidates: {},\n    goal_candidates: {},\n    connect_radius_m: f32::INFINITY,\n    \
+         free_goal_headings: {},\n    turn_rule: skyroute::planner::TurnRule::{:?},\n}};",
+        WIDE_CONFIG.start_candidates,
+        WIDE_CONFIG.goal_candidates,
+        WIDE_CONFIG.free_goal_headings,
+        WIDE_CONFIG.turn_rule
     );
-    let _ = writeln!(w, "pub const ALTERNATIVES: &[&[RouteFigures]] = &[");
-    for alts in &f.alternatives {
-        let _ = writeln!(w, "    &[");
-        for a in alts {
-            let _ = writeln!(
-                w,
-                "        RouteFigures {{ steps: {}, survival_known: {}, survival_popup: {}, fuel: {} }},",
-                a.steps,
-                flit(a.survival_known),
-                flit(a.survival_popup),
-                flit(a.fuel)
-            );
-        }
-        let _ = writeln!(w, "    ],");
-    }
-    let _ = writeln!(w, "];");
+    let _ = writeln!(w, "/// Candidate headings of the heading-smoothing pass.");
     let _ = writeln!(
         w,
-        "/// The announcements, each with the alternatives' figures and the decision the host computed."
+        "pub const SMOOTHING_HEADINGS: u16 = {SMOOTHING_HEADINGS};"
+    );
+    let _ = writeln!(w, "/// The stored pop-ups' names, in the image's order.");
+    let _ = writeln!(w, "pub const NAMES: &[&str] = &{:?};", a.names);
+    let (s, g) = (a.query.start, a.query.goal);
+    let heading = g
+        .heading
+        .map_or("None".to_string(), |h| format!("Some({})", lit(h)));
+    let _ = writeln!(w, "/// The scenario's start → goal.");
+    let _ = writeln!(
+        w,
+        "pub const QUERY: skyroute::Query = skyroute::Query {{\n    start: skyroute::Pose::new({}, {}, {}),\n    \
+         goal: skyroute::Goal {{ position: skyroute::Vec2::new({}, {}), heading: {heading} }},\n    \
+         search: skyroute::Search::AStar,\n}};",
+        lit(s.position.x),
+        lit(s.position.y),
+        lit(s.heading),
+        lit(g.position.x),
+        lit(g.position.y)
+    );
+    let _ = writeln!(w, "/// Work budget of each plan: the network's worst case.");
+    let _ = writeln!(w, "pub const BUDGET: u64 = {};", a.budget);
+    let _ = writeln!(
+        w,
+        "/// The nominal route (no pop-up) as the host planned it."
+    );
+    let _ = writeln!(w, "pub const NOMINAL: R::Flown = {};", flown_rs(&a.nominal));
+    let _ = writeln!(
+        w,
+        "/// The announcements, each with the host's decision and the route flying it."
     );
     let _ = writeln!(w, "pub const ANNOUNCEMENTS: &[R::Announcement] = &[");
-    for a in list {
+    for x in &a.list {
         let _ = writeln!(w, "    R::Announcement {{");
-        let _ = writeln!(w, "        what: {:?},", a.what);
-        let p: Vec<String> = a.appearance.iter().map(|&x| flit(x)).collect();
-        let _ = writeln!(w, "        appearance: &[{}],", p.join(", "));
+        let _ = writeln!(w, "        what: {:?},", x.what);
+        let announced: Vec<String> = x
+            .announced
+            .iter()
+            .map(|a| {
+                format!(
+                    "Announced {{ popup: {}, appearance: {} }}",
+                    a.popup,
+                    flit(a.appearance)
+                )
+            })
+            .collect();
+        let _ = writeln!(w, "        announced: &[{}],", announced.join(", "));
         let _ = writeln!(
             w,
             "        limits: D::DecisionLimits {{ time_max: {}, fuel_max: {} }},",
-            flit(a.limits.time_max),
-            flit(a.limits.fuel_max)
+            flit(x.limits.time_max),
+            flit(x.limits.fuel_max)
         );
-        let _ = writeln!(w, "        inputs: {},", alternatives_rs(&a.inputs));
-        let _ = writeln!(w, "        expected: {},", answer_rs(&a.answer));
+        let _ = writeln!(w, "        expected: {},", answer_rs(&x.answer));
+        let flown = x
+            .flown
+            .as_ref()
+            .map_or("None".to_string(), |f| format!("Some({})", flown_rs(f)));
+        let _ = writeln!(w, "        flown: {flown},");
         let _ = writeln!(w, "    }},");
     }
     let _ = writeln!(w, "];");
