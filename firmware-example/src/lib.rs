@@ -20,10 +20,11 @@
 //!    a pose along the route; every answer must equal the host's);
 //! 3. [`exit`]s through semihosting with the verdict: success only if the host match holds.
 //!
-//! The fifth, `ruz.rs`, has no network and no planner: it embeds only `fixture-ruz/query.rs`
-//! (the bypass alternatives' figures of ruz-popups, a sequence of announcements and the host's
-//! decisions), calls [`start_clock`], lets [`ruz::run`] decide every announcement and compare
-//! it with the host's, and [`exit`]s with the verdict.
+//! The fifth, `ruz.rs`, embeds `fixture-ruz/` (a ruz-popups roadmap whose image stores the
+//! pop-ups' bypass alternatives, and `query.rs`: announcements with the host's decisions and
+//! routes), calls [`start`], lets [`ruz::run`] plan the nominal route, decide every
+//! announcement from the stored alternatives, fly the choice and re-plan, comparing each answer
+//! with the host's, and [`exit`]s with the verdict.
 //!
 //! Logs go over defmt (semihosting); panics and hard faults exit with failure. Run a binary with
 //! `scripts/run-firmware.sh` (or `cargo run --release --bin roadmap` in `firmware-example/`).

@@ -9,7 +9,7 @@ use common::{code, ok, scenario, skyroute, stderr, stdout, TempDir};
 use serde_json::Value;
 use skyroute::planner::decision::{decide, Alternative, DecisionLimits};
 use skyroute::Primitive;
-use skyroute_prep::ruz::alternatives::{study, Planning};
+use skyroute_prep::ruz::alternatives::{plan_study, study, Planning};
 use skyroute_prep::ruz::cli::{decision_inputs, LIMITS};
 
 /// The least f64 distance from `c` to the primitive, sampled every metre.
@@ -65,6 +65,12 @@ fn ruz_popups_decides_flies_and_refuses_by_name() {
     );
     let text = stdout(&plan);
     assert!(text.contains("chose alternative"), "{text}");
+    assert!(text.contains("as stored in the network image"), "{text}");
+    let info = stdout(&ok(skyroute(&["info", &net]), "info"));
+    assert!(
+        info.contains("pop-up alternatives (Ruz et al.): 3 pop-ups"),
+        "{info}"
+    );
     let r: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     let d = &r["decision"];
     assert_eq!(d["popups"].as_array().unwrap().len(), 2);
@@ -184,6 +190,73 @@ fn alternatives_stay_out_of_their_discs_and_the_decision_is_the_brute_force_opti
             ),
             (Err(_), None) => {}
             (g, b) => panic!("limits {limits:?}: decision {g:?}, brute force {b:?}"),
+        }
+    }
+}
+
+#[test]
+fn the_stored_alternatives_are_those_planned_from_the_scenario() {
+    let dir = TempDir::new("ruz-stored");
+    let net = dir.file("n.bin");
+    let ruz = scenario("ruz-popups.geojson");
+    ok(skyroute(&["build", &ruz, "-o", &net]), "build");
+    let bytes = std::fs::read(&net).unwrap();
+    let s = skyroute_prep::scenario::load(std::path::Path::new(&ruz)).unwrap();
+    let network = skyroute::Network::from_bytes(&bytes).unwrap();
+    let frame = skyroute_prep::export::network_frame(&network);
+    let planning = Planning {
+        bytes: &bytes,
+        scenario: &s,
+        frame: &frame,
+        options: Default::default(),
+    };
+    let params = skyroute_prep::ruz::risk_params(&s);
+    let fresh = plan_study(&planning, &params, &[0, 1, 2]).unwrap();
+    let stored = network.alternatives_summary().unwrap();
+    assert_eq!(stored.popups, 3);
+    assert_eq!(stored.nominal_steps, fresh.nominal.figures.steps);
+    assert_eq!(
+        (stored.time_limit, stored.fuel_limit),
+        (LIMITS.time_max, LIMITS.fuel_max)
+    );
+    for (u, p) in (0u32..).zip(&fresh.popups) {
+        let sp = network.stored_popup(u).unwrap();
+        assert_eq!((sp.centre, sp.radius), (p.centre, p.radius_m), "{}", p.name);
+        assert_eq!(sp.probability, p.probability as f32);
+        assert_eq!(sp.alternatives as usize, p.alternatives.len(), "{}", p.name);
+        for (k, a) in (0u32..).zip(&p.alternatives) {
+            let g = network.stored_alternative(u, k).unwrap();
+            let what = format!("{} alternative {}", p.name, k + 1);
+            assert_eq!(g.steps, a.figures.steps, "{what}");
+            assert_eq!(
+                g.survival_known.to_bits(),
+                a.figures.survival_known.to_bits(),
+                "{what}"
+            );
+            assert_eq!(
+                g.survival_popup.to_bits(),
+                a.figures.survival_popup.to_bits(),
+                "{what}"
+            );
+            assert_eq!(g.fuel.to_bits(), a.figures.fuel.to_bits(), "{what}");
+            assert_eq!(g.length_m, a.length_m as f32, "{what}");
+            let discs: Vec<(skyroute::Vec2, f32)> = (0..g.discs)
+                .filter_map(|j| network.blocking_disc(&g, j))
+                .collect();
+            let planned: Vec<(skyroute::Vec2, f32)> = a
+                .discs
+                .iter()
+                .skip(1)
+                .map(|d| (d.centre, d.radius))
+                .collect();
+            assert_eq!(discs, planned, "{what}");
+        }
+    }
+    // The study read back from the image flies the same routes.
+    let read = study(&planning, &params, &[0, 1, 2]).unwrap();
+    for (p, q) in read.popups.iter().zip(&fresh.popups) {
+        for (a, b) in p.alternatives.iter().zip(&q.alternatives) {
+            assert_eq!(a.length_m, b.length_m, "{}", p.name);
         }
     }
 }

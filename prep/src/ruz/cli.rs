@@ -272,6 +272,16 @@ pub fn plan_decided(
     limits: &DecisionLimits,
 ) -> Result<(Value, Flown), Box<dyn std::error::Error>> {
     let params: RiskParams = risk_params(planning.scenario);
+    let stored = skyroute::Network::from_bytes(planning.bytes)
+        .is_ok_and(|n| n.alternatives_summary().is_some());
+    println!(
+        "  alternatives: {}",
+        if stored {
+            "as stored in the network image by `skyroute build` (the aircraft decides among the same)"
+        } else {
+            "planned now (the network image stores none)"
+        }
+    );
     let study = study(planning, &params, which)?;
     let inputs: Vec<Vec<Alternative>> = study
         .popups
@@ -297,6 +307,7 @@ pub fn plan_decided(
         &planning.scenario.name,
     );
     json["decision"] = decision_json(&study, &inputs, &d, limits, &flown);
+    json["decision"]["alternatives_stored_in_network"] = json!(stored);
     Ok((json, flown))
 }
 
