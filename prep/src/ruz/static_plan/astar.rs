@@ -183,9 +183,9 @@ fn detection_cost(problem: &Problem, o: &AstarOptions, a: Pt, b: Pt) -> f64 {
     if o.risk_weight <= 0.0 || problem.radars.is_empty() {
         return 0.0;
     }
-    let d = b.sub(a);
+    let d = b.minus(a);
     let pose = Pose {
-        position: a.add(d.scale(0.5)).vec2(),
+        position: a.plus(d.scale(0.5)).vec2(),
         heading: d.y.atan2(d.x) as f32,
     };
     let unseen: f64 = problem

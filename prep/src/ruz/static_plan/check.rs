@@ -8,18 +8,18 @@ use super::{Problem, Pt, StaticRoute};
 
 /// The distance from `p` to the segment `a`–`b`.
 pub fn point_segment_distance(p: Pt, a: Pt, b: Pt) -> f64 {
-    let ab = b.sub(a);
+    let ab = b.minus(a);
     let len2 = ab.dot(ab);
     if len2 <= 0.0 {
         return p.dist(a);
     }
-    let t = (p.sub(a).dot(ab) / len2).clamp(0.0, 1.0);
-    p.dist(a.add(ab.scale(t)))
+    let t = (p.minus(a).dot(ab) / len2).clamp(0.0, 1.0);
+    p.dist(a.plus(ab.scale(t)))
 }
 
 /// Whether the segments `a`–`b` and `c`–`d` cross or touch.
 pub fn segments_intersect(a: Pt, b: Pt, c: Pt, d: Pt) -> bool {
-    let o = |p: Pt, q: Pt, r: Pt| q.sub(p).cross(r.sub(p));
+    let o = |p: Pt, q: Pt, r: Pt| q.minus(p).cross(r.minus(p));
     let (d1, d2, d3, d4) = (o(c, d, a), o(c, d, b), o(a, b, c), o(a, b, d));
     if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
         && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
@@ -128,7 +128,7 @@ pub fn check_route(problem: &Problem, route: &StaticRoute) -> RouteCheck {
             .get(i + 1)
             .zip(route.times.get(i))
             .map_or(0.0, |(b, a)| b - a);
-        let v = w[1].sub(w[0]).scale(1.0 / dt.max(1e-12));
+        let v = w[1].minus(w[0]).scale(1.0 / dt.max(1e-12));
         max_speed = max_speed.max(v.norm());
         min_speed = min_speed.min(v.norm());
         velocities.push((v, dt));
@@ -140,7 +140,7 @@ pub fn check_route(problem: &Problem, route: &StaticRoute) -> RouteCheck {
     }
     let max_accel = velocities
         .windows(2)
-        .map(|w| w[1].0.sub(w[0].0).norm() / (0.5 * (w[0].1 + w[1].1)).max(1e-12))
+        .map(|w| w[1].0.minus(w[0].0).norm() / (0.5 * (w[0].1 + w[1].1)).max(1e-12))
         .fold(0.0, f64::max);
     RouteCheck {
         end_gap_m,

@@ -47,9 +47,12 @@ pub struct StaticPlanArgs {
     /// MILP: steps kept per solve.
     #[arg(long, default_value_t = 5)]
     pub commit: usize,
-    /// MILP: the time limit of one solve, seconds.
-    #[arg(long, default_value_t = 60.0)]
+    /// MILP: the time limit of one solve, seconds (the best route found by then is taken).
+    #[arg(long, default_value_t = 20.0)]
     pub solve_limit: f64,
+    /// MILP: the relative gap at which a solve stops.
+    #[arg(long, default_value_t = 0.01)]
+    pub mip_gap: f64,
     /// μ₂: seconds of flight one unit of kill probability is worth (0: shortest time or
     /// length alone).
     #[arg(long, default_value_t = 10_000.0)]
@@ -159,7 +162,8 @@ fn report_check(pb: &Problem, route: &StaticRoute) {
             .unwrap_or((f64::NEG_INFINITY, 0, "nothing".into()));
     println!(
         "  check: ends {:.3} m off, times {}, speed {:.1}–{:.1} m/s (v_max {}), acceleration ≤ \
-         {:.2} m/s² (a_max {}), closest approach: piece {piece} is {:.1} m {} {name}'s clearance",
+         {:.2} m/s² (a_max {}), least clearance margin {:+.3} m (piece {piece}, {name}; \
+         negative: inside)",
         c.end_gap_m,
         if c.times_increase {
             "increase"
@@ -171,8 +175,7 @@ fn report_check(pb: &Problem, route: &StaticRoute) {
         pb.v_max,
         c.max_accel,
         pb.a_max,
-        depth.abs(),
-        if depth > 0.0 { "INSIDE" } else { "outside" },
+        -depth,
     );
 }
 
@@ -188,6 +191,7 @@ fn plan_milp(
         commit: a.commit,
         risk_weight: a.risk_weight,
         time_limit_s: a.solve_limit,
+        mip_gap: a.mip_gap,
         ..MilpOptions::default()
     };
     let r = plan(pb, &o).map_err(|e| -> Box<dyn std::error::Error> {
@@ -197,9 +201,19 @@ fn plan_milp(
         }
     })?;
     let st = &r.stats;
+    if o.risk_weight > 0.0 {
+        let rings: Vec<String> = super::detection::rings(&pb.params)
+            .iter()
+            .map(|g| format!("{:.0} m (+{:.3})", g.radius, g.increment))
+            .collect();
+        println!(
+            "  detection rings (radius, charged P_t): {}",
+            rings.join(", ")
+        );
+    }
     println!(
         "  MILP: Δt {} s, N {}, {} kept per solve: {} solves, {:.2} s in all (slowest {:.2} s), \
-         up to {} binaries, {} not proven optimal; detection charge D {:.4}",
+         up to {} binaries, {} stopped by the time limit; detection charge D {:.4}",
         o.dt,
         o.horizon,
         o.commit,
@@ -207,12 +221,12 @@ fn plan_milp(
         st.solve_time_s,
         st.slowest_solve_s,
         st.max_binaries,
-        st.not_optimal,
+        st.timed_out,
         r.detection_charge
     );
     let extra = json!({"milp": {"dt_s": o.dt, "horizon": o.horizon, "commit": o.commit,
-        "risk_weight": o.risk_weight, "solves": st.solves, "solve_time_s": st.solve_time_s,
-        "max_binaries": st.max_binaries, "not_optimal": st.not_optimal,
+        "risk_weight": o.risk_weight, "mip_gap": o.mip_gap, "solve_limit_s": o.time_limit_s, "solves": st.solves, "solve_time_s": st.solve_time_s,
+        "max_binaries": st.max_binaries, "timed_out": st.timed_out,
         "detection_charge": r.detection_charge}});
     Ok((r.route, extra))
 }

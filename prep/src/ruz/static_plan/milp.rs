@@ -66,6 +66,9 @@ pub struct MilpOptions {
     pub risk_weight: f64,
     /// The time limit of one solve, seconds (the best solution found so far is taken).
     pub time_limit_s: f64,
+    /// The relative gap at which HiGHS stops a solve (its proven bound within this share of
+    /// the best solution's objective).
+    pub mip_gap: f64,
     /// The most solves before giving up.
     pub max_solves: usize,
 }
@@ -80,7 +83,8 @@ impl Default for MilpOptions {
             bound_sides: 16,
             time_weight: 1.0,
             risk_weight: 10_000.0,
-            time_limit_s: 60.0,
+            time_limit_s: 20.0,
+            mip_gap: 0.01,
             max_solves: 200,
         }
     }
@@ -97,8 +101,8 @@ pub struct MilpStats {
     pub slowest_solve_s: f64,
     /// The most binaries in one solve.
     pub max_binaries: usize,
-    /// Solves stopped by the time limit or gap before proven optimal.
-    pub not_optimal: usize,
+    /// Solves stopped by the time limit before reaching the gap.
+    pub timed_out: usize,
 }
 
 /// A MILP route and how it was found.
@@ -176,7 +180,7 @@ pub fn plan(problem: &Problem, o: &MilpOptions) -> Result<MilpRoute, MilpError> 
         stats.solve_time_s += dt_solve;
         stats.slowest_solve_s = stats.slowest_solve_s.max(dt_solve);
         stats.max_binaries = stats.max_binaries.max(h.binaries);
-        stats.not_optimal += usize::from(!h.optimal);
+        stats.timed_out += usize::from(h.timed_out);
         let keep = h.arrival.unwrap_or(o.commit);
         for k in 0..keep {
             let t = route.time() + o.dt;
@@ -219,6 +223,9 @@ fn validate(o: &MilpOptions) -> Result<(), MilpError> {
     }
     if !(o.time_weight >= 0.0 && o.risk_weight >= 0.0 && o.time_limit_s > 0.0) {
         return bad("weights must be ≥ 0 and the time limit > 0");
+    }
+    if !(0.0..1.0).contains(&o.mip_gap) {
+        return bad("the MIP gap must lie in [0, 1)");
     }
     Ok(())
 }
@@ -285,7 +292,7 @@ struct Horizon {
     /// The step at which it is at the goal (1-based count of steps), if any.
     arrival: Option<usize>,
     binaries: usize,
-    optimal: bool,
+    timed_out: bool,
 }
 
 /// The model of one solve: variables, constraints and objective terms.
@@ -338,7 +345,7 @@ fn solve_horizon(
         zone_constraints(&mut m, z, problem.clearance, &pos, p0, reach);
     }
     let arrival = time_to_goal(&mut m, &pos, problem, p0, reach, o);
-    solve(m, &pos, &vel, arrival, o.time_limit_s)
+    solve(m, &pos, &vel, arrival, o)
 }
 
 /// Positions as expressions (p_0 constant), with the dynamics and the |v|, |a| bounds.
@@ -451,7 +458,7 @@ fn zone_constraints(
     let edges: Vec<(Pt, f64)> = (0..hull.len())
         .map(|i| {
             let (a, b) = (hull[i], hull[(i + 1) % hull.len()]);
-            let e = b.sub(a).scale(1.0 / a.dist(b));
+            let e = b.minus(a).scale(1.0 / a.dist(b));
             let normal = Pt::new(e.y, -e.x); // outward for a counter-clockwise hull
             (normal, normal.dot(a) + clearance)
         })
@@ -489,7 +496,7 @@ pub fn convex_hull(points: &[Pt]) -> Vec<Pt> {
         for &q in iter {
             while hull.len() >= start + 2 {
                 let (a, b) = (hull[hull.len() - 2], hull[hull.len() - 1]);
-                if b.sub(a).cross(q.sub(a)) <= 0.0 {
+                if b.minus(a).cross(q.minus(a)) <= 0.0 {
                     hull.pop();
                 } else {
                     break;
@@ -569,7 +576,7 @@ fn solve(
     pos: &[(Expression, Expression)],
     vel: &[(Variable, Variable)],
     arrive: Vec<Variable>,
-    time_limit_s: f64,
+    o: &MilpOptions,
 ) -> Result<Horizon, MilpError> {
     let Model {
         vars,
@@ -582,13 +589,14 @@ fn solve(
         .minimise(objective)
         .using(good_lp::highs)
         .set_option("output_flag", false)
-        .set_time_limit(time_limit_s)
+        .set_time_limit(o.time_limit_s)
+        .set_option("mip_rel_gap", o.mip_gap)
         .with_all(constraints);
     let sol = model.solve().map_err(|e| match e {
         ResolutionError::Infeasible => MilpError::Infeasible { solve: 0 },
         e => MilpError::Solver(e.to_string()),
     })?;
-    let optimal = matches!(sol.status(), SolutionStatus::Optimal);
+    let timed_out = matches!(sol.status(), SolutionStatus::TimeLimit);
     let at = |e: &Expression| sol.eval(e.clone());
     let arrival = arrive
         .iter()
@@ -606,6 +614,6 @@ fn solve(
         charges: charges.iter().map(at).collect(),
         arrival,
         binaries,
-        optimal,
+        timed_out,
     })
 }

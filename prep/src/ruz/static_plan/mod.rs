@@ -36,11 +36,11 @@ impl Pt {
         Self { x, y }
     }
     /// `self − o`.
-    pub fn sub(self, o: Pt) -> Pt {
+    pub fn minus(self, o: Pt) -> Pt {
         Pt::new(self.x - o.x, self.y - o.y)
     }
     /// `self + o`.
-    pub fn add(self, o: Pt) -> Pt {
+    pub fn plus(self, o: Pt) -> Pt {
         Pt::new(self.x + o.x, self.y + o.y)
     }
     /// `self · k`.
@@ -61,7 +61,7 @@ impl Pt {
     }
     /// Distance to `o`.
     pub fn dist(self, o: Pt) -> f64 {
-        self.sub(o).norm()
+        self.minus(o).norm()
     }
     /// As the core's f32 vector.
     pub fn vec2(self) -> Vec2 {
