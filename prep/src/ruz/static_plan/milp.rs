@@ -187,7 +187,7 @@ pub fn plan(problem: &Problem, o: &MilpOptions) -> Result<MilpRoute, MilpError> 
             route.points.push(h.positions[k]);
             route.times.push(t);
             velocities.push(h.velocities[k]);
-            charge += h.charges[k];
+            charge += h.charges[k].max(0.0);
         }
         p = h.positions[keep - 1];
         v = h.velocities[keep - 1];
