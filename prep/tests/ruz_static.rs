@@ -314,6 +314,15 @@ fn ruz_popups_static_plans_end_to_end() {
     let pb = ruz();
     let straight = pb.start.dist(pb.goal);
     let mut methods = vec![vec!["--method", "astar", "--cell", "500"]];
+    if !cfg!(feature = "milp") {
+        let o = skyroute(&["static-plan", &net, "--scenario", &sc, "--method", "milp"]);
+        assert!(!o.status.success());
+        assert!(
+            common::stderr(&o).contains("built without the milp feature: rebuild with"),
+            "{}",
+            common::stderr(&o)
+        );
+    }
     if cfg!(feature = "milp") {
         // Detection off keeps the solves well under a second each (docs/RUZ.md).
         methods.push(vec![

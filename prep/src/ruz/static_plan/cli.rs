@@ -238,7 +238,7 @@ fn plan_milp(
 ) -> Result<(StaticRoute, Value), Box<dyn std::error::Error>> {
     Err(
         "built without the milp feature: rebuild with `cargo install --path prep --features \
-         milp` (HiGHS is built from source: needs cmake and a C++ compiler)"
+         milp` (HiGHS is built from source: needs cmake, a C++ compiler and libclang)"
             .into(),
     )
 }
