@@ -216,7 +216,12 @@ mod milp {
 
     #[test]
     fn milp_keeps_segments_out_of_discs() {
-        let o = options();
+        // Pieces of up to 1.8 km against a disc of 1.5 km: points alone outside it would let
+        // a piece cut through.
+        let o = MilpOptions {
+            dt: 30.0,
+            ..options()
+        };
         let mut pb = empty(
             Pt::new(0.0, 0.0),
             Pt::new(50.0, 0.0),
