@@ -4,7 +4,7 @@
 //! (eqs 19–21; [`astar`]). Both plan in the scenario's local frame (the network's, metres) from
 //! the scenario's start to its goal, avoiding the threat discs (and no-fly polygons) widened by
 //! the clearance, and both routes are polylines checked by [`check`] and scored by the core's
-//! risk model ([`score`], the same R_K as `skyroute plan --popup-appears`). `docs/RUZ.md`
+//! risk model ([`score`]: R_K = 1 − P_S,known, as `alternatives` scores routes). `docs/RUZ.md`
 //! (*Static planners*) states the formulation and every parameter.
 
 pub mod astar;
