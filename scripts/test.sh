@@ -140,8 +140,13 @@ install_missing() {
         fi
     done
     # Debian packages: QEMU for the firmware, GDAL for the GeoJSON route and GeoTIFF checks,
-    # llvm-objdump and llvm-objcopy for the firmware call graphs (no recursion, stack bound).
+    # llvm-objdump and llvm-objcopy for the firmware call graphs (no recursion, stack bound),
+    # cmake, g++ and libclang (bindgen) for HiGHS, which the ground tool's `milp` feature
+    # builds from source.
     local packages=()
+    command -v cmake >/dev/null || packages+=(cmake)
+    command -v g++ >/dev/null || packages+=(g++)
+    compgen -G '/usr/lib/llvm-*/lib/libclang.so*' >/dev/null || packages+=(libclang-dev)
     command -v qemu-system-arm >/dev/null || packages+=(qemu-system-arm)
     command -v ogrinfo >/dev/null || packages+=(gdal-bin)
     { command -v llvm-objdump && command -v llvm-objcopy; } >/dev/null || packages+=(llvm)
@@ -320,6 +325,8 @@ step "cargo fmt --check" fmt_check
 step "structure (file and function sizes, import cycles, mode dispatch)" \
     python3 scripts/check_structure.py
 step "clippy (host, all targets)" cargo clippy --workspace --all-targets -- -D warnings
+step "clippy (host, all targets, milp)" \
+    cargo clippy --workspace --all-targets --features skyroute-prep/milp -- -D warnings
 step "clippy (skyroute, thumbv7em-none-eabihf)" \
     cargo clippy -p skyroute --target thumbv7em-none-eabihf -- -D warnings
 step "clippy (skyroute, thumbv7em-none-eabihf, defmt)" \
@@ -328,7 +335,8 @@ step "core docs (cargo doc, warnings denied)" \
     env RUSTDOCFLAGS="-D warnings" cargo doc -p skyroute --no-deps
 step "OMPL Dubins reference" ompl_reference
 step "SciPy Voronoi reference" scipy_voronoi_reference
-step "cargo test --workspace (full tier)" env SKYROUTE_TIER=full cargo test --workspace
+step "cargo test --workspace (full tier)" \
+    env SKYROUTE_TIER=full cargo test --workspace --features skyroute-prep/milp
 step "C ABI (header vs cbindgen, C program vs Rust API, thumbv7em library)" scripts/ffi-check.sh
 step "work bound sweep (random queries per mode, docs/RELIABILITY.md)" \
     cargo run --release -q -p host-tests --bin work_sweep -- --queries "${SWEEP_QUERIES:-100000}"

@@ -263,6 +263,8 @@ enum Command {
     /// written: the comments are foreign members (`comments`, each feature's `comment`) that
     /// skyroute and GIS tools ignore.
     Init(InitArgs),
+    /// The static planners of Ruz et al. (MILP, A* with inertia) start → goal, scored by risk.
+    StaticPlan(skyroute_prep::ruz::static_plan::cli::StaticPlanArgs),
     /// Describe a network image: mode, counts and bytes, what it records of its scenario, the
     /// planner capacities (`V`, `E`) and RAM it needs onboard, and the worst-case work of a
     /// query and of a pop-up.
@@ -717,6 +719,7 @@ fn run(cli: Cli) -> CliResult {
             histograms: histograms.as_deref(),
         }),
         Command::Init(a) => init(&a),
+        Command::StaticPlan(a) => skyroute_prep::ruz::static_plan::cli::static_plan_command(&a),
         Command::Info { network } => info(&network),
         Command::Export {
             network,

@@ -1,7 +1,8 @@
 //! Pop-up threats under uncertainty (Ruz et al.) on the ground: the risk model's parameters
 //! for a scenario, the bypass alternatives of each pop-up scored by risk, time and fuel
 //! ([`alternatives`]), the decision from `skyroute plan --popup-appears` ([`cli`]) and the
-//! Monte Carlo study ([`montecarlo`], [`histogram`]). The model itself is the core's
+//! Monte Carlo study ([`montecarlo`], [`histogram`]), the alternatives kept in the network
+//! image ([`stored`]), and the static planners MILP and A* ([`static_plan`]). The model itself is the core's
 //! [`skyroute::planner::risk`]; the decision is [`skyroute::planner::decision::decide`].
 //! `docs/RUZ.md` states every parameter and the results.
 
@@ -9,6 +10,7 @@ pub mod alternatives;
 pub mod cli;
 pub mod histogram;
 pub mod montecarlo;
+pub mod static_plan;
 pub mod stored;
 pub mod study_cli;
 
