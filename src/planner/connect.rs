@@ -125,14 +125,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     fn path_is_clear_near(
         &self,
         path: &DubinsPath,
-        window: &ObstacleWindow<'n>,
+        window: &ObstacleWindow,
         meter: &mut Meter,
     ) -> bool {
         match window.covering(path, self.network.clearance()) {
             Some(near) => self.path_clear_of(
                 path,
                 near.len(),
-                |i| near.get(i).map(|&(_, o, bbox)| (o, bbox)),
+                |i| near.get(i).and_then(|&(_, o, _)| self.network.obstacle(o)),
                 meter,
             ),
             None => self.path_is_clear(path, meter),
@@ -224,7 +224,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &mut self,
         start: &Pose,
         v: u32,
-        window: &ObstacleWindow<'n>,
+        window: &ObstacleWindow,
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
         let Some(target) = self.network.vertex(v) else {
@@ -258,7 +258,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &mut self,
         goal: &Goal,
         meter: &mut Meter,
-    ) -> Result<(Candidates, ObstacleWindow<'n>), PlanError> {
+    ) -> Result<(Candidates, ObstacleWindow), PlanError> {
         self.goal_links.clear();
         let candidates = self.nearest_vertices(goal.position, meter)?;
         let window = ObstacleWindow::around(&self.network, goal.position, meter);
@@ -285,7 +285,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &mut self,
         goal: &Goal,
         v: u32,
-        window: &ObstacleWindow<'n>,
+        window: &ObstacleWindow,
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
         let Some(from) = self.network.vertex(v) else {
@@ -321,7 +321,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &self,
         from: &Pose,
         goal: &Goal,
-        window: &ObstacleWindow<'n>,
+        window: &ObstacleWindow,
         meter: &mut Meter,
     ) -> Option<DubinsPath> {
         let headings = self.config().headings(goal) as f32;
@@ -347,7 +347,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &mut self,
         k: usize,
         goal: &Goal,
-        window: &mut LazyWindow<'n>,
+        window: &mut LazyWindow,
         meter: &mut Meter,
     ) -> Result<Link, PlanError> {
         let link = *self.goal_links.get(k).ok_or(PlanError::Internal)?;
@@ -385,7 +385,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &self,
         from: &Pose,
         goal: &Goal,
-        window: &ObstacleWindow<'n>,
+        window: &ObstacleWindow,
         meter: &mut Meter,
     ) -> Result<Option<DubinsPath>, PlanError> {
         let headings = self.config().headings(goal) as usize;

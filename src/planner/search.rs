@@ -162,7 +162,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         query: &Query,
         ends: Ends,
         best: &mut Option<(f32, Arrival)>,
-        goal_window: &mut LazyWindow<'n>,
+        goal_window: &mut LazyWindow,
         meter: &mut Meter,
     ) -> Result<bool, PlanError> {
         let Some((s, key, levels)) = self.heap.pop() else {
@@ -298,7 +298,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         ends: Ends,
         u: u32,
         best: &mut Option<(f32, Arrival)>,
-        goal_window: &mut LazyWindow<'n>,
+        goal_window: &mut LazyWindow,
         meter: &mut Meter,
     ) -> Result<bool, PlanError> {
         let du = self

@@ -64,7 +64,7 @@ pub(super) enum Stage {
 }
 
 /// A query in progress: its stage and everything its later stages read.
-pub(super) struct Flight<'n> {
+pub(super) struct Flight {
     /// The next unit of work.
     pub(super) stage: Stage,
     /// The query (roadmap: its start moved to the exit's end, if it needs one).
@@ -76,10 +76,10 @@ pub(super) struct Flight<'n> {
     /// Roadmap: the exit from the keep-out region the start lies in (at most one).
     exit: Vec<(DubinsPath, Exit), 1>,
     /// Roadmap: the obstacles around the start (read in [`Stage::Begin`]).
-    start_window: ObstacleWindow<'n>,
+    start_window: ObstacleWindow,
     /// Roadmap: the obstacles around the goal, for the goal links and then, read again when
     /// the search first resolves a pending goal link, for the search.
-    goal_window: LazyWindow<'n>,
+    goal_window: LazyWindow,
     /// Roadmap: the candidates of the connection under way, and the next one to try.
     candidates: Candidates,
     next: usize,
@@ -87,7 +87,7 @@ pub(super) struct Flight<'n> {
     best: Vec<(f32, Arrival), 1>,
 }
 
-impl Flight<'_> {
+impl Flight {
     /// No query in progress. `const` and all-zero (empty vectors leave their storage
     /// uninitialised), so that a new planner stays in `.bss`.
     pub(super) const IDLE: Self = Self {
@@ -225,7 +225,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// when the query is done.
     fn advance(
         &mut self,
-        f: &mut Flight<'n>,
+        f: &mut Flight,
         observe: &mut dyn FnMut(Phase, &Work),
     ) -> Result<Option<RouteSummary>, PlanError> {
         let meter = &mut f.meter;
@@ -306,7 +306,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// the search in the other modes.
     fn begin(
         &mut self,
-        f: &mut Flight<'n>,
+        f: &mut Flight,
         observe: &mut dyn FnMut(Phase, &Work),
     ) -> Result<(), PlanError> {
         let meter = &mut f.meter;
@@ -364,7 +364,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// The [`Stage::Route`] unit: writes the route the search found, the mode's way.
     fn finish_query(
         &mut self,
-        f: &mut Flight<'n>,
+        f: &mut Flight,
         arrival: Arrival,
     ) -> Result<RouteSummary, PlanError> {
         let meter = &mut f.meter;

@@ -1,10 +1,9 @@
-//! The static obstacles near an endpoint, read from the network once for all of the
-//! endpoint's connections.
+//! The static obstacles near an endpoint, found once for all of the endpoint's connections.
 //!
 //! Connecting the start or the goal checks up to hundreds of Dubins paths that all begin or end
 //! at one point, each against every obstacle. An [`ObstacleWindow`] keeps the
-//! [`WINDOW_OBSTACLES`] obstacles whose bounding boxes lie nearest to that point, read once, and
-//! the distance `reach` of the nearest box it left out. Every point of a path of length `L`
+//! [`WINDOW_OBSTACLES`] obstacles whose bounding boxes lie nearest to that point, found once
+//! (their indices; a check reads each kept obstacle's record again), and the distance `reach` of the nearest box it left out. Every point of a path of length `L`
 //! starting at `s` lies within `L + |s − centre|` of the centre, so when that plus the clearance
 //! stays below `reach` (with a margin far above f32 rounding), no obstacle left out can come
 //! within the clearance of the path, and checking the kept ones decides exactly what checking
@@ -12,40 +11,33 @@
 
 use super::Meter;
 use crate::geometry::{DubinsPath, Vec2};
-use crate::network::{Network, Obstacle};
+use crate::network::Network;
 
 /// Obstacles an [`ObstacleWindow`] keeps.
 pub(super) const WINDOW_OBSTACLES: usize = 32;
 
 /// An obstacle as the window keeps it: the distance of its bounding box from the centre, the
-/// obstacle, and its bounding box `(min, max)`.
-pub(super) type NearObstacle<'n> = (f32, Obstacle<'n>, (Vec2, Vec2));
+/// obstacle's index in the network, and its bounding box `(min, max)`.
+pub(super) type NearObstacle = (f32, u32, (Vec2, Vec2));
 
 /// An unused slot of a window's array.
-const UNUSED: NearObstacle<'static> = (
-    0.0,
-    Obstacle::Circle {
-        centre: Vec2 { x: 0.0, y: 0.0 },
-        radius: 0.0,
-    },
-    (Vec2 { x: 0.0, y: 0.0 }, Vec2 { x: 0.0, y: 0.0 }),
-);
+const UNUSED: NearObstacle = (0.0, 0, (Vec2 { x: 0.0, y: 0.0 }, Vec2 { x: 0.0, y: 0.0 }));
 
-/// The obstacles nearest to a point (see the module documentation). Plain arrays, no drop
-/// glue: a planner keeps windows across the steps of a query without its borrow of the
-/// network having to outlive it.
+/// The obstacles nearest to a point (see the module documentation), by index. Plain numbers
+/// in arrays: a planner keeps windows across the steps of a query, and an idle window is all
+/// zero bytes, so that a new planner is too.
 #[derive(Clone, Copy)]
-pub(super) struct ObstacleWindow<'n> {
+pub(super) struct ObstacleWindow {
     centre: Vec2,
     /// The kept obstacles (the first `len`), every one at most as far as any left out, in no
     /// particular order.
-    near: [NearObstacle<'n>; WINDOW_OBSTACLES],
+    near: [NearObstacle; WINDOW_OBSTACLES],
     len: usize,
     /// Distance of the nearest box left out (+∞ when every obstacle is kept).
     reach: f32,
 }
 
-impl<'n> ObstacleWindow<'n> {
+impl ObstacleWindow {
     /// A window that keeps nothing and covers no path (every check reads the network), in
     /// `const` and all-zero: a reach of 0 is below any path's extent.
     pub(super) const EMPTY: Self = Self {
@@ -65,7 +57,7 @@ impl<'n> ObstacleWindow<'n> {
     }
 
     /// The kept obstacles.
-    fn kept(&self) -> &[NearObstacle<'n>] {
+    fn kept(&self) -> &[NearObstacle] {
         self.near.get(..self.len).unwrap_or(&[])
     }
 
@@ -73,7 +65,7 @@ impl<'n> ObstacleWindow<'n> {
     /// bounding box, with, for an obstacle nearer than the farthest kept, a scan of the ≤
     /// [`WINDOW_OBSTACLES`] kept for the new farthest). A record that cannot be read
     /// (validation rules that out) gives [`ObstacleWindow::none`].
-    pub(super) fn around(network: &Network<'n>, centre: Vec2, meter: &mut Meter) -> Self {
+    pub(super) fn around(network: &Network<'_>, centre: Vec2, meter: &mut Meter) -> Self {
         let mut window = Self {
             centre,
             reach: f32::INFINITY,
@@ -83,7 +75,7 @@ impl<'n> ObstacleWindow<'n> {
         let mut farthest = 0;
         for i in 0..network.obstacle_count() {
             meter.work.collision_tests += 1;
-            let Some((obstacle, (lo, hi))) = network.obstacle(i) else {
+            let Some((_, (lo, hi))) = network.obstacle(i) else {
                 return Self::none(centre);
             };
             let dx = (lo.x - centre.x).max(centre.x - hi.x).max(0.0);
@@ -92,7 +84,7 @@ impl<'n> ObstacleWindow<'n> {
             if !(d >= 0.0) {
                 return Self::none(centre); // not finite: validation rules it out
             }
-            let entry = (d, obstacle, (lo, hi));
+            let entry = (d, i, (lo, hi));
             if let Some(free) = window.near.get_mut(window.len) {
                 *free = entry;
                 window.len += 1;
@@ -117,11 +109,7 @@ impl<'n> ObstacleWindow<'n> {
 
     /// The kept obstacles, if they are all that can come within `clearance` of `path`;
     /// `None` when the path may reach beyond the window (check it against every obstacle).
-    pub(super) fn covering(
-        &self,
-        path: &DubinsPath,
-        clearance: f32,
-    ) -> Option<&[NearObstacle<'n>]> {
+    pub(super) fn covering(&self, path: &DubinsPath, clearance: f32) -> Option<&[NearObstacle]> {
         // Every point of the path lies within its length of its start.
         let extent = path.length() + path.start.position.distance(self.centre) + clearance;
         // Far above the rounding of the primitives and predicates (≈ 10⁻⁶ relative).
@@ -133,13 +121,13 @@ impl<'n> ObstacleWindow<'n> {
 /// A window read only when first needed (the obstacles around the goal, for the search's
 /// pending goal links).
 #[derive(Clone, Copy)]
-pub(super) struct LazyWindow<'n> {
+pub(super) struct LazyWindow {
     /// Whether `window` has been read.
     read: bool,
-    window: ObstacleWindow<'n>,
+    window: ObstacleWindow,
 }
 
-impl<'n> LazyWindow<'n> {
+impl LazyWindow {
     /// Not read. `const` and all-zero.
     pub(super) const UNREAD: Self = Self {
         read: false,
@@ -147,17 +135,17 @@ impl<'n> LazyWindow<'n> {
     };
 
     /// `window`, already read.
-    pub(super) fn of(window: ObstacleWindow<'n>) -> Self {
+    pub(super) fn of(window: ObstacleWindow) -> Self {
         Self { read: true, window }
     }
 
     /// The window, read around `centre` on the first call (work: [`ObstacleWindow::around`]).
     pub(super) fn get_or_read(
         &mut self,
-        network: &Network<'n>,
+        network: &Network<'_>,
         centre: Vec2,
         meter: &mut Meter,
-    ) -> &ObstacleWindow<'n> {
+    ) -> &ObstacleWindow {
         if !self.read {
             self.window = ObstacleWindow::around(network, centre, meter);
             self.read = true;
@@ -166,7 +154,7 @@ impl<'n> LazyWindow<'n> {
     }
 
     /// The window if it has been read.
-    pub(super) fn get(&self) -> Option<&ObstacleWindow<'n>> {
+    pub(super) fn get(&self) -> Option<&ObstacleWindow> {
         self.read.then_some(&self.window)
     }
 }
