@@ -89,7 +89,7 @@ pub(super) struct Flight {
 
 impl Flight {
     /// No query in progress. `const` and all-zero (empty vectors leave their storage
-    /// uninitialised), so that a new planner stays in `.bss`.
+    /// uninitialised), so that it adds none but zeros to a new planner's `const` image.
     pub(super) const IDLE: Self = Self {
         stage: Stage::Idle,
         query: Query {

@@ -25,7 +25,7 @@ const UNUSED: NearObstacle = (0.0, 0, (Vec2 { x: 0.0, y: 0.0 }, Vec2 { x: 0.0, y
 
 /// The obstacles nearest to a point (see the module documentation), by index. Plain numbers
 /// in arrays: a planner keeps windows across the steps of a query, and an idle window is all
-/// zero bytes, so that a new planner is too.
+/// zero bytes, so that it adds none but zeros to a new planner's `const` image.
 #[derive(Clone, Copy)]
 pub(super) struct ObstacleWindow {
     centre: Vec2,

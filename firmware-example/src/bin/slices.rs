@@ -51,7 +51,7 @@ const TOLERANCE: f32 = 1e-4;
 
 systick_monotonic!(Mono, MONO_HZ);
 
-/// The planner's state, in `.bss` (see `roadmap.rs`).
+/// The planner's state, in RAM (see `roadmap.rs`).
 static PLANNER: ConstStaticCell<Planner<'static, V_CAP, E_CAP, P_CAP, R_CAP>> =
     ConstStaticCell::new(Planner::new());
 
