@@ -125,14 +125,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     fn path_is_clear_near(
         &self,
         path: &DubinsPath,
-        window: &ObstacleWindow,
+        window: &ObstacleWindow<'n>,
         meter: &mut Meter,
     ) -> bool {
         match window.covering(path, self.network.clearance()) {
             Some(near) => self.path_clear_of(
                 path,
                 near.len(),
-                |i| near.get(i).and_then(|&(_, o, _)| self.network.obstacle(o)),
+                |i| near.get(i).map(|&(_, o, bbox)| (o, bbox)),
                 meter,
             ),
             None => self.path_is_clear(path, meter),
@@ -224,7 +224,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &mut self,
         start: &Pose,
         v: u32,
-        window: &ObstacleWindow,
+        window: &ObstacleWindow<'n>,
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
         let Some(target) = self.network.vertex(v) else {
@@ -251,18 +251,17 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Begins connecting the goal: clears the goal links and returns the [`MAX_CANDIDATES`]
-    /// vertices nearest the goal and the obstacles around the goal ([`ObstacleWindow`], read
-    /// once for all of them). [`Planner::connect_goal_candidate`] then tries the candidates in
-    /// order until [`PlannerConfig::goal_candidates`](super::PlannerConfig) reach the goal.
+    /// vertices nearest the goal; the obstacles around the goal ([`ObstacleWindow`]) are read
+    /// next, once for all of them. [`Planner::connect_goal_candidate`] then tries the
+    /// candidates in order until [`PlannerConfig::goal_candidates`](super::PlannerConfig) reach
+    /// the goal.
     pub(super) fn connect_goal_begin(
         &mut self,
         goal: &Goal,
         meter: &mut Meter,
-    ) -> Result<(Candidates, ObstacleWindow), PlanError> {
+    ) -> Result<Candidates, PlanError> {
         self.goal_links.clear();
-        let candidates = self.nearest_vertices(goal.position, meter)?;
-        let window = ObstacleWindow::around(&self.network, goal.position, meter);
-        Ok((candidates, window))
+        self.nearest_vertices(goal.position, meter)
     }
 
     /// Whether the goal links are complete: as many as
@@ -285,7 +284,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &mut self,
         goal: &Goal,
         v: u32,
-        window: &ObstacleWindow,
+        window: &ObstacleWindow<'n>,
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
         let Some(from) = self.network.vertex(v) else {
@@ -321,7 +320,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &self,
         from: &Pose,
         goal: &Goal,
-        window: &ObstacleWindow,
+        window: &ObstacleWindow<'n>,
         meter: &mut Meter,
     ) -> Option<DubinsPath> {
         let headings = self.config().headings(goal) as f32;
@@ -347,7 +346,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &mut self,
         k: usize,
         goal: &Goal,
-        window: &mut LazyWindow,
+        window: &mut LazyWindow<'n>,
         meter: &mut Meter,
     ) -> Result<Link, PlanError> {
         let link = *self.goal_links.get(k).ok_or(PlanError::Internal)?;
@@ -385,7 +384,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &self,
         from: &Pose,
         goal: &Goal,
-        window: &ObstacleWindow,
+        window: &ObstacleWindow<'n>,
         meter: &mut Meter,
     ) -> Result<Option<DubinsPath>, PlanError> {
         let headings = self.config().headings(goal) as usize;

@@ -252,7 +252,7 @@ pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: 
     /// What only the loaded network's mode keeps (altitude, weather, rosettes, ...).
     state: ModeState<'n, R>,
     /// The query in progress ([`Planner::start_plan`], [`Planner::step`]), if any.
-    flight: slice::Flight,
+    flight: slice::Flight<'n>,
 }
 
 /// `via` values at or above this mark a vertex reached straight from start link `via − FROM_START`.

@@ -157,12 +157,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// [`Ends::Vertices`] search is reached. Edges are relaxed only when
     /// [`Planner::is_edge_usable`]; the expansion of a state is the space's
     /// ([`Planner::expand_vertex`], [`Planner::expand_edge_state`]).
+    #[inline(always)] // its one caller's loop is the search's loop
     pub(super) fn search_expand(
         &mut self,
         query: &Query,
         ends: Ends,
         best: &mut Option<(f32, Arrival)>,
-        goal_window: &mut LazyWindow,
+        goal_window: &mut LazyWindow<'n>,
         meter: &mut Meter,
     ) -> Result<bool, PlanError> {
         let Some((s, key, levels)) = self.heap.pop() else {
@@ -298,7 +299,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         ends: Ends,
         u: u32,
         best: &mut Option<(f32, Arrival)>,
-        goal_window: &mut LazyWindow,
+        goal_window: &mut LazyWindow<'n>,
         meter: &mut Meter,
     ) -> Result<bool, PlanError> {
         let du = self

@@ -64,7 +64,7 @@ pub(super) enum Stage {
 }
 
 /// A query in progress: its stage and everything its later stages read.
-pub(super) struct Flight {
+pub(super) struct Flight<'n> {
     /// The next unit of work.
     pub(super) stage: Stage,
     /// The query (roadmap: its start moved to the exit's end, if it needs one).
@@ -76,10 +76,10 @@ pub(super) struct Flight {
     /// Roadmap: the exit from the keep-out region the start lies in (at most one).
     exit: Vec<(DubinsPath, Exit), 1>,
     /// Roadmap: the obstacles around the start (read in [`Stage::Begin`]).
-    start_window: ObstacleWindow,
+    start_window: ObstacleWindow<'n>,
     /// Roadmap: the obstacles around the goal, for the goal links and then, read again when
     /// the search first resolves a pending goal link, for the search.
-    goal_window: LazyWindow,
+    goal_window: LazyWindow<'n>,
     /// Roadmap: the candidates of the connection under way, and the next one to try.
     candidates: Candidates,
     next: usize,
@@ -87,7 +87,7 @@ pub(super) struct Flight {
     best: Vec<(f32, Arrival), 1>,
 }
 
-impl Flight {
+impl Flight<'_> {
     /// No query in progress. `const` and all-zero (empty vectors leave their storage
     /// uninitialised), so that it adds none but zeros to a new planner's `const` image.
     pub(super) const IDLE: Self = Self {
@@ -197,14 +197,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             return PlanStep::Idle;
         }
         let mut f = core::mem::replace(&mut self.flight, Flight::IDLE);
-        let from = f.meter.work.total();
+        let limit = f.meter.work.total().saturating_add(slice_work);
         let ended = loop {
-            match self.advance(&mut f, observe) {
+            match self.advance(&mut f, limit, observe) {
                 Ok(None) => {}
                 Ok(Some(summary)) => break Some(Ok(summary)),
                 Err(e) => break Some(Err(e)),
             }
-            if f.meter.work.total().saturating_sub(from) >= slice_work {
+            if f.meter.work.total() >= limit {
                 break None;
             }
         };
@@ -221,11 +221,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// Runs the unit of work `f.stage` names and moves `f` on. Returns the route's summary
-    /// when the query is done.
+    /// Runs the unit of work `f.stage` names and moves `f` on (in the search, further
+    /// expansions too, one at a time while the work counted stays below `limit`: the step's
+    /// loop, without leaving the search between them). Returns the route's summary when the
+    /// query is done.
     fn advance(
         &mut self,
-        f: &mut Flight,
+        f: &mut Flight<'n>,
+        limit: u64,
         observe: &mut dyn FnMut(Phase, &Work),
     ) -> Result<Option<RouteSummary>, PlanError> {
         let meter = &mut f.meter;
@@ -242,9 +245,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             },
             Stage::GoalBegin => {
                 observe(Phase::ConnectGoal, &meter.work);
-                let (candidates, window) = self.connect_goal_begin(&q.goal, meter)?;
-                (f.candidates, f.next) = (candidates, 0);
-                f.goal_window = LazyWindow::of(window);
+                f.candidates = self.connect_goal_begin(&q.goal, meter)?;
+                f.next = 0;
+                f.goal_window.read(&self.network, q.goal.position, meter);
                 f.stage = Stage::ConnectGoal;
             }
             Stage::ConnectGoal => match f.candidates.get(f.next) {
@@ -282,7 +285,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
             Stage::Search => {
                 let mut best = f.best.first().copied();
-                let over = self.search_expand(&q, f.ends, &mut best, &mut f.goal_window, meter)?;
+                let over = loop {
+                    let over =
+                        self.search_expand(&q, f.ends, &mut best, &mut f.goal_window, meter)?;
+                    if over || meter.work.total() >= limit {
+                        break over;
+                    }
+                };
                 f.best.clear();
                 if let Some(b) = best {
                     let _ = f.best.push(b);
@@ -306,7 +315,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// the search in the other modes.
     fn begin(
         &mut self,
-        f: &mut Flight,
+        f: &mut Flight<'n>,
         observe: &mut dyn FnMut(Phase, &Work),
     ) -> Result<(), PlanError> {
         let meter = &mut f.meter;
@@ -323,7 +332,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 }
                 observe(Phase::ConnectStart, &meter.work);
                 let start = f.query.start;
-                f.start_window = ObstacleWindow::around(&self.network, start.position, meter);
+                f.start_window
+                    .read_around(&self.network, start.position, meter);
                 f.candidates = self.connect_start_begin(&start, meter)?;
                 f.next = 0;
                 f.stage = Stage::ConnectStart;
@@ -364,7 +374,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// The [`Stage::Route`] unit: writes the route the search found, the mode's way.
     fn finish_query(
         &mut self,
-        f: &mut Flight,
+        f: &mut Flight<'n>,
         arrival: Arrival,
     ) -> Result<RouteSummary, PlanError> {
         let meter = &mut f.meter;
