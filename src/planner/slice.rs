@@ -41,7 +41,7 @@ pub enum PlanStep {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u8)]
 pub(super) enum Stage {
-    /// No query (all-zero: a new planner is idle).
+    /// No query (discriminant 0: a new planner is idle).
     Idle = 0,
     /// Everything before the connection loops (roadmap: the free-space check of the goal,
     /// the exit, the start's obstacle window and candidates; the other modes: everything
@@ -88,8 +88,8 @@ pub(super) struct Flight<'n> {
 }
 
 impl Flight<'_> {
-    /// No query in progress. `const` and all-zero (empty vectors leave their storage
-    /// uninitialised), so that it adds none but zeros to a new planner's `const` image.
+    /// No query in progress, usable in `const` (a new planner). Not all zero bytes: each
+    /// unused slot of the two obstacle windows holds a circle, whose enum tag is not 0.
     pub(super) const IDLE: Self = Self {
         stage: Stage::Idle,
         query: Query {

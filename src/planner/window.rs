@@ -47,7 +47,7 @@ pub(super) struct ObstacleWindow<'n> {
 
 impl<'n> ObstacleWindow<'n> {
     /// A window that keeps nothing and covers no path (every check reads the network), in
-    /// `const` and all-zero: a reach of 0 is below any path's extent.
+    /// `const`: a reach of 0 is below any path's extent.
     pub(super) const EMPTY: Self = Self {
         centre: Vec2 { x: 0.0, y: 0.0 },
         near: [UNUSED; WINDOW_OBSTACLES],
@@ -131,7 +131,7 @@ pub(super) struct LazyWindow<'n> {
 }
 
 impl<'n> LazyWindow<'n> {
-    /// Not read. `const` and all-zero.
+    /// Not read. `const`.
     pub(super) const UNREAD: Self = Self {
         read: false,
         window: ObstacleWindow::EMPTY,
