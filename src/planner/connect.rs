@@ -1,7 +1,7 @@
 //! Connecting the start and the goal to the network with collision-checked Dubins paths.
 
 use super::state::ModeState;
-use super::window::{LazyWindow, ObstacleWindow};
+use super::window::{ObstacleWindow, Slot};
 use super::{Goal, Link, Meter, PlanError, Planner, QueryField, MAX_CANDIDATES, MAX_GOAL_HEADINGS};
 use crate::geometry::predicates::{
     conflicts_with_circle, conflicts_with_polygon, point_in_polygon,
@@ -134,7 +134,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             Some(near) => self.path_clear_of(
                 path,
                 near.len(),
-                |i| near.get(i).map(|&(_, o, bbox)| (o, bbox)),
+                |i| near.get(i).and_then(Slot::obstacle),
                 meter,
             ),
             None => self.path_is_clear(path, meter),
@@ -220,13 +220,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Tries start candidate `v`: adds a start link if the shortest Dubins path from the start
-    /// reaches it collision-free (one Dubins solve and one path check). `window`: the obstacles
-    /// around the start.
+    /// reaches it collision-free (one Dubins solve and one path check), checked against the
+    /// obstacles around the start (the query's start window).
     pub(super) fn connect_start_candidate(
         &mut self,
         start: &Pose,
         v: u32,
-        window: &ObstacleWindow<'n>,
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
         let Some(target) = self.network.vertex(v) else {
@@ -241,7 +240,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let Some(path) = path else {
             return Ok(());
         };
-        if self.path_is_clear_near(&path, window, meter) {
+        if self.path_is_clear_near(&path, self.start_window(), meter) {
             let _ = self.start_links.push(Link {
                 vertex: v,
                 path,
@@ -273,7 +272,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Tries goal candidate `v`: adds a goal link if it reaches the goal by a collision-free
-    /// Dubins path, checked against `window` (the obstacles around the goal).
+    /// Dubins path, checked against the obstacles around the goal (the query's goal window,
+    /// read before the first candidate).
     ///
     /// With one goal heading a link is that heading's shortest path. With several, the
     /// vertex's shortest clear path over all of them is what the search needs, but only when it
@@ -286,12 +286,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &mut self,
         goal: &Goal,
         v: u32,
-        window: &ObstacleWindow<'n>,
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
         let Some(from) = self.network.vertex(v) else {
             return Err(PlanError::Internal);
         };
+        let window = self.goal_window().ok_or(PlanError::Internal)?;
         if self.config().headings(goal) > 1 {
             if let Some(path) = self.probe_goal_path(&from, goal, window, meter) {
                 let radius = self.network.turn_radius();
@@ -340,15 +340,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Makes goal link `k` exact if it is pending: finds the shortest clear path from its vertex
-    /// to the goal ([`Planner::best_clear_path_to_goal`], against `window`, the obstacles
-    /// around the goal, read on the first call). Its probe was clear, so one exists. Not
+    /// to the goal ([`Planner::best_clear_path_to_goal`], against the obstacles around the
+    /// goal: the query's goal window, read on the first call). Its probe was clear, so one exists. Not
     /// inlined: called at most once per goal link, it would only crowd the search's loop.
     #[inline(never)]
     pub(super) fn resolve_goal_link(
         &mut self,
         k: usize,
         goal: &Goal,
-        window: &mut LazyWindow<'n>,
         meter: &mut Meter,
     ) -> Result<Link, PlanError> {
         let link = *self.goal_links.get(k).ok_or(PlanError::Internal)?;
@@ -359,7 +358,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             .network
             .vertex(link.vertex)
             .ok_or(PlanError::Internal)?;
-        let window = window.get_or_read(&self.network, goal.position, meter);
+        self.read_goal_window_once(goal.position, meter);
+        let window = self.goal_window().ok_or(PlanError::Internal)?;
         let path = self
             .best_clear_path_to_goal(&from, goal, window, meter)?
             .ok_or(PlanError::Internal)?;

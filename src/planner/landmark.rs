@@ -205,6 +205,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// checked: matches the start and the goal to network vertices. Returns the search's ends
     /// (from the start vertex to the goal vertex); the search and
     /// [`Planner::write_landmark_route`] follow.
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
     pub(super) fn landmark_prepare(
         &mut self,
         query: &Query,
@@ -252,6 +253,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Err(PlanError::StartNotInNetwork)
     }
 
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
     pub(super) fn write_landmark_route(
         &mut self,
         from: u32,

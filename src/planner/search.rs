@@ -2,11 +2,9 @@
 
 use super::heap::ItemState;
 use super::state::ModeState;
-use super::window::LazyWindow;
 use super::{
     Link, Meter, Phase, PlanError, PlanStep, Planner, Query, QueryField, RouteSummary, Search,
-    SummarySlot,
-    Work, FROM_START,
+    SummarySlot, Work, FROM_START,
 };
 use crate::geometry::{DubinsPath, Primitive, Vec2};
 
@@ -37,18 +35,20 @@ pub(super) enum StateSpace {
     EdgeStates,
 }
 
-/// Where a vertex search starts and what it looks for.
+/// Where a vertex search starts and what it looks for. An explicit `u8` tag whose first
+/// variant is 0: an idle query ([`Flight::IDLE`](super::slice::Flight::IDLE)) is all-zero bytes.
 #[derive(Clone, Copy, Debug)]
+#[repr(u8)]
 pub(super) enum Ends {
     /// From the start links to the goal links (roadmap mode).
-    Links,
+    Links = 0,
     /// From one vertex (cost 0) to another (landmark mode).
     Vertices {
         /// The start vertex.
         from: u32,
         /// The goal vertex.
         to: u32,
-    },
+    } = 1,
 }
 
 /// A* heuristic scale: the chord to the goal shrunk by 1e-4 so that f32 rounding of stored edge
@@ -69,7 +69,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// [`Planner::plan`], telling `observe` as each [`Phase`] of a roadmap or terrain query
     /// begins, with the work counted so far, and [`Phase::Done`] (also after an error) at the
-    /// end. Landmark and Voronoi queries report only [`Phase::Done`]. The observer sees the query; it does not change it.
+    /// end. Landmark and Voronoi queries report only [`Phase::Done`]. The observer sees the
+    /// query; it does not change it.
     pub fn plan_observed(
         &mut self,
         query: &Query,
@@ -152,8 +153,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// One step of the search [`Planner::search_begin`] began: pops the cheapest state and
     /// expands it. `best` is the cheapest route found so far (at first the direct start–goal
-    /// path, if any, with its cost); `goal_window` the obstacles around the goal, read when a
-    /// pending goal link is first resolved. Returns whether the search is over: the heap is
+    /// path, if any, with its cost); a pending goal link it resolves reads the query's goal
+    /// window first, if unread ([`Planner::resolve_goal_link`]). Returns whether the search is over: the heap is
     /// empty, every remaining route costs at least `best`'s, or the target vertex of an
     /// [`Ends::Vertices`] search is reached. Edges are relaxed only when
     /// [`Planner::is_edge_usable`]; the expansion of a state is the space's
@@ -164,7 +165,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         query: &Query,
         ends: Ends,
         best: &mut Option<(f32, Arrival)>,
-        goal_window: &mut LazyWindow<'n>,
         meter: &mut Meter,
     ) -> Result<bool, PlanError> {
         let Some((s, key, levels)) = self.heap.pop() else {
@@ -175,7 +175,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             return Ok(true); // every remaining route costs at least `key`
         }
         let reached = match self.state_space() {
-            StateSpace::Vertices => self.expand_vertex(query, ends, s, best, goal_window, meter)?,
+            StateSpace::Vertices => self.expand_vertex(query, ends, s, best, meter)?,
             StateSpace::EdgeStates => self.expand_edge_state(s, key, best, meter)?,
         };
         if reached {
@@ -300,7 +300,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         ends: Ends,
         u: u32,
         best: &mut Option<(f32, Arrival)>,
-        goal_window: &mut LazyWindow<'n>,
         meter: &mut Meter,
     ) -> Result<bool, PlanError> {
         let du = self
@@ -323,7 +322,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 if link.pending && best.is_some_and(|(b, _)| du + link.cost >= b) {
                     continue; // its shortest clear path is no shorter than `cost`
                 }
-                let link = self.resolve_goal_link(k, &query.goal, goal_window, meter)?;
+                let link = self.resolve_goal_link(k, &query.goal, meter)?;
                 let total = du + link.cost;
                 if best.is_none_or(|(b, _)| total < b) {
                     *best = Some((total, Arrival::FromState { state: u, link: k }));
@@ -464,6 +463,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Replaces the route with the one `arrival` describes, after `exit` when the start had
     /// to leave a keep-out region, if it fits in `R` paths and `R` primitives.
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
     pub(super) fn write_route(
         &mut self,
         arrival: Arrival,

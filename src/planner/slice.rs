@@ -17,7 +17,7 @@ use super::{
     roadmap_step_unit_bound, Exit, Meter, Phase, PlanError, Planner, Query, RouteSummary,
     SummarySlot, Work,
 };
-use crate::geometry::DubinsPath;
+use crate::geometry::{DubinsPath, Vec2};
 use heapless::Vec;
 
 /// What one [`Planner::step`] ended with.
@@ -64,7 +64,9 @@ pub(super) enum Stage {
     Route,
 }
 
-/// A query in progress: its stage and everything its later stages read.
+/// A query in progress: its stage and everything its later stages read. The planner keeps it
+/// in place ([`Planner::step`] works on it there, by split borrows of the planner's fields);
+/// an idle one ([`Flight::IDLE`]) is all-zero bytes, so that a new planner is too.
 pub(super) struct Flight<'n> {
     /// The next unit of work.
     pub(super) stage: Stage,
@@ -76,7 +78,8 @@ pub(super) struct Flight<'n> {
     ends: Ends,
     /// Roadmap: the exit from the keep-out region the start lies in (at most one).
     exit: Vec<(DubinsPath, Exit), 1>,
-    /// Roadmap: the obstacles around the start (read in [`Stage::Begin`]).
+    /// Roadmap: the obstacles around the start (read in [`Stage::Begin`], for the start links
+    /// and the direct path).
     start_window: ObstacleWindow<'n>,
     /// Roadmap: the obstacles around the goal, for the goal links and then, read again when
     /// the search first resolves a pending goal link, for the search.
@@ -89,8 +92,9 @@ pub(super) struct Flight<'n> {
 }
 
 impl Flight<'_> {
-    /// No query in progress, usable in `const` (a new planner). Not all zero bytes: each
-    /// unused slot of the two obstacle windows holds a circle, whose enum tag is not 0.
+    /// No query in progress, usable in `const` (a new planner): all-zero bytes (the stage's
+    /// and the search ends' discriminants, an unread goal window, the windows' unused slots
+    /// and a `None` goal heading are all 0; empty vectors have only a zero length).
     pub(super) const IDLE: Self = Self {
         stage: Stage::Idle,
         query: Query {
@@ -124,9 +128,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     ///
     /// While the query is in progress the previous route stays readable
     /// ([`Planner::route`]); it is replaced only when the query succeeds. Any method that
-    /// changes the planner (`load`, `set_config`, `add_popup`, `remove_popup`,
-    /// `set_altitude`, `set_weather`, the rosette and threat methods, `shortcut`) cancels the
-    /// query first: the next [`Planner::step`] returns [`PlanStep::Idle`] and the route is the
+    /// changes the planner (`load`, `load_voronoi`, `set_config`, `add_popup`,
+    /// `remove_popup`, `fly_alternatives`, `set_altitude`, `set_weather`, the rosette and
+    /// threat methods, `shortcut`, `smooth_headings`) cancels the query first: the next [`Planner::step`] returns [`PlanStep::Idle`] and the route is the
     /// previous one. Start the query again to plan with the new state.
     pub fn start_plan(&mut self, query: &Query, budget: u64) -> Result<(), PlanError> {
         self.cancel_plan();
@@ -136,8 +140,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         f.meter = Meter::new(budget);
         f.ends = Ends::Links;
         f.exit.clear();
-        f.start_window = ObstacleWindow::EMPTY;
-        f.goal_window = LazyWindow::UNREAD;
+        f.start_window.clear();
+        f.goal_window.forget();
         f.candidates.clear();
         f.next = 0;
         f.best.clear();
@@ -188,7 +192,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// [`Planner::step`], telling `observe` as [`Planner::plan_observed`] does.
+    /// [`Planner::step`], telling `observe` as [`Planner::plan_observed`] does. The query
+    /// state stays in the planner; only its meter is taken out for the step.
     pub(super) fn step_observed(
         &mut self,
         slice_work: u64,
@@ -197,79 +202,102 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if self.flight.stage == Stage::Idle {
             return PlanStep::Idle;
         }
-        let mut f = core::mem::replace(&mut self.flight, Flight::IDLE);
-        let limit = f.meter.work.total().saturating_add(slice_work);
+        let mut meter = core::mem::replace(&mut self.flight.meter, Meter::new(0));
+        let limit = meter.work.total().saturating_add(slice_work);
         let ended = loop {
-            match self.advance(&mut f, limit, observe) {
+            match self.advance(&mut meter, limit, observe) {
                 Ok(None) => {}
                 Ok(Some(summary)) => break Some(Ok(summary)),
                 Err(e) => break Some(Err(e)),
             }
-            if f.meter.work.total() >= limit {
+            if meter.work.total() >= limit {
                 break None;
             }
         };
         match ended {
             Some(result) => {
-                observe(Phase::Done, &f.meter.work);
+                self.flight.stage = Stage::Idle;
+                observe(Phase::Done, &meter.work);
                 PlanStep::Done(result)
             }
             None => {
-                let work_so_far = f.meter.work.total();
-                self.flight = f;
+                let work_so_far = meter.work.total();
+                self.flight.meter = meter;
                 PlanStep::InProgress { work_so_far }
             }
         }
     }
 
-    /// Runs the unit of work `f.stage` names and moves `f` on (in the search, further
+    /// The obstacles around the query's start ([`Stage::Begin`] reads them).
+    pub(super) fn start_window(&self) -> &ObstacleWindow<'n> {
+        &self.flight.start_window
+    }
+
+    /// The obstacles around the query's goal, if read: in [`Stage::GoalBegin`] for the goal
+    /// links, and again in the search when it first resolves a pending goal link
+    /// ([`Planner::read_goal_window_once`]).
+    pub(super) fn goal_window(&self) -> Option<&ObstacleWindow<'n>> {
+        self.flight.goal_window.get()
+    }
+
+    /// Reads the obstacles around the goal at `centre` into the query's goal window unless it
+    /// has been read since the search began (work: [`ObstacleWindow::read_around`] the first
+    /// time).
+    pub(super) fn read_goal_window_once(&mut self, centre: Vec2, meter: &mut Meter) {
+        self.flight
+            .goal_window
+            .read_once(&self.network, centre, meter);
+    }
+
+    /// Runs the unit of work the stage names and moves the query on (in the search, further
     /// expansions too, one at a time while the work counted stays below `limit`: the step's
     /// loop, without leaving the search between them). Returns the route's summary when the
     /// query is done.
+    #[inline(never)] // one copy of the search's loop, shared by `plan` and `step`
     fn advance(
         &mut self,
-        f: &mut Flight<'n>,
+        meter: &mut Meter,
         limit: u64,
         observe: &mut dyn FnMut(Phase, &Work),
     ) -> Result<Option<RouteSummary>, PlanError> {
-        let meter = &mut f.meter;
-        let q = f.query;
-        match f.stage {
+        let q = self.flight.query;
+        match self.flight.stage {
             Stage::Idle => return Err(PlanError::Internal),
-            Stage::Begin => return self.begin(f, observe).map(|()| None),
-            Stage::ConnectStart => match f.candidates.get(f.next) {
-                Some(&(_, v)) if !self.start_links_full() => {
-                    f.next += 1;
-                    self.connect_start_candidate(&q.start, v, &f.start_window, meter)?;
+            Stage::Begin => return self.begin(meter, observe).map(|()| None),
+            Stage::ConnectStart => match self.next_candidate() {
+                Some(v) if !self.start_links_full() => {
+                    self.flight.next += 1;
+                    self.connect_start_candidate(&q.start, v, meter)?;
                 }
-                _ => f.stage = Stage::GoalBegin,
+                _ => self.flight.stage = Stage::GoalBegin,
             },
             Stage::GoalBegin => {
                 observe(Phase::ConnectGoal, &meter.work);
-                f.candidates = self.connect_goal_begin(&q.goal, meter)?;
-                f.next = 0;
-                f.goal_window.read(&self.network, q.goal.position, meter);
-                f.stage = Stage::ConnectGoal;
+                self.flight.candidates = self.connect_goal_begin(&q.goal, meter)?;
+                self.flight.next = 0;
+                self.flight
+                    .goal_window
+                    .read(&self.network, q.goal.position, meter);
+                self.flight.stage = Stage::ConnectGoal;
             }
-            Stage::ConnectGoal => match f.candidates.get(f.next) {
-                Some(&(_, v)) if !self.goal_links_full() => {
-                    f.next += 1;
-                    let window = f.goal_window.get().ok_or(PlanError::Internal)?;
-                    self.connect_goal_candidate(&q.goal, v, window, meter)?;
+            Stage::ConnectGoal => match self.next_candidate() {
+                Some(v) if !self.goal_links_full() => {
+                    self.flight.next += 1;
+                    self.connect_goal_candidate(&q.goal, v, meter)?;
                 }
-                _ => f.stage = Stage::ConnectDirect,
+                _ => self.flight.stage = Stage::ConnectDirect,
             },
             Stage::ConnectDirect => {
                 observe(Phase::ConnectDirect, &meter.work);
-                let window = &f.start_window;
                 let direct = if q.start.position.distance(q.goal.position)
                     <= self.config().connect_radius_m
                 {
-                    self.best_clear_path_to_goal(&q.start, &q.goal, window, meter)?
+                    self.best_clear_path_to_goal(&q.start, &q.goal, self.start_window(), meter)?
                 } else {
                     None
                 };
                 self.check_connected(direct.is_some())?;
+                let f = &mut self.flight;
                 f.best.clear();
                 if let Some(p) = direct {
                     let _ = f.best.push((p.length(), Arrival::Direct(p)));
@@ -280,19 +308,20 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 if self.observes_phases() {
                     observe(Phase::Search, &meter.work);
                 }
-                f.goal_window = LazyWindow::UNREAD;
-                self.search_begin(&q, f.ends, meter)?;
-                f.stage = Stage::Search;
+                self.flight.goal_window.forget();
+                self.search_begin(&q, self.flight.ends, meter)?;
+                self.flight.stage = Stage::Search;
             }
             Stage::Search => {
-                let mut best = f.best.first().copied();
+                let ends = self.flight.ends;
+                let mut best = self.flight.best.first().copied();
                 let over = loop {
-                    let over =
-                        self.search_expand(&q, f.ends, &mut best, &mut f.goal_window, meter)?;
+                    let over = self.search_expand(&q, ends, &mut best, meter)?;
                     if over || meter.work.total() >= limit {
                         break over;
                     }
                 };
+                let f = &mut self.flight;
                 f.best.clear();
                 if let Some(b) = best {
                     let _ = f.best.push(b);
@@ -302,25 +331,36 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 }
             }
             Stage::Route => {
-                let arrival = f.best.first().map(|&(_, a)| a).ok_or(PlanError::NoRoute)?;
+                let arrival = self
+                    .flight
+                    .best
+                    .first()
+                    .map(|&(_, a)| a)
+                    .ok_or(PlanError::NoRoute)?;
                 if self.observes_phases() {
                     observe(Phase::Route, &meter.work);
                 }
-                return self.finish_query(f, arrival).map(Some);
+                return self.finish_query(arrival, meter).map(Some);
             }
         }
         Ok(None)
     }
 
+    /// The vertex of the connection's next candidate, if any is left.
+    fn next_candidate(&self) -> Option<u32> {
+        let f = &self.flight;
+        f.candidates.get(f.next).map(|&(_, v)| v)
+    }
+
     /// The [`Stage::Begin`] unit: everything before the roadmap's connection loops, or before
     /// the search in the other modes.
+    #[inline(never)] // once per query; inlined, its frame would add to the search loop's
     fn begin(
         &mut self,
-        f: &mut Flight<'n>,
+        meter: &mut Meter,
         observe: &mut dyn FnMut(Phase, &Work),
     ) -> Result<(), PlanError> {
-        let meter = &mut f.meter;
-        let q = f.query;
+        let q = self.flight.query;
         let direct = match self.state {
             ModeState::Roadmap => {
                 observe(Phase::CheckFree, &meter.work);
@@ -328,30 +368,31 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 let exit = self.exit_from(&q.start, meter)?;
                 if let Some((path, e)) = exit {
                     // The query goes on from where the exit ends.
-                    f.query.start = path.end();
-                    let _ = f.exit.push((path, e));
+                    self.flight.query.start = path.end();
+                    let _ = self.flight.exit.push((path, e));
                 }
                 observe(Phase::ConnectStart, &meter.work);
-                let start = f.query.start;
-                f.start_window
+                let start = self.flight.query.start;
+                self.flight
+                    .start_window
                     .read_around(&self.network, start.position, meter);
-                f.candidates = self.connect_start_begin(&start, meter)?;
-                f.next = 0;
-                f.stage = Stage::ConnectStart;
+                self.flight.candidates = self.connect_start_begin(&start, meter)?;
+                self.flight.next = 0;
+                self.flight.stage = Stage::ConnectStart;
                 return Ok(());
             }
             ModeState::Terrain(_) => self.terrain_prepare(&q, meter, observe)?,
             ModeState::Voronoi(_) => self.voronoi_prepare(&q, meter)?,
             ModeState::Landmark(_) => {
                 let (from, to) = self.landmark_prepare(&q, meter)?;
-                f.ends = Ends::Vertices { from, to };
+                self.flight.ends = Ends::Vertices { from, to };
                 None
             }
         };
         if let Some((cost, p)) = direct {
-            let _ = f.best.push((cost, Arrival::Direct(p)));
+            let _ = self.flight.best.push((cost, Arrival::Direct(p)));
         }
-        f.stage = Stage::SearchBegin;
+        self.flight.stage = Stage::SearchBegin;
         Ok(())
     }
 
@@ -373,15 +414,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// The [`Stage::Route`] unit: writes the route the search found, the mode's way.
+    #[inline(never)] // once per query; inlined, its frame would add to the search loop's
     fn finish_query(
         &mut self,
-        f: &mut Flight<'n>,
         arrival: Arrival,
+        meter: &mut Meter,
     ) -> Result<RouteSummary, PlanError> {
-        let meter = &mut f.meter;
         match self.state {
             ModeState::Roadmap => {
-                let exit = f.exit.first().copied();
+                let exit = self.flight.exit.first().copied();
                 let mut summary =
                     self.write_route(arrival, exit.as_ref().map(|(path, _)| path), meter)?;
                 summary.exit = exit.map(|(_, e)| e);
@@ -389,8 +430,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 Ok(summary)
             }
             ModeState::Terrain(_) => self.write_terrain_route(arrival, meter),
-            ModeState::Voronoi(_) => self.write_voronoi_route(&f.query, arrival, meter),
-            ModeState::Landmark(_) => match (arrival, f.ends) {
+            ModeState::Voronoi(_) => {
+                let query = self.flight.query;
+                self.write_voronoi_route(&query, arrival, meter)
+            }
+            ModeState::Landmark(_) => match (arrival, self.flight.ends) {
                 (Arrival::AtVertex, Ends::Vertices { from, to }) => {
                     self.write_landmark_route(from, to, meter)
                 }

@@ -88,6 +88,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         candidates: u16,
         budget: u64,
     ) -> Result<SmoothSummary, PlanError> {
+        self.cancel_plan();
         let mut meter = Meter::new(budget);
         let length_before = self.route_length();
         let mut changes = 0;

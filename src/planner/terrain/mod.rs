@@ -208,6 +208,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// checked: checks the start and goal, connects them to the network and tries the direct
     /// path. Returns the direct path with its cost, if any; the search and
     /// [`Planner::write_terrain_route`] follow.
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
     pub(super) fn terrain_prepare(
         &mut self,
         query: &Query,

@@ -64,6 +64,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// checked: checks the start and goal, prices the graph's edges and joins the start and
     /// goal to it. Returns the direct segment with its cost, if clear; the search and
     /// [`Planner::write_voronoi_route`] follow.
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
     pub(in crate::planner) fn voronoi_prepare(
         &mut self,
         query: &Query,
@@ -242,6 +243,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Walks back the coarse route, smooths it and writes it as pieces and chords; on any
     /// error the previous route is left as it was.
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
     pub(in crate::planner) fn write_voronoi_route(
         &mut self,
         query: &Query,
