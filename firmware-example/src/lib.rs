@@ -43,11 +43,8 @@ use core::sync::atomic::{AtomicUsize, Ordering};
 use cortex_m_rt::{exception, ExceptionFrame};
 use cortex_m_semihosting::debug::{self, ExitStatus};
 use defmt_semihosting as _; // the defmt transport: semihosting writes to QEMU's stdout
-                            // The STM32F405's interrupt vectors: the device crate (a dependency for the `slices` binary's
-                            // RTIC) turns on cortex-m-rt's `device` feature, under which the vector table comes from it.
 use skyroute::planner::PlannerConfig;
 use skyroute::Planner;
-use stm32f4 as _;
 
 /// The route task's period (both missions), milliseconds.
 pub const PERIOD_MS: u32 = 20;
