@@ -265,7 +265,7 @@ fn a_change_mid_query_cancels_it_and_keeps_the_route() {
     assert_eq!(got, want);
 
     // Each other change cancels too; a new start cancels the query in progress.
-    for change in 0..4 {
+    for change in 0..5 {
         // What the second query gives as things stand (the pop-up is gone from change 0 on).
         let expected = p.plan(&second, budget);
         p.start_plan(&first, budget).unwrap();
@@ -274,9 +274,12 @@ fn a_change_mid_query_cancels_it_and_keeps_the_route() {
             0 => p.remove_popup(popup.id).unwrap(),
             1 => p.set_config(p.config()),
             2 => p.cancel_plan(),
+            3 => {
+                let _ = p.smooth_headings(4, budget);
+            }
             _ => p.start_plan(&second, budget).unwrap(),
         }
-        if change == 3 {
+        if change == 4 {
             assert!(p.is_planning());
             let mut last = p.step(u64::MAX);
             while let PlanStep::InProgress { .. } = last {
