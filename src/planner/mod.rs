@@ -7,7 +7,7 @@
 //! needs `V ≥ |E| + MAX_LINKS`; under the paper's [`TurnRule`] a state is a (straight before,
 //! edge) pair, and a query with `Ks` start links needs `|E| + T + 2·Ks + 1 + Σₖ outdeg(vₖ)`
 //! (`T = Σ_v indeg(v)·outdeg(v)`, `vₖ` the start links' nodes; `planner/terrain`). Its size is
-//! about `20·V + 2·E + 140·P + 56·R + 1.5 KiB` bytes (`core::mem::size_of` gives the exact
+//! about `20·V + 2·E + 140·P + 56·R + 4.5 KiB` bytes (`core::mem::size_of` gives the exact
 //! figure); place it in a `static` so the linker rejects a build whose RAM does not suffice.
 //! A new planner is all-zero, so such a `static` lands in `.bss` and costs no flash.
 
