@@ -38,6 +38,7 @@ skyroute=target/release/skyroute
 cp firmware-example/fixture/network.bin fuzz/networks/roadmap-niendorf.bin
 cp firmware-example/fixture-terrain/network.bin fuzz/networks/terrain-jacksboro.bin
 cp firmware-example/fixture-landmark/network.bin fuzz/networks/landmark-babel-II-N.bin
+cp firmware-example/fixture-ruz/network.bin fuzz/networks/roadmap-ruz-alternatives.bin
 # The loader's seeds: the small images (a mutated megabyte image costs milliseconds a run), and
 # a sparse roadmap of niendorf-urban.
 "$skyroute" build scenarios/niendorf-urban.geojson --sample-spacing 400 -o fuzz/corpus/load/roadmap-sparse.bin >/dev/null

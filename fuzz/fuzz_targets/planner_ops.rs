@@ -1,7 +1,9 @@
 //! Arbitrary sequences of planner calls on valid networks of every mode: pop-ups added and
 //! removed with arbitrary floats, pop-up threats, weights, weathers, rosette updates,
-//! altitudes, and queries with arbitrary poses and budgets. Nothing may panic, and a route
-//! found never counts more work than its budget nor more than the documented worst case.
+//! altitudes, the pop-up switch (announcements decided among a network's stored alternatives,
+//! the decided or an arbitrary choice flown), and queries with arbitrary poses and budgets.
+//! Nothing may panic, a route found never counts more work than its budget nor more than the
+//! documented worst case, and a switch that fails adds no pop-up.
 //!
 //! The networks (`fuzz/networks/*.bin`, written by `scripts/fuzz-smoke.sh`; the directory is
 //! `SKYROUTE_FUZZ_NETWORKS` when set) are loaded once per process: each input starts by
@@ -12,6 +14,8 @@
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
 use skyroute::network::Mode;
+use skyroute::planner::alternatives::{decide_stored, Announced};
+use skyroute::planner::decision::DecisionLimits;
 use skyroute::planner::{ThreatOrigin, VoronoiStorage, MAX_POPUP_VERTICES};
 use skyroute::{Goal, Planner, Popup, Pose, Query, Search, Vec2};
 use std::sync::{Mutex, OnceLock};
@@ -51,6 +55,11 @@ enum Op {
     },
     ClearRosette(u32),
     Altitude(f32, f32),
+    Switch {
+        announced: Vec<(u8, f32)>,
+        limits: (f32, f32),
+        choice: Option<Vec<u8>>,
+    },
     Plan {
         sx: Coord,
         sy: Coord,
@@ -217,6 +226,33 @@ fuzz_target!(|input: Input| {
             }
             Op::Altitude(a, s) => {
                 let _ = p.set_altitude(a, s);
+            }
+            Op::Switch {
+                announced,
+                limits,
+                choice,
+            } => {
+                let announced: Vec<Announced> = announced
+                    .into_iter()
+                    .take(9)
+                    .map(|(popup, appearance)| Announced { popup, appearance })
+                    .collect();
+                let limits = DecisionLimits {
+                    time_max: limits.0,
+                    fuel_max: limits.1,
+                };
+                let net = *p.network();
+                let decided = decide_stored(&net, &announced, &limits);
+                let choice = match (choice, decided) {
+                    (Some(c), _) => c,
+                    (None, Ok(d)) => d.choice.to_vec(),
+                    (None, Err(_)) => continue,
+                };
+                let before = p.popups().count();
+                match p.fly_alternatives(&announced, &choice) {
+                    Ok(ids) => assert_eq!(p.popups().count(), before + ids.len()),
+                    Err(e) => assert_eq!(p.popups().count(), before, "{e:?} added pop-ups"),
+                }
             }
             Op::Plan {
                 sx,

@@ -4,7 +4,9 @@
 use crate::build_limits::{check_area, check_grid, check_sampling, encode_checked, landmark_box};
 use crate::frame::LocalFrame;
 use crate::landmark::{build_landmark_network, LandmarkNetwork};
-use crate::roadmap::{build_roadmap, CollisionCheck, Roadmap, RoadmapInput, RoadmapParams};
+use crate::roadmap::{
+    build_roadmap, CollisionCheck, Roadmap, RoadmapInput, RoadmapParams, Sagitta,
+};
 use crate::scenario::{Mode, Scenario};
 use crate::terrain::{build_terrain_graph, TerrainGraph, TerrainParams};
 use skyroute::network::format::ProvenanceRecord;
@@ -23,8 +25,9 @@ pub struct BuildOptions {
     pub sample_spacing_m: Option<f32>,
     /// Replaces `planner.neighbour_radius_m`.
     pub neighbour_radius_m: Option<f32>,
-    /// Use the paper's discretised collision check (`planner.arc_step_m`) instead of the exact one.
-    pub discretised: bool,
+    /// Use the paper's discretised collision check (`planner.arc_step_m`), with the chord
+    /// error added to the clearance or counted in it, instead of the exact one (`None`).
+    pub discretised: Option<Sagitta>,
     /// Side of a grid-index cell; default: twice the turn radius (roadmap), 4 km (terrain).
     pub grid_cell_m: Option<f32>,
     /// Terrain mode: nodes closer than this to a kept node are dropped (default 0: none).
@@ -184,12 +187,12 @@ fn build_roadmap_network(
         allow_ccc: p.allow_ccc.unwrap_or(true),
         clearance_m: p.clearance_m.unwrap_or(0.0) as f32,
         seed: p.seed.unwrap_or(1),
-        check: if options.discretised {
-            CollisionCheck::Discretised {
+        check: match options.discretised {
+            Some(sagitta) => CollisionCheck::Discretised {
                 arc_step_m: need(p.arc_step_m, "planner.arc_step_m")? as f32,
-            }
-        } else {
-            CollisionCheck::Exact
+                sagitta,
+            },
+            None => CollisionCheck::Exact,
         },
     };
     let frame = s.local_frame();

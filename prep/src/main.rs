@@ -7,6 +7,7 @@ use skyroute_prep::build::{build, BuildOptions};
 use skyroute_prep::init::init_command;
 use skyroute_prep::output::{refuse_overwriting_inputs, write_atomically};
 use skyroute_prep::plan_cli::{load_scenario, plan_command, CliResult, NoRoute, PlanRequest};
+use skyroute_prep::roadmap::Sagitta;
 use skyroute_prep::route_mission::{Autopilot, MissionOutput};
 use skyroute_prep::ruz::cli::plan_decided_command;
 use skyroute_prep::ruz::study_cli::{montecarlo_command, MonteCarloRequest};
@@ -100,9 +101,12 @@ enum Command {
         /// Override planner.neighbour_radius_m.
         #[arg(long, value_parser = parse_radius, allow_hyphen_values = true)]
         neighbour_radius: Option<f32>,
-        /// Check edges with the paper's discretisation (planner.arc_step_m) instead of exactly.
-        #[arg(long)]
-        discretised: bool,
+        /// Check edges with the paper's discretisation (planner.arc_step_m) instead of exactly:
+        /// `added` (the default) tests chords with the clearance plus the chord error, `paper`
+        /// with the clearance alone (the paper's reading: its tunnel includes the error).
+        #[arg(long, num_args = 0..=1, require_equals = true, default_missing_value = "added",
+              value_parser = parse_sagitta)]
+        discretised: Option<Sagitta>,
         /// Side of a grid-index cell, metres (default: twice the turn radius; terrain 4000;
         /// landmark 2000).
         #[arg(long, value_parser = parse_radius, allow_hyphen_values = true)]
@@ -385,6 +389,14 @@ fn parse_weight(s: &str) -> Result<f32, String> {
     }
 }
 
+fn parse_sagitta(s: &str) -> Result<Sagitta, String> {
+    match s {
+        "added" => Ok(Sagitta::Added),
+        "paper" => Ok(Sagitta::InClearance),
+        _ => Err(format!("expected added or paper, got {s:?}")),
+    }
+}
+
 fn parse_turn_rule(s: &str) -> Result<skyroute::TurnRule, String> {
     match s.trim() {
         "paper" => Ok(skyroute::TurnRule::Paper),
@@ -537,15 +549,15 @@ fn build_command(
         return Err("the build produced no network".into());
     };
     println!(
-        "built {}: {} vertices, {} edges ({} examined, {} check), {} bytes, {:.2} s -> {}",
+        "built {}: {} vertices, {} edges ({} examined, {}), {} bytes, {:.2} s -> {}",
         path.display(),
         r.vertices.len(),
         r.edges.len(),
         r.edges_examined,
-        if options.discretised {
-            "discretised"
-        } else {
-            "exact"
+        match options.discretised {
+            Some(Sagitta::Added) => "discretised check",
+            Some(Sagitta::InClearance) => "discretised check, the paper's reading",
+            None => "exact check",
         },
         built.bytes.len(),
         t0.elapsed().as_secs_f64(),

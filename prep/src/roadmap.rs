@@ -20,12 +20,26 @@ use skyroute::{DubinsPath, Pose, Primitive, Vec2};
 pub enum CollisionCheck {
     /// The core's exact predicates on every line and arc.
     Exact,
-    /// The paper's discretisation: points every `arc_step_m` along each path, each tested with
-    /// the clearance enlarged by the chord error f = r(1 − cos(d / 2r)) of that step.
+    /// The paper's discretisation: points every `arc_step_m` along each path, the chords
+    /// between them tested against the obstacles.
     Discretised {
         /// Step along the path, metres.
         arc_step_m: f32,
+        /// How the chords' error f = r(1 − cos(d / 2r)) enters the margin.
+        sagitta: Sagitta,
     },
+}
+
+/// How the discretised check accounts for the chord error f = r(1 − cos(d / 2r)) (the sagitta
+/// of a chord of length d on an arc of radius r).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sagitta {
+    /// Chords tested with the clearance plus f: every accepted path keeps the whole clearance.
+    Added,
+    /// The paper's reading: the clearance (its 7 m tunnel) already includes f, so chords are
+    /// tested with the clearance alone and an accepted path keeps at least the clearance
+    /// minus f.
+    InClearance,
 }
 
 /// The roadmap's parameters (the scenario's `planner` member).
@@ -213,15 +227,22 @@ impl<'a> ObstacleIndex<'a> {
                 self.near(lo, hi, clearance)
                     .all(|o| !primitive_conflicts(&prim, o, clearance))
             }),
-            CollisionCheck::Discretised { arc_step_m } => {
+            CollisionCheck::Discretised {
+                arc_step_m,
+                sagitta,
+            } => {
                 // The paper's method: the path is replaced by chords between points `d` apart
-                // along it, and each chord is tested with the clearance enlarged by the chord's
-                // largest deviation from an arc of radius r, f = r(1 − cos(d/2r)) (the sagitta).
-                // Any point of the path within the clearance of an obstacle then has a chord
-                // point within clearance + f, so this check accepts a subset of the exact one.
+                // along it. A chord deviates from an arc of radius r by at most
+                // f = r(1 − cos(d/2r)) (the sagitta), so any point of the path within m of an
+                // obstacle has a chord point within m + f. With the margin clearance + f the
+                // check accepts a subset of the exact one; with the clearance alone (the
+                // paper's reading) every accepted path keeps at least clearance − f.
                 let r = path.radius;
                 let f = r * (1.0 - (arc_step_m / (2.0 * r)).cos());
-                let margin = clearance + f;
+                let margin = match sagitta {
+                    Sagitta::Added => clearance + f,
+                    Sagitta::InClearance => clearance,
+                };
                 let steps = (path.length() / arc_step_m).ceil().max(1.0) as usize;
                 let point = |i: usize| {
                     path.sample(path.length() * i as f32 / steps as f32)

@@ -9,8 +9,9 @@ use common::{code, ok, scenario, skyroute, stderr, stdout, TempDir};
 use serde_json::Value;
 use skyroute::planner::decision::{decide, Alternative, DecisionLimits};
 use skyroute::Primitive;
-use skyroute_prep::ruz::alternatives::{plan_study, study, Planning};
+use skyroute_prep::ruz::alternatives::{plan_study, Planning};
 use skyroute_prep::ruz::cli::{decision_inputs, LIMITS};
+use skyroute_prep::ruz::stored::study;
 
 /// The least f64 distance from `c` to the primitive, sampled every metre.
 fn distance(p: &Primitive, c: (f64, f64)) -> f64 {

@@ -545,44 +545,6 @@ mod tests {
             postcard::to_stdvec(&p).unwrap().len(),
             ProvenanceRecord::SIZE
         );
-        let a = AlternativesRecord {
-            popup_count: u32::MAX,
-            alternative_count: 1,
-            disc_count: 2,
-            nominal_steps: 3,
-            time_limit: 0.35,
-            fuel_limit: 0.4,
-        };
-        assert_eq!(
-            postcard::to_stdvec(&a).unwrap().len(),
-            AlternativesRecord::SIZE
-        );
-        let p = PopupRecord {
-            x: 1.0,
-            y: 2.0,
-            radius: 3.0,
-            probability: 0.5,
-            alternative_count: u32::MAX,
-        };
-        assert_eq!(postcard::to_stdvec(&p).unwrap().len(), PopupRecord::SIZE);
-        let alt = AlternativeRecord {
-            steps: u32::MAX,
-            survival_known: 0.9,
-            survival_popup: 0.8,
-            fuel: 0.1,
-            length_m: 1.0,
-            disc_count: u32::MAX,
-        };
-        assert_eq!(
-            postcard::to_stdvec(&alt).unwrap().len(),
-            AlternativeRecord::SIZE
-        );
-        let d = DiscRecord {
-            x: 1.0,
-            y: 2.0,
-            radius: 3.0,
-        };
-        assert_eq!(postcard::to_stdvec(&d).unwrap().len(), DiscRecord::SIZE);
         let v = VertexRecord {
             x: 1.0,
             y: 2.0,
@@ -685,5 +647,47 @@ mod tests {
                 .len(),
             PointRecord::SIZE
         );
+    }
+
+    #[test]
+    fn alternatives_records_encode_to_their_sizes() {
+        let a = AlternativesRecord {
+            popup_count: u32::MAX,
+            alternative_count: 1,
+            disc_count: 2,
+            nominal_steps: 3,
+            time_limit: 0.35,
+            fuel_limit: 0.4,
+        };
+        assert_eq!(
+            postcard::to_stdvec(&a).unwrap().len(),
+            AlternativesRecord::SIZE
+        );
+        let p = PopupRecord {
+            x: 1.0,
+            y: 2.0,
+            radius: 3.0,
+            probability: 0.5,
+            alternative_count: u32::MAX,
+        };
+        assert_eq!(postcard::to_stdvec(&p).unwrap().len(), PopupRecord::SIZE);
+        let alt = AlternativeRecord {
+            steps: u32::MAX,
+            survival_known: 0.9,
+            survival_popup: 0.8,
+            fuel: 0.1,
+            length_m: 1.0,
+            disc_count: u32::MAX,
+        };
+        assert_eq!(
+            postcard::to_stdvec(&alt).unwrap().len(),
+            AlternativeRecord::SIZE
+        );
+        let d = DiscRecord {
+            x: 1.0,
+            y: 2.0,
+            radius: 3.0,
+        };
+        assert_eq!(postcard::to_stdvec(&d).unwrap().len(), DiscRecord::SIZE);
     }
 }

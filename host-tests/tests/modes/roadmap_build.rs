@@ -9,6 +9,7 @@ use skyroute::geometry::predicates::point_segment_distance;
 use skyroute::network::write::ObstacleSpec;
 use skyroute::{Network, Segment};
 use skyroute_prep::build::{build, BuildOptions, Built};
+use skyroute_prep::roadmap::{primitive_conflicts, Sagitta};
 use skyroute_prep::scenario;
 use std::path::PathBuf;
 
@@ -84,7 +85,7 @@ fn exact_and_discretised_checks_are_both_reported() {
     let discretised = build_with_threads(
         2,
         &BuildOptions {
-            discretised: true,
+            discretised: Some(Sagitta::Added),
             ..Default::default()
         },
     );
@@ -119,5 +120,64 @@ fn exact_and_discretised_checks_are_both_reported() {
     assert!(
         d < e,
         "the exact check should accept edges the discretised one loses"
+    );
+}
+
+#[test]
+fn the_papers_discretised_reading_keeps_the_clearance_less_the_chord_error() {
+    let s = scenarios::scenario("niendorf-urban");
+    let added = build_with_threads(
+        2,
+        &BuildOptions {
+            discretised: Some(Sagitta::Added),
+            ..Default::default()
+        },
+    );
+    let paper = build_with_threads(
+        2,
+        &BuildOptions {
+            discretised: Some(Sagitta::InClearance),
+            ..Default::default()
+        },
+    );
+    let net = Network::from_bytes(&paper.bytes).unwrap();
+    let (r, clearance) = (net.turn_radius(), net.clearance());
+    let d = s.planner.arc_step_m.unwrap() as f32;
+    // The largest deviation of a chord of length d from an arc of radius r.
+    let f = r * (1.0 - (d / (2.0 * r)).cos());
+    let mut within_clearance = 0;
+    for e in 0..net.edge_count() {
+        let prims: Vec<_> = net
+            .edge_path(e)
+            .unwrap()
+            .primitives()
+            .into_iter()
+            .flatten()
+            .collect();
+        let conflicts = |m: f32| {
+            prims
+                .iter()
+                .any(|p| paper.obstacles.iter().any(|o| primitive_conflicts(p, o, m)))
+        };
+        assert!(
+            !conflicts(clearance - f - 0.01),
+            "edge {e} comes within the clearance less f ({} m)",
+            clearance - f
+        );
+        within_clearance += conflicts(clearance) as usize;
+    }
+    let (na, np) = (
+        added.roadmap.as_ref().unwrap().edges.len(),
+        paper.roadmap.as_ref().unwrap().edges.len(),
+    );
+    println!(
+        "niendorf-urban, arc step {d} m, f = {f:.2} m: the chord error added to the clearance \
+         accepts {na} edges; counted in it (the paper's reading) {np}, of which \
+         {within_clearance} come within the {clearance} m clearance (none within {:.2} m)",
+        clearance - f
+    );
+    assert!(
+        np >= na,
+        "the smaller margin accepts fewer edges: {np} < {na}"
     );
 }

@@ -178,17 +178,6 @@ pub fn nearest_point(route: &[Primitive], c: Vec2) -> (f64, Vec2) {
         .fold((f64::INFINITY, c), |a, b| if b.0 < a.0 { b } else { a })
 }
 
-/// The nominal route and the alternatives of the scenario's pop-ups whose indices `which`
-/// lists (in that order): those stored in the network image ([`super::stored::stored_study`]),
-/// or, for an image that stores none, planned now ([`plan_study`]).
-pub fn study(planning: &Planning, params: &RiskParams, which: &[usize]) -> Result<Study, String> {
-    let net = skyroute::Network::from_bytes(planning.bytes).map_err(|e| e.to_string())?;
-    match super::stored::stored_study(planning, &net, params, which)? {
-        Some(study) => Ok(study),
-        None => plan_study(planning, params, which),
-    }
-}
-
 /// Plans and scores the nominal route and the alternatives of the scenario's pop-ups whose
 /// indices `which` lists (in that order), as the module documentation says.
 pub fn plan_study(

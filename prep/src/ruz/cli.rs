@@ -10,8 +10,9 @@
 //! one pop-up that is its chosen alternative; with several it keeps clear of every pop-up and
 //! takes each bypass's side, and its own figures are reported beside the decision's.
 
-use super::alternatives::{study, Planning, PopupAlternatives, ScoredRoute, Study};
+use super::alternatives::{Planning, PopupAlternatives, ScoredRoute, Study};
 use super::risk_params;
+use super::stored::study;
 use crate::mission::MissionOptions;
 use crate::output::refuse_overwriting_inputs;
 use crate::plan_checks::{check_query, gather_popups, PopupInput};
@@ -26,15 +27,7 @@ use skyroute::planner::decision::{
 use skyroute::planner::risk::{route_figures, AlternativeRisk, RiskParams};
 use std::time::Instant;
 
-/// The paper's limit on the mean time factor.
-pub const TIME_LIMIT: f32 = 0.35;
-/// The paper's limit on the mean fuel factor.
-pub const FUEL_LIMIT: f32 = 0.40;
-/// The paper's limits.
-pub const LIMITS: DecisionLimits = DecisionLimits {
-    time_max: TIME_LIMIT,
-    fuel_max: FUEL_LIMIT,
-};
+pub use super::{FUEL_LIMIT, LIMITS, TIME_LIMIT};
 
 /// The indices of the scenario pop-ups named by `--popup-appears`, in the order given; an
 /// unknown or repeated name is refused by name.

@@ -13,7 +13,18 @@ pub mod stored;
 pub mod study_cli;
 
 use crate::scenario::Scenario;
+use skyroute::planner::decision::DecisionLimits;
 use skyroute::planner::risk::{Airframe, RadarModel, RiskParams};
+
+/// The paper's limit on the mean time factor.
+pub const TIME_LIMIT: f32 = 0.35;
+/// The paper's limit on the mean fuel factor.
+pub const FUEL_LIMIT: f32 = 0.40;
+/// The paper's limits.
+pub const LIMITS: DecisionLimits = DecisionLimits {
+    time_max: TIME_LIMIT,
+    fuel_max: FUEL_LIMIT,
+};
 
 /// R_max: the radars' range, metres (the paper's 50 km).
 pub const RANGE_MAX_M: f32 = 50_000.0;

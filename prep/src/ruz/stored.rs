@@ -2,15 +2,14 @@
 //! pop-up's alternatives ([`super::alternatives::plan_study`]) on the network it has just
 //! encoded and writes them into it ([`with_alternatives`]); `skyroute plan --popup-appears`,
 //! `montecarlo` and the aircraft ([`skyroute::planner::alternatives`]) then decide among the
-//! stored ones. [`stored_study`] rebuilds the study from the image: each alternative's route is
+//! stored ones. [`study`] reads them back ([`stored_study`]): each alternative's route is
 //! planned again from its stored discs (for the route file and `render`), its figures are the
 //! stored ones, which the aircraft decides with.
 
 use super::alternatives::{
     nearest_point, plan_study, Planning, PopupAlternatives, ScoredRoute, Study,
 };
-use super::cli::LIMITS;
-use super::risk_params;
+use super::{risk_params, LIMITS};
 use crate::frame::LocalFrame;
 use crate::local::local;
 use crate::mission::{LocalPopup, MissionOptions};
@@ -113,6 +112,17 @@ fn stored_discs(
         }
     }
     discs
+}
+
+/// The nominal route and the alternatives of the scenario's pop-ups whose indices `which`
+/// lists (in that order): those stored in the network image ([`stored_study`]), or, for an
+/// image that stores none, planned now ([`plan_study`]).
+pub fn study(planning: &Planning, params: &RiskParams, which: &[usize]) -> Result<Study, String> {
+    let net = Network::from_bytes(planning.bytes).map_err(|e| e.to_string())?;
+    match stored_study(planning, &net, params, which)? {
+        Some(study) => Ok(study),
+        None => plan_study(planning, params, which),
+    }
 }
 
 /// The study of the scenario pop-ups `which` from the alternatives stored in `net` (the image

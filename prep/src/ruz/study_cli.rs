@@ -1,10 +1,11 @@
 //! `skyroute montecarlo`: the Monte Carlo study of [`super::montecarlo`] on a roadmap or
 //! terrain network, its histograms and its JSON record.
 
-use super::alternatives::{study, Planning};
+use super::alternatives::Planning;
 use super::histogram::{histogram_svg, Histogram};
 use super::montecarlo::{expected, run, setup, Tally};
 use super::risk_params;
+use super::stored::study;
 use crate::mission::MissionOptions;
 use crate::output::{refuse_overwriting_inputs, write_atomically};
 use crate::plan_cli::{load_scenario, CliResult};
