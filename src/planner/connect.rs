@@ -341,8 +341,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Makes goal link `k` exact if it is pending: finds the shortest clear path from its vertex
     /// to the goal ([`Planner::best_clear_path_to_goal`], against the obstacles around the
-    /// goal: the query's goal window, read on the first call). Its probe was clear, so one exists. Not
-    /// inlined: called at most once per goal link, it would only crowd the search's loop.
+    /// goal: the query's goal window, read on the first call). Its probe was clear, so one
+    /// exists. Not inlined: called at most once per goal link, it would only crowd the search's
+    /// loop.
     #[inline(never)]
     pub(super) fn resolve_goal_link(
         &mut self,
