@@ -9,7 +9,6 @@
 //! edges costs nothing until a search reads them.
 
 use super::popup::{Popup, PopupSummary};
-
 use super::state::{LandmarkState, ModeState, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
 use super::{Meter, PlanError, Planner, Query, RouteSummary, SummarySlot};
 use crate::geometry::{wrap_to_pi, Vec2};
@@ -201,6 +200,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             _ => &[],
         }
     }
+
     /// Landmark mode's [`Planner::plan`] up to its search, after the query's numbers were
     /// checked: matches the start and the goal to network vertices. Returns the search's ends
     /// (from the start vertex to the goal vertex); the search and
