@@ -8,7 +8,9 @@
 #   flight, re-plan) and for radar threats (ruz-popups as a Voronoi network, binary `voronoi`:
 #   plan, a radar pops up in flight, re-plan) and for the pop-up switch (ruz-popups with its
 #   stored bypass alternatives, binary `ruz`: decide a sequence of announcements, fly the
-#   choices and re-plan, and a worst-case decision, as the host does) → a short run of every fuzz target
+#   choices and re-plan, and a worst-case decision, as the host does) and for planning in
+#   slices (the roadmap fixture, binary `slices` with the feature `slices`: RTIC 2, a task
+#   ticking while the query is planned a slice at a time) → a short run of every fuzz target
 #   (scripts/fuzz-smoke.sh; skipped, with a message, where no nightly toolchain is installed).
 # Runnable from any directory. Stops at the first failing step; KEEP_GOING=1 runs every step
 # and fails at the end instead.
@@ -24,7 +26,7 @@
 #   KEEP_GOING=1         run every step even after a failure
 #   SWEEP_QUERIES        random queries per mode of the work bound sweep (default 100000)
 #   STEPS=REGEX          run only the steps whose name matches REGEX (grep -E), e.g.
-#                        STEPS=firmware for the five firmware binaries' steps, or
+#                        STEPS=firmware for the six firmware binaries' steps, or
 #                        STEPS='voronoi firmware' for one binary's
 set -euo pipefail
 
@@ -69,7 +71,7 @@ ruz_scenario=scenarios/ruz-popups.geojson
 ruz_sample_spacing=2000
 ruz_src=target/fixture/ruz-src.bin
 ruz_fixture_dir=firmware-example/fixture-ruz
-# The firmware binaries' ELFs: $firmware_release/{roadmap,terrain,landmark,voronoi,ruz}.
+# The firmware binaries' ELFs: $firmware_release/{roadmap,terrain,landmark,voronoi,ruz,slices}.
 firmware_release=firmware-example/target/thumbv7em-none-eabihf/release
 
 script_start=$SECONDS
@@ -216,16 +218,22 @@ fixture() {
         "$network_src" "$fixture_dir" ${extra[@]+"${extra[@]}"}
 }
 
-# firmware_build BIN: builds the firmware binary BIN (roadmap, terrain, landmark, voronoi or
-# ruz), which embeds its own fixture (fixture/, fixture-terrain/, fixture-landmark/,
-# fixture-voronoi/, fixture-ruz/).
+# firmware_build BIN [CARGO ARGS...]: builds the firmware binary BIN (roadmap, terrain,
+# landmark, voronoi, ruz or, with `--features slices`, slices), which embeds its own fixture
+# (fixture/, fixture-terrain/, fixture-landmark/, fixture-voronoi/, fixture-ruz/; slices:
+# fixture/).
 firmware_build() {
-    (cd firmware-example && cargo build --release --bin "$1")
+    local bin=$1
+    shift
+    (cd firmware-example && cargo build --release --bin "$bin" "$@")
 }
 
-# firmware_clippy BIN: lints the firmware library and the binary BIN, warnings denied.
+# firmware_clippy BIN [CARGO ARGS...]: lints the firmware library and the binary BIN, warnings
+# denied.
 firmware_clippy() {
-    (cd firmware-example && cargo clippy --release --bin "$1" -- -D warnings)
+    local bin=$1
+    shift
+    (cd firmware-example && cargo clippy --release --bin "$bin" "$@" -- -D warnings)
 }
 
 terrain_fixture() {
@@ -371,6 +379,14 @@ step "ruz switch firmware build (release, bin ruz)" firmware_build ruz
 step "ruz switch firmware clippy (bin ruz)" firmware_clippy ruz
 step "ruz switch firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/ruz"
 step "ruz switch firmware size" firmware_size "$firmware_release/ruz"
+# Planning in slices under RTIC 2 on the roadmap fixture (the `slices` feature: RTIC and the
+# STM32F405's device crate, which the other binaries do not link).
+step "slices firmware build (release, bin slices, feature slices)" \
+    firmware_build slices --features slices
+step "slices firmware clippy (bin slices, feature slices)" \
+    firmware_clippy slices --features slices
+step "slices firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/slices"
+step "slices firmware size" firmware_size "$firmware_release/slices"
 step "no recursion in the core (the five firmware binaries' call graphs)" scripts/no-recursion.sh
 step "no panic path in the core (the five firmware binaries' disassembly)" scripts/prove-no-panic.sh
 step "stack bound (static, from the five firmware binaries' disassembly)" stack_bound

@@ -27,7 +27,7 @@
 
 // Bytes that suffice for a planner on every target this library builds for (at least
 // `sr_planner_size()`; checked at compile time).
-#define SR_PLANNER_STORAGE_SIZE 81192
+#define SR_PLANNER_STORAGE_SIZE 85320
 
 // An alignment that suffices for a planner on every target this library builds for (a
 // multiple of `sr_planner_align()`; checked at compile time).

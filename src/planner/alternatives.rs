@@ -153,6 +153,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         announced: &[Announced],
         choice: &[u8],
     ) -> Result<Vec<u8, 16>, SwitchError> {
+        self.cancel_plan();
         let net = self.network;
         check_announced(&net, announced)?;
         if choice.len() != announced.len() {

@@ -1,7 +1,7 @@
 //! Connecting the start and the goal to the network with collision-checked Dubins paths.
 
 use super::state::ModeState;
-use super::window::ObstacleWindow;
+use super::window::{ObstacleWindow, Slot};
 use super::{Goal, Link, Meter, PlanError, Planner, QueryField, MAX_CANDIDATES, MAX_GOAL_HEADINGS};
 use crate::geometry::predicates::{
     conflicts_with_circle, conflicts_with_polygon, point_in_polygon,
@@ -14,7 +14,7 @@ use core::f32::consts::TAU;
 use heapless::Vec;
 
 /// The nearest vertices to a point, nearest first.
-type Candidates = Vec<(f32, u32), MAX_CANDIDATES>;
+pub(super) type Candidates = Vec<(f32, u32), MAX_CANDIDATES>;
 
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
     /// Rejects a start or goal that lies inside a static obstacle or an active pop-up.
@@ -134,7 +134,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             Some(near) => self.path_clear_of(
                 path,
                 near.len(),
-                |i| near.get(i).map(|&(_, o, bbox)| (o, bbox)),
+                |i| near.get(i).and_then(Slot::obstacle),
                 meter,
             ),
             None => self.path_is_clear(path, meter),
@@ -200,51 +200,80 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// Fills the start links: collision-free Dubins paths from the start to the nearest vertices
-    /// they reach, trying the [`MAX_CANDIDATES`] nearest in order until
+    /// Begins connecting the start: clears the start links and returns the
+    /// [`MAX_CANDIDATES`] vertices nearest the start, which
+    /// [`Planner::connect_start_candidate`] then tries in order until
     /// [`PlannerConfig::start_candidates`](super::PlannerConfig) succeed.
-    /// `window`: the obstacles around the start.
-    pub(super) fn connect_start(
+    pub(super) fn connect_start_begin(
         &mut self,
         start: &Pose,
-        window: &ObstacleWindow<'n>,
         meter: &mut Meter,
-    ) -> Result<(), PlanError> {
+    ) -> Result<Candidates, PlanError> {
         self.start_links.clear();
-        let candidates = self.nearest_vertices(start.position, meter)?;
-        let wanted = self.config().start_links();
-        let from = DubinsEnd::new(start);
-        for &(_, v) in &candidates {
-            if self.start_links.len() >= wanted {
-                break;
-            }
-            let Some(target) = self.network.vertex(v) else {
-                return Err(PlanError::Internal);
-            };
-            meter.work.dubins_solves += 1;
-            let path = from.zip(DubinsEnd::new(&target)).and_then(|(from, to)| {
-                DubinsPath::shortest_between(&from, &to, self.network.turn_radius(), WordSet::ALL)
-            });
-            let Some(path) = path else {
-                continue;
-            };
-            if self.path_is_clear_near(&path, window, meter) {
-                let _ = self.start_links.push(Link {
-                    vertex: v,
-                    path,
-                    cost: path.length(),
-                    pending: false,
-                });
-            }
-            meter.check()?;
-        }
-        Ok(())
+        self.nearest_vertices(start.position, meter)
     }
 
-    /// Fills the goal links: the [`MAX_CANDIDATES`] vertices nearest the goal are tried in
-    /// order until [`PlannerConfig::goal_candidates`](super::PlannerConfig) reach the goal by
-    /// a collision-free Dubins path, checked against the obstacles around the goal
-    /// ([`ObstacleWindow`], read once for all of them).
+    /// Whether the start links are complete: as many as
+    /// [`PlannerConfig::start_candidates`](super::PlannerConfig) asks for.
+    pub(super) fn start_links_full(&self) -> bool {
+        self.start_links.len() >= self.config().start_links()
+    }
+
+    /// Tries start candidate `v`: adds a start link if the shortest Dubins path from the start
+    /// reaches it collision-free (one Dubins solve and one path check), checked against the
+    /// obstacles around the start (the query's start window).
+    pub(super) fn connect_start_candidate(
+        &mut self,
+        start: &Pose,
+        v: u32,
+        meter: &mut Meter,
+    ) -> Result<(), PlanError> {
+        let Some(target) = self.network.vertex(v) else {
+            return Err(PlanError::Internal);
+        };
+        meter.work.dubins_solves += 1;
+        let path = DubinsEnd::new(start)
+            .zip(DubinsEnd::new(&target))
+            .and_then(|(from, to)| {
+                DubinsPath::shortest_between(&from, &to, self.network.turn_radius(), WordSet::ALL)
+            });
+        let Some(path) = path else {
+            return Ok(());
+        };
+        if self.path_is_clear_near(&path, self.start_window(), meter) {
+            let _ = self.start_links.push(Link {
+                vertex: v,
+                path,
+                cost: path.length(),
+                pending: false,
+            });
+        }
+        meter.check()
+    }
+
+    /// Begins connecting the goal: clears the goal links and returns the [`MAX_CANDIDATES`]
+    /// vertices nearest the goal; the obstacles around the goal ([`ObstacleWindow`]) are read
+    /// next, once for all of them. [`Planner::connect_goal_candidate`] then tries the
+    /// candidates in order until [`PlannerConfig::goal_candidates`](super::PlannerConfig) reach
+    /// the goal.
+    pub(super) fn connect_goal_begin(
+        &mut self,
+        goal: &Goal,
+        meter: &mut Meter,
+    ) -> Result<Candidates, PlanError> {
+        self.goal_links.clear();
+        self.nearest_vertices(goal.position, meter)
+    }
+
+    /// Whether the goal links are complete: as many as
+    /// [`PlannerConfig::goal_candidates`](super::PlannerConfig) asks for.
+    pub(super) fn goal_links_full(&self) -> bool {
+        self.goal_links.len() >= self.config().goal_links()
+    }
+
+    /// Tries goal candidate `v`: adds a goal link if it reaches the goal by a collision-free
+    /// Dubins path, checked against the obstacles around the goal (the query's goal window,
+    /// read before the first candidate).
     ///
     /// With one goal heading a link is that heading's shortest path. With several, the
     /// vertex's shortest clear path over all of them is what the search needs, but only when it
@@ -253,42 +282,36 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// vertex to the goal — with [`DubinsPath::length_lower_bound`] as its cost, and the search
     /// finds its shortest clear path if it needs it ([`Planner::resolve_goal_link`]). A vertex
     /// whose probe is blocked has its shortest clear path, if any, found here.
-    pub(super) fn connect_goal(&mut self, goal: &Goal, meter: &mut Meter) -> Result<(), PlanError> {
-        self.goal_links.clear();
-        let candidates = self.nearest_vertices(goal.position, meter)?;
-        let wanted = self.config().goal_links();
-        let window = ObstacleWindow::around(&self.network, goal.position, meter);
-        let headings = self.config().headings(goal);
-        for &(_, v) in &candidates {
-            if self.goal_links.len() >= wanted {
-                break;
-            }
-            let Some(from) = self.network.vertex(v) else {
-                return Err(PlanError::Internal);
-            };
-            if headings > 1 {
-                if let Some(path) = self.probe_goal_path(&from, goal, &window, meter) {
-                    let radius = self.network.turn_radius();
-                    let bound =
-                        DubinsPath::length_lower_bound(from.position, goal.position, radius);
-                    let _ = self.goal_links.push(Link {
-                        vertex: v,
-                        path,
-                        cost: bound,
-                        pending: true,
-                    });
-                    meter.check()?;
-                    continue;
-                }
-            }
-            if let Some(path) = self.best_clear_path_to_goal(&from, goal, &window, meter)? {
+    pub(super) fn connect_goal_candidate(
+        &mut self,
+        goal: &Goal,
+        v: u32,
+        meter: &mut Meter,
+    ) -> Result<(), PlanError> {
+        let Some(from) = self.network.vertex(v) else {
+            return Err(PlanError::Internal);
+        };
+        let window = self.goal_window().ok_or(PlanError::Internal)?;
+        if self.config().headings(goal) > 1 {
+            if let Some(path) = self.probe_goal_path(&from, goal, window, meter) {
+                let radius = self.network.turn_radius();
+                let bound = DubinsPath::length_lower_bound(from.position, goal.position, radius);
                 let _ = self.goal_links.push(Link {
                     vertex: v,
                     path,
-                    cost: path.length(),
-                    pending: false,
+                    cost: bound,
+                    pending: true,
                 });
+                return meter.check();
             }
+        }
+        if let Some(path) = self.best_clear_path_to_goal(&from, goal, window, meter)? {
+            let _ = self.goal_links.push(Link {
+                vertex: v,
+                path,
+                cost: path.length(),
+                pending: false,
+            });
         }
         Ok(())
     }
@@ -317,15 +340,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Makes goal link `k` exact if it is pending: finds the shortest clear path from its vertex
-    /// to the goal ([`Planner::best_clear_path_to_goal`], against `window`, the obstacles
-    /// around the goal, read on the first call). Its probe was clear, so one exists. Not
-    /// inlined: called at most once per goal link, it would only crowd the search's loop.
+    /// to the goal ([`Planner::best_clear_path_to_goal`], against the obstacles around the
+    /// goal: the query's goal window, read on the first call). Its probe was clear, so one
+    /// exists. Not inlined: called at most once per goal link, it would only crowd the search's
+    /// loop.
     #[inline(never)]
     pub(super) fn resolve_goal_link(
         &mut self,
         k: usize,
         goal: &Goal,
-        window: &mut Option<ObstacleWindow<'n>>,
         meter: &mut Meter,
     ) -> Result<Link, PlanError> {
         let link = *self.goal_links.get(k).ok_or(PlanError::Internal)?;
@@ -336,10 +359,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             .network
             .vertex(link.vertex)
             .ok_or(PlanError::Internal)?;
-        let window = match window {
-            Some(w) => w,
-            None => window.insert(ObstacleWindow::around(&self.network, goal.position, meter)),
-        };
+        self.read_goal_window_once(goal.position, meter);
+        let window = self.goal_window().ok_or(PlanError::Internal)?;
         let path = self
             .best_clear_path_to_goal(&from, goal, window, meter)?
             .ok_or(PlanError::Internal)?;

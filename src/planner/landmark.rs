@@ -9,7 +9,6 @@
 //! edges costs nothing until a search reads them.
 
 use super::popup::{Popup, PopupSummary};
-use super::search::{Arrival, Ends};
 use super::state::{LandmarkState, ModeState, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
 use super::{Meter, PlanError, Planner, Query, RouteSummary, SummarySlot};
 use crate::geometry::{wrap_to_pi, Vec2};
@@ -46,6 +45,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Landmark mode: sets the weather in force (an index into the network's weathers; 0 after
     /// [`Planner::load`]). O(1).
     pub fn set_weather(&mut self, weather: u32) -> Result<(), PlanError> {
+        self.cancel_plan();
         let l = self.landmark_record()?;
         if weather >= l.weather_count {
             return Err(PlanError::UnknownWeather {
@@ -70,6 +70,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// (all 0). Its outgoing edges are re-pruned as the next search reads them: O(1) here, and
     /// O([`MAX_ROSETTE_OVERRIDES`]) per edge read.
     pub fn update_rosette(&mut self, landmark: u32, qualities: &[f32]) -> Result<(), PlanError> {
+        self.cancel_plan();
         let l = self.landmark_record()?;
         if landmark >= l.landmark_count {
             return Err(PlanError::UnknownLandmark {
@@ -106,6 +107,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Landmark mode: drops landmark `landmark`'s override (its stored rosettes apply again).
     /// Returns whether it had one.
     pub fn clear_rosette(&mut self, landmark: u32) -> bool {
+        self.cancel_plan();
         let Ok(l) = self.landmark_state() else {
             return false;
         };
@@ -199,12 +201,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// Landmark mode's [`Planner::plan`], after the query's numbers were checked.
-    pub(super) fn plan_landmark(
+    /// Landmark mode's [`Planner::plan`] up to its search, after the query's numbers were
+    /// checked: matches the start and the goal to network vertices. Returns the search's ends
+    /// (from the start vertex to the goal vertex); the search and
+    /// [`Planner::write_landmark_route`] follow.
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
+    pub(super) fn landmark_prepare(
         &mut self,
         query: &Query,
         meter: &mut Meter,
-    ) -> Result<RouteSummary, PlanError> {
+    ) -> Result<(u32, u32), PlanError> {
         let l = self.landmark_record()?;
         self.start_links.clear();
         self.goal_links.clear();
@@ -217,11 +223,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             _ => return Err(PlanError::GoalNotInNetwork),
         };
         meter.check()?;
-        match self.search(query, Ends::Vertices { from, to }, None, meter)? {
-            Arrival::AtVertex => {}
-            _ => return Err(PlanError::Internal),
-        }
-        self.write_landmark_route(from, to, meter)
+        Ok((from, to))
     }
 
     /// The stored start if the query starts there, else the overflight it starts at.
@@ -251,7 +253,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         Err(PlanError::StartNotInNetwork)
     }
 
-    fn write_landmark_route(
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
+    pub(super) fn write_landmark_route(
         &mut self,
         from: u32,
         to: u32,

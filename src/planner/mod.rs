@@ -7,7 +7,7 @@
 //! needs `V ≥ |E| + MAX_LINKS`; under the paper's [`TurnRule`] a state is a (straight before,
 //! edge) pair, and a query with `Ks` start links needs `|E| + T + 2·Ks + 1 + Σₖ outdeg(vₖ)`
 //! (`T = Σ_v indeg(v)·outdeg(v)`, `vₖ` the start links' nodes; `planner/terrain`). Its size is
-//! about `20·V + 2·E + 140·P + 56·R + 1.5 KiB` bytes (`core::mem::size_of` gives the exact
+//! about `20·V + 2·E + 140·P + 56·R + 4.5 KiB` bytes (`core::mem::size_of` gives the exact
 //! figure); place it in a `static` so the linker rejects a build whose RAM does not suffice.
 //! A new planner is all-zero, so such a `static` lands in `.bss` and costs no flash.
 
@@ -21,6 +21,7 @@ mod landmark;
 mod popup;
 pub mod risk;
 mod search;
+mod slice;
 mod smooth;
 mod state;
 mod terrain;
@@ -35,6 +36,7 @@ pub use exit::{
 };
 pub use landmark::POPUP_CHORDS_PER_PIECE;
 pub use popup::{Popup, PopupSummary, MAX_POPUP_VERTICES};
+pub use slice::PlanStep;
 pub use smooth::SmoothSummary;
 pub use state::{ArcCheckStats, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
 pub use voronoi::{
@@ -45,8 +47,8 @@ pub use voronoi::{
 };
 pub use work::{
     cells_bound, exit_work_bound, landmark_plan_work_bound, landmark_popup_work_bound,
-    plan_work_bound, popup_work_bound, terrain_plan_work_bound, voronoi_plan_work_bound,
-    TerrainBoundInputs, VoronoiBoundInputs, Work, WorkBoundInputs,
+    plan_work_bound, popup_work_bound, roadmap_step_unit_bound, terrain_plan_work_bound,
+    voronoi_plan_work_bound, TerrainBoundInputs, VoronoiBoundInputs, Work, WorkBoundInputs,
 };
 
 use crate::geometry::{DubinsPath, Pose, Primitive, Vec2};
@@ -250,6 +252,8 @@ pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: 
     summary: SummarySlot,
     /// What only the loaded network's mode keeps (altitude, weather, rosettes, ...).
     state: ModeState<'n, R>,
+    /// The query in progress ([`Planner::start_plan`], [`Planner::step`]), if any.
+    flight: slice::Flight<'n>,
 }
 
 /// The last route's summary, if any: an enum with an explicit `u8` tag whose empty variant is
@@ -322,12 +326,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             route: Vec::new(),
             summary: SummarySlot::Empty,
             state: ModeState::Roadmap,
+            flight: slice::Flight::IDLE,
         }
     }
 
     /// Validates `bytes` for this planner's capacities and makes it the network, clearing
     /// pop-ups and the route. On error the planner keeps its previous network and state.
     pub fn load(&mut self, bytes: &'n [u8]) -> Result<(), LoadError> {
+        self.cancel_plan();
         let network = Network::from_bytes_with_capacity(bytes, V, E)?;
         let state = match network.mode() {
             Mode::Roadmap => ModeState::Roadmap,
@@ -378,6 +384,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Replaces the connection settings (counts above [`MAX_LINKS`] are used as `MAX_LINKS`).
     pub fn set_config(&mut self, config: PlannerConfig) {
+        self.cancel_plan();
         self.config = config;
         self.config_set = true;
     }
@@ -513,9 +520,9 @@ struct Meter {
 }
 
 impl Meter {
-    fn new(budget: u64) -> Self {
+    const fn new(budget: u64) -> Self {
         Self {
-            work: Work::default(),
+            work: Work::ZERO,
             budget,
         }
     }

@@ -119,6 +119,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// pop-up's box, widened by the clearance, overlaps). Work: at most
     /// [`Planner::worst_case_popup_work`].
     pub fn add_popup(&mut self, popup: Popup) -> Result<PopupSummary, PopupError> {
+        self.cancel_plan();
         popup.validate()?;
         // The smallest id no active pop-up has.
         let slot = (0..P)
@@ -207,6 +208,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Removes pop-up `id` and re-enables the edges only it blocked. Work: |E| mask updates.
     pub fn remove_popup(&mut self, id: u8) -> Result<(), PopupError> {
+        self.cancel_plan();
         let at = self
             .popups
             .iter()

@@ -2,10 +2,9 @@
 
 use super::heap::ItemState;
 use super::state::ModeState;
-use super::window::ObstacleWindow;
 use super::{
-    Link, Meter, Phase, PlanError, Planner, Query, QueryField, RouteSummary, Search, SummarySlot,
-    Work, FROM_START,
+    Link, Meter, Phase, PlanError, PlanStep, Planner, Query, QueryField, RouteSummary, Search,
+    SummarySlot, Work, FROM_START,
 };
 use crate::geometry::{DubinsPath, Primitive, Vec2};
 
@@ -36,18 +35,20 @@ pub(super) enum StateSpace {
     EdgeStates,
 }
 
-/// Where a vertex search starts and what it looks for.
+/// Where a vertex search starts and what it looks for. An explicit `u8` tag whose first
+/// variant is 0: an idle query ([`Flight::IDLE`](super::slice::Flight::IDLE)) is all-zero bytes.
 #[derive(Clone, Copy, Debug)]
+#[repr(u8)]
 pub(super) enum Ends {
     /// From the start links to the goal links (roadmap mode).
-    Links,
+    Links = 0,
     /// From one vertex (cost 0) to another (landmark mode).
     Vertices {
         /// The start vertex.
         from: u32,
         /// The goal vertex.
         to: u32,
-    },
+    } = 1,
 }
 
 /// A* heuristic scale: the chord to the goal shrunk by 1e-4 so that f32 rounding of stored edge
@@ -57,7 +58,9 @@ const HEURISTIC_SCALE: f32 = 1.0 - 1e-4;
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
     /// Plans from `query.start` to `query.goal` through the network, counting work against
     /// `budget` (compare [`Planner::worst_case_work`]). On success the route replaces the
-    /// previous one; on any error the previous route is left as it was.
+    /// previous one; on any error the previous route is left as it was. The same as
+    /// [`Planner::start_plan`] followed by [`Planner::step`] until it is done (this is how it
+    /// runs), in one call.
     pub fn plan(&mut self, query: &Query, budget: u64) -> Result<RouteSummary, PlanError> {
         // Opaque, so that a program calling both `plan` and `plan_observed` gets one copy of
         // the query code rather than a second one specialised for this observer.
@@ -74,19 +77,21 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         budget: u64,
         observe: &mut dyn FnMut(Phase, &Work),
     ) -> Result<RouteSummary, PlanError> {
-        let mut meter = Meter::new(budget);
-        let result = self.plan_metered(query, &mut meter, observe);
-        observe(Phase::Done, &meter.work);
-        result
+        if let Err(e) = self.start_plan(query, budget) {
+            observe(Phase::Done, &Work::default());
+            return Err(e);
+        }
+        // One step with an unlimited slice runs the query to its end; the loop only guards
+        // against a step that stops early all the same.
+        loop {
+            if let PlanStep::Done(result) = self.step_observed(u64::MAX, observe) {
+                return result;
+            }
+        }
     }
 
-    /// [`Planner::plan_observed`] with its meter.
-    fn plan_metered(
-        &mut self,
-        query: &Query,
-        meter: &mut Meter,
-        observe: &mut dyn FnMut(Phase, &Work),
-    ) -> Result<RouteSummary, PlanError> {
+    /// Checks the query's numbers: finite, and within the range the geometry handles.
+    pub(super) fn check_query(query: &Query) -> Result<(), PlanError> {
         if !query.start.is_finite() {
             return Err(PlanError::NonFinite {
                 field: QueryField::Start,
@@ -107,78 +112,29 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 field: QueryField::Goal,
             });
         }
+        Ok(())
+    }
+
+    /// The state space of the loaded mode's search.
+    pub(super) fn state_space(&self) -> StateSpace {
         match self.state {
-            ModeState::Roadmap => self.plan_roadmap(query, meter, observe),
-            ModeState::Terrain(_) => self.plan_terrain(query, meter, observe),
-            ModeState::Landmark(_) => self.plan_landmark(query, meter),
-            ModeState::Voronoi(_) => self.plan_voronoi(query, meter),
-        }
-    }
-
-    /// Roadmap mode's [`Planner::plan`], after the query's numbers were checked: connect the
-    /// start and goal to nearby vertices (and to each other), search, write the route. A start
-    /// inside or within the clearance of an obstacle or pop-up first leaves it by the exit of
-    /// `planner/exit.rs`, and the query goes on from where the exit ends.
-    fn plan_roadmap(
-        &mut self,
-        query: &Query,
-        meter: &mut Meter,
-        observe: &mut dyn FnMut(Phase, &Work),
-    ) -> Result<RouteSummary, PlanError> {
-        observe(Phase::CheckFree, &meter.work);
-        self.check_free(query.goal.position, QueryField::Goal, meter)?;
-        let exit = self.exit_from(&query.start, meter)?;
-        let query = &Query {
-            start: exit.map_or(query.start, |(path, _)| path.end()),
-            ..*query
-        };
-        observe(Phase::ConnectStart, &meter.work);
-        // The obstacles around the start, for the start links and the direct path.
-        let window = ObstacleWindow::around(&self.network, query.start.position, meter);
-        self.connect_start(&query.start, &window, meter)?;
-        observe(Phase::ConnectGoal, &meter.work);
-        self.connect_goal(&query.goal, meter)?;
-        observe(Phase::ConnectDirect, &meter.work);
-        let direct = if query.start.position.distance(query.goal.position)
-            <= self.config().connect_radius_m
-        {
-            self.best_clear_path_to_goal(&query.start, &query.goal, &window, meter)?
-        } else {
-            None
-        };
-        if self.start_links.is_empty() && direct.is_none() {
-            return Err(PlanError::StartUnconnected);
-        }
-        if self.goal_links.is_empty() && direct.is_none() {
-            return Err(PlanError::GoalUnconnected);
-        }
-        let direct = direct.map(|p| (p.length(), p));
-        observe(Phase::Search, &meter.work);
-        let arrival = self.search(query, Ends::Links, direct, meter)?;
-        observe(Phase::Route, &meter.work);
-        let mut summary = self.write_route(arrival, exit.as_ref().map(|(path, _)| path), meter)?;
-        summary.exit = exit.map(|(_, e)| e);
-        self.summary = SummarySlot::Full(summary);
-        Ok(summary)
-    }
-
-    /// The one search of every mode: Dijkstra (or A*, over vertices) from the start links (or
-    /// a start vertex) over the states of the mode's [`StateSpace`]; returns how the cheapest
-    /// route arrives. `direct` is the direct start–goal path, if any, with its cost. Edges are relaxed only when [`Planner::is_edge_usable`]; the expansion of
-    /// a state is the space's ([`Planner::expand_vertex`], [`Planner::expand_edge_state`]).
-    pub(super) fn search(
-        &mut self,
-        query: &Query,
-        ends: Ends,
-        direct: Option<(f32, DubinsPath)>,
-        meter: &mut Meter,
-    ) -> Result<Arrival, PlanError> {
-        let space = match self.state {
             ModeState::Roadmap | ModeState::Landmark(_) | ModeState::Voronoi(_) => {
                 StateSpace::Vertices
             }
             ModeState::Terrain(_) => StateSpace::EdgeStates,
-        };
+        }
+    }
+
+    /// Begins the one search of every mode: Dijkstra (or A*, over vertices) from the start
+    /// links (or a start vertex) over the states of the mode's [`StateSpace`]. Resets the heap
+    /// and queues the start; [`Planner::search_expand`] then expands one state at a time.
+    pub(super) fn search_begin(
+        &mut self,
+        query: &Query,
+        ends: Ends,
+        meter: &mut Meter,
+    ) -> Result<(), PlanError> {
+        let space = self.state_space();
         let states = match space {
             StateSpace::Vertices => self.search_vertex_count() as usize,
             StateSpace::EdgeStates => self.prepare_edge_states(meter)?,
@@ -188,32 +144,45 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         self.heap.clear(states);
         meter.work.vertex_scans += states as u64;
-        let mut best = direct.map(|(cost, p)| (cost, Arrival::Direct(p)));
-        // The obstacles around the goal, read when a pending goal link is first resolved.
-        let mut goal_window = None;
         match space {
             StateSpace::Vertices => self.seed_vertices(query, ends, meter)?,
             StateSpace::EdgeStates => self.seed_edge_states(meter)?,
         }
-        meter.check()?;
+        meter.check()
+    }
 
-        while let Some((s, key, levels)) = self.heap.pop() {
-            meter.work.heap_steps += levels as u64;
-            if best.is_some_and(|(b, _)| key >= b) {
-                break; // every remaining route costs at least `key`
-            }
-            let reached = match space {
-                StateSpace::Vertices => {
-                    self.expand_vertex(query, ends, s, &mut best, &mut goal_window, meter)?
-                }
-                StateSpace::EdgeStates => self.expand_edge_state(s, key, &mut best, meter)?,
-            };
-            if reached {
-                break;
-            }
-            meter.check()?;
+    /// One step of the search [`Planner::search_begin`] began: pops the cheapest state and
+    /// expands it. `best` is the cheapest route found so far (at first the direct start–goal
+    /// path, if any, with its cost); a pending goal link it resolves reads the query's goal
+    /// window first, if unread ([`Planner::resolve_goal_link`]). Returns whether the search is over: the heap is
+    /// empty, every remaining route costs at least `best`'s, or the target vertex of an
+    /// [`Ends::Vertices`] search is reached. Edges are relaxed only when
+    /// [`Planner::is_edge_usable`]; the expansion of a state is the space's
+    /// ([`Planner::expand_vertex`], [`Planner::expand_edge_state`]).
+    #[inline(always)] // its one caller's loop is the search's loop
+    pub(super) fn search_expand(
+        &mut self,
+        query: &Query,
+        ends: Ends,
+        best: &mut Option<(f32, Arrival)>,
+        meter: &mut Meter,
+    ) -> Result<bool, PlanError> {
+        let Some((s, key, levels)) = self.heap.pop() else {
+            return Ok(true);
+        };
+        meter.work.heap_steps += levels as u64;
+        if best.is_some_and(|(b, _)| key >= b) {
+            return Ok(true); // every remaining route costs at least `key`
         }
-        best.map(|(_, a)| a).ok_or(PlanError::NoRoute)
+        let reached = match self.state_space() {
+            StateSpace::Vertices => self.expand_vertex(query, ends, s, best, meter)?,
+            StateSpace::EdgeStates => self.expand_edge_state(s, key, best, meter)?,
+        };
+        if reached {
+            return Ok(true);
+        }
+        meter.check()?;
+        Ok(false)
     }
 
     /// The vertices a search over vertices walks: the network's, or in Voronoi mode the
@@ -331,7 +300,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         ends: Ends,
         u: u32,
         best: &mut Option<(f32, Arrival)>,
-        goal_window: &mut Option<ObstacleWindow<'n>>,
         meter: &mut Meter,
     ) -> Result<bool, PlanError> {
         let du = self
@@ -354,7 +322,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 if link.pending && best.is_some_and(|(b, _)| du + link.cost >= b) {
                     continue; // its shortest clear path is no shorter than `cost`
                 }
-                let link = self.resolve_goal_link(k, &query.goal, goal_window, meter)?;
+                let link = self.resolve_goal_link(k, &query.goal, meter)?;
                 let total = du + link.cost;
                 if best.is_none_or(|(b, _)| total < b) {
                     *best = Some((total, Arrival::FromState { state: u, link: k }));
@@ -495,7 +463,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Replaces the route with the one `arrival` describes, after `exit` when the start had
     /// to leave a keep-out region, if it fits in `R` paths and `R` primitives.
-    fn write_route(
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
+    pub(super) fn write_route(
         &mut self,
         arrival: Arrival,
         exit: Option<&DubinsPath>,

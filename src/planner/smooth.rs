@@ -40,6 +40,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// every obstacle and pop-up, as in [`plan_work_bound`](super::plan_work_bound)). If the
     /// budget runs out, the route keeps the shortcuts made so far (each leaves it valid).
     pub fn shortcut(&mut self, budget: u64) -> Result<SmoothSummary, PlanError> {
+        self.cancel_plan();
         let mut meter = Meter::new(budget);
         let length_before = self.route_length();
         let mut changes = 0;
@@ -87,6 +88,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         candidates: u16,
         budget: u64,
     ) -> Result<SmoothSummary, PlanError> {
+        self.cancel_plan();
         let mut meter = Meter::new(budget);
         let length_before = self.route_length();
         let mut changes = 0;

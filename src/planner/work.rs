@@ -45,6 +45,17 @@ pub struct Work {
 }
 
 impl Work {
+    /// No work (the same as `Work::default()`, usable in `const`).
+    pub const ZERO: Work = Work {
+        vertex_scans: 0,
+        dubins_solves: 0,
+        collision_tests: 0,
+        heap_steps: 0,
+        relaxations: 0,
+        cells_visited: 0,
+        threat_steps: 0,
+    };
+
     /// The sum of all counters: what a budget is compared with.
     pub fn total(&self) -> u64 {
         self.vertex_scans
@@ -125,6 +136,43 @@ pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
     let route = 2 * (v + 1);
     let endpoints_free = 2 * (n.obstacles + n.popups);
     endpoints_free + candidates + connecting + search + route + exit_work_bound(n)
+}
+
+/// The most work one indivisible unit of a roadmap query's [`Planner::step`](super::Planner::step)
+/// can count, on a network whose vertices have at most `most_out_degree` out-edges. With
+/// `c = 3·(2O + points + P·(popup_vertices + 1))` the tests of one path (≤ 3 primitives) and
+/// `g = 2H + H·c` finding the shortest clear path from a point to the goal over H headings, the
+/// units are:
+///
+/// * begin: the goal's free-space check, O + P; the exit, [`exit_work_bound`]; the start's
+///   obstacle window, O; its candidates, |V|;
+/// * one start candidate: 1 + c;
+/// * the goal's candidates and obstacle window: |V| + O;
+/// * one goal candidate: its probe, 1 + c, and when that is blocked, g;
+/// * the direct path: g;
+/// * the search's start: |V| heap resets and Ks pushes of ≤ L = ⌊log2|V|⌋ + 1 levels;
+/// * one search expansion: the pop, L; Kg goal links examined, of which the one at the vertex
+///   may be resolved, O (the goal's window, read once) + g; each out-edge examined and pushed,
+///   `most_out_degree`·(1 + L);
+/// * the route: 2(|V| + 1) vertex scans for the two walks back.
+///
+/// Returns the largest.
+pub fn roadmap_step_unit_bound(n: &WorkBoundInputs, most_out_degree: u64) -> u64 {
+    let v = n.vertices;
+    let levels = heap_levels(v);
+    let path = 3 * (2 * n.obstacles + n.obstacle_points + n.popups * (n.popup_vertices + 1));
+    let to_goal = 2 * n.goal_headings + n.goal_headings * path;
+    let units = [
+        n.obstacles + n.popups + exit_work_bound(n) + n.obstacles + v,
+        1 + path,
+        v + n.obstacles,
+        1 + path + to_goal,
+        to_goal,
+        v + n.start_links * levels,
+        levels + n.goal_links + n.obstacles + to_goal + most_out_degree * (1 + levels),
+        2 * (v + 1),
+    ];
+    units.into_iter().max().unwrap_or(0)
 }
 
 /// The most work the exit from a keep-out region can count (`planner/exit.rs`). With

@@ -19,7 +19,7 @@ mod fixture {
 static NETWORK: &[u8] = include_bytes!(concat!(env!("LANDMARK_FIXTURE"), "/network.bin"));
 use fixture::*;
 
-/// The planner's state, all of it (≈ 20·V + 2·E + 140·P + 56·R + 1.5 KiB), in `.bss` (see
+/// The planner's state, all of it (≈ 20·V + 2·E + 140·P + 56·R + 4.5 KiB), in `.bss` (see
 /// `src/bin/roadmap.rs`). Landmark mode searches vertices: `V_CAP` ≥ the network's vertices.
 static PLANNER: ConstStaticCell<Planner<'static, V_CAP, E_CAP, P_CAP, R_CAP>> =
     ConstStaticCell::new(Planner::new());

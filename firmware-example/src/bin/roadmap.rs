@@ -19,7 +19,7 @@ mod fixture {
 static NETWORK: &[u8] = include_bytes!(concat!(env!("ROADMAP_FIXTURE"), "/network.bin"));
 use fixture::*;
 
-/// The planner's state, all of it (≈ 20·V + 2·E + 140·P + 56·R + 1.5 KiB). A network too large
+/// The planner's state, all of it (≈ 20·V + 2·E + 140·P + 56·R + 4.5 KiB). A network too large
 /// for the RAM fails at link time, not in flight. `Planner::new()` is all zero bytes, so it lands
 /// in `.bss` and costs no flash (the size step reports `.data` and `.bss` separately).
 static PLANNER: ConstStaticCell<Planner<'static, V_CAP, E_CAP, P_CAP, R_CAP>> =

@@ -21,7 +21,7 @@ mod fixture {
 static NETWORK: &[u8] = include_bytes!(concat!(env!("VORONOI_FIXTURE"), "/network.bin"));
 use fixture::*;
 
-/// The planner's state (≈ 20·V + 2·E + 140·P + 56·R + 1.5 KiB), in `.bss` (see
+/// The planner's state (≈ 20·V + 2·E + 140·P + 56·R + 4.5 KiB), in `.bss` (see
 /// `src/bin/roadmap.rs`). Voronoi mode searches the onboard graph: `V_CAP` ≥
 /// `VORONOI_GRAPH_VERTICES`.
 static PLANNER: ConstStaticCell<Planner<'static, V_CAP, E_CAP, P_CAP, R_CAP>> =

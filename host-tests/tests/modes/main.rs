@@ -23,6 +23,8 @@ mod mission;
 mod network_images;
 /// The niendorf-urban network and route keep clearance from every building (from JSON).
 mod niendorf_clearance;
+/// Planning in slices (`start_plan` + `step`) against one `plan` call, in every mode.
+mod plan_slices;
 /// Independent raw-DEM lookups for the terrain tests.
 mod raw_dem;
 /// The roadmap builder on niendorf-urban: threads, parameters, both collision checks.

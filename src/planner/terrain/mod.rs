@@ -87,12 +87,12 @@ mod fillet;
 mod route;
 pub(super) mod states;
 
-use super::search::Ends;
 use super::state::{ArcCheckStats, ModeState};
 use super::work::{cells_bound, TerrainBoundInputs};
-use super::{Meter, Phase, PlanError, Planner, Query, QueryField, RouteSummary, Work};
+use super::{Meter, Phase, PlanError, Planner, Query, QueryField, Work};
 use super::{MAX_CANDIDATES, MAX_POPUP_VERTICES};
 use crate::geometry::grid::{arc_cells, primitive_cells, CellGrid};
+use crate::geometry::DubinsPath;
 use crate::geometry::{Arc, Primitive, Vec2};
 use core::f32::consts::{PI, TAU};
 use fillet::Fillet;
@@ -105,6 +105,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// elevation codes are compared with the new blocking code as the search reads them
     /// (`network::elevation`). Non-finite values are refused (the setting is kept).
     pub fn set_altitude(&mut self, altitude_m: f32, safety_height_m: f32) -> Result<(), PlanError> {
+        self.cancel_plan();
         let ModeState::Terrain(t) = &mut self.state else {
             return Err(PlanError::NotTerrainNetwork);
         };
@@ -203,13 +204,17 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// Terrain mode's [`Planner::plan`], after the query's numbers were checked.
-    pub(super) fn plan_terrain(
+    /// Terrain mode's [`Planner::plan`] up to its search, after the query's numbers were
+    /// checked: checks the start and goal, connects them to the network and tries the direct
+    /// path. Returns the direct path with its cost, if any; the search and
+    /// [`Planner::write_terrain_route`] follow.
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
+    pub(super) fn terrain_prepare(
         &mut self,
         query: &Query,
         meter: &mut Meter,
         observe: &mut dyn FnMut(Phase, &Work),
-    ) -> Result<RouteSummary, PlanError> {
+    ) -> Result<Option<(f32, DubinsPath)>, PlanError> {
         if let ModeState::Terrain(t) = &mut self.state {
             t.arc_stats = ArcCheckStats::default();
         }
@@ -231,11 +236,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if self.goal_links.is_empty() && direct.is_none() {
             return Err(PlanError::GoalUnconnected);
         }
-        let direct = direct.map(|p| (p.length(), p));
-        observe(Phase::Search, &meter.work);
-        let arrival = self.search(query, Ends::Links, direct, meter)?;
-        observe(Phase::Route, &meter.work);
-        self.write_terrain_route(arrival, meter)
+        Ok(direct.map(|p| (p.length(), p)))
     }
 
     /// Rejects a start or goal over a blocked (or unknown) cell.

@@ -93,7 +93,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Replaces the route with the one `arrival` describes, if it fits in `R` paths and `R`
     /// primitives; otherwise leaves it untouched.
-    pub(super) fn write_terrain_route(
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
+    pub(in crate::planner) fn write_terrain_route(
         &mut self,
         arrival: Arrival,
         meter: &mut Meter,

@@ -45,6 +45,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         bytes: &'n [u8],
         storage: &'n mut VoronoiStorage,
     ) -> Result<(), LoadError> {
+        self.cancel_plan();
         let network = crate::network::Network::from_bytes_with_capacity(bytes, V, E)?;
         match network.mode() {
             crate::network::Mode::Voronoi => {}
@@ -75,6 +76,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         position: Vec2,
         radius: f32,
     ) -> Result<ThreatSummary, ThreatError> {
+        self.cancel_plan();
         let super::state::ModeState::Voronoi(state) = &mut self.state else {
             return Err(ThreatError::NotVoronoi);
         };
@@ -90,6 +92,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Voronoi mode: removes threat `id` (added in flight) and rebuilds the diagram from the
     /// threats that remain. On error nothing changes. Work: as [`Planner::add_threat`].
     pub fn remove_threat(&mut self, id: u8) -> Result<ThreatSummary, ThreatError> {
+        self.cancel_plan();
         let super::state::ModeState::Voronoi(state) = &mut self.state else {
             return Err(ThreatError::NotVoronoi);
         };
@@ -99,6 +102,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Voronoi mode: replaces the weight k of length against exposure (the network's until
     /// set) for the next queries.
     pub fn set_threat_weight(&mut self, k: f32) -> Result<(), ThreatError> {
+        self.cancel_plan();
         let super::state::ModeState::Voronoi(state) = &mut self.state else {
             return Err(ThreatError::NotVoronoi);
         };

@@ -8,7 +8,7 @@ use crate::geometry::predicates::point_in_polygon;
 use crate::geometry::spline::{fit, FitError, FitInput, Piece, Vertex};
 use crate::geometry::{DubinsPath, DubinsWord, Pose, Primitive, Segment, Vec2};
 use crate::network::Obstacle;
-use crate::planner::search::{Arrival, Ends};
+use crate::planner::search::Arrival;
 use crate::planner::state::ModeState;
 use crate::planner::threats::MAX_ROUTE_PIECES;
 use crate::planner::{
@@ -60,12 +60,16 @@ fn straight(a: Vec2, b: Vec2, radius: f32) -> DubinsPath {
 }
 
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
-    /// Voronoi mode's [`Planner::plan`], after the query's numbers were checked.
-    pub(in crate::planner) fn plan_voronoi(
+    /// Voronoi mode's [`Planner::plan`] up to its search, after the query's numbers were
+    /// checked: checks the start and goal, prices the graph's edges and joins the start and
+    /// goal to it. Returns the direct segment with its cost, if clear; the search and
+    /// [`Planner::write_voronoi_route`] follow.
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
+    pub(in crate::planner) fn voronoi_prepare(
         &mut self,
         query: &Query,
         meter: &mut Meter,
-    ) -> Result<RouteSummary, PlanError> {
+    ) -> Result<Option<(f32, DubinsPath)>, PlanError> {
         self.check_free(query.start.position, QueryField::Start, meter)?;
         self.check_free(query.goal.position, QueryField::Goal, meter)?;
         self.price_voronoi_edges(meter)?;
@@ -76,8 +80,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         if self.goal_links.is_empty() && direct.is_none() {
             return Err(PlanError::GoalUnconnected);
         }
-        let arrival = self.search(query, Ends::Links, direct, meter)?;
-        self.write_voronoi_route(query, arrival, meter)
+        Ok(direct)
     }
 
     fn voronoi_turn_radius(&self) -> f32 {
@@ -240,7 +243,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Walks back the coarse route, smooths it and writes it as pieces and chords; on any
     /// error the previous route is left as it was.
-    fn write_voronoi_route(
+    #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
+    pub(in crate::planner) fn write_voronoi_route(
         &mut self,
         query: &Query,
         arrival: Arrival,
