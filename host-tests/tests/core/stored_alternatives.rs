@@ -17,7 +17,7 @@ use skyroute::network::write::{
 use skyroute::network::{Parameter, Section};
 use skyroute::planner::alternatives::{decide_stored, Announced, SwitchError};
 use skyroute::planner::decision::{DecisionError, DecisionLimits};
-use skyroute::planner::PopupError;
+use skyroute::planner::{PlanStep, PopupError};
 use skyroute::{Goal, LoadError, Network, Planner, Popup, Pose, Primitive, Query, Search, Vec2};
 
 /// A random table over a `size` × `size` world: 1 to 8 pop-ups of 1 to 4 alternatives of 0 to
@@ -498,6 +498,16 @@ fn fly_alternatives_adds_the_chosen_discs_and_the_route_keeps_clear() {
         },
         search: Search::Dijkstra,
     };
+    p.plan(&query, u64::MAX).unwrap();
+    // A switch in flight cancels a query in progress (its network state changes under it).
+    p.start_plan(&query, u64::MAX).unwrap();
+    assert!(matches!(p.step(1), PlanStep::InProgress { .. }));
+    let more = p.fly_alternatives(&announced[1..], &[1]).unwrap();
+    assert!(!p.is_planning());
+    assert_eq!(p.step(u64::MAX), PlanStep::Idle);
+    for id in more {
+        p.remove_popup(id).unwrap();
+    }
     p.plan(&query, u64::MAX).unwrap();
     let clearance = w.spec.clearance_m as f64;
     for (centre, radius) in want {
