@@ -123,7 +123,14 @@ fn ruz_popups_decides_flies_and_refuses_by_name() {
 
 #[test]
 fn alternatives_stay_out_of_their_discs_and_the_decision_is_the_brute_force_optimum() {
-    let dir = TempDir::new("ruz-alternatives");
+    with_ruz_popups("ruz-alternatives", |planning, _| {
+        check_discs_and_decision(planning)
+    });
+}
+
+/// Builds ruz-popups with `skyroute build` and runs `f` on the image and its planning inputs.
+fn with_ruz_popups(tag: &str, f: impl FnOnce(&Planning, &skyroute::Network)) {
+    let dir = TempDir::new(tag);
     let net = dir.file("n.bin");
     let ruz = scenario("ruz-popups.geojson");
     ok(skyroute(&["build", &ruz, "-o", &net]), "build");
@@ -137,8 +144,12 @@ fn alternatives_stay_out_of_their_discs_and_the_decision_is_the_brute_force_opti
         frame: &frame,
         options: Default::default(),
     };
-    let params = skyroute_prep::ruz::risk_params(&s);
-    let st = study(&planning, &params, &[0, 1, 2]).unwrap();
+    f(&planning, &network);
+}
+
+fn check_discs_and_decision(planning: &Planning) {
+    let params = skyroute_prep::ruz::risk_params(planning.scenario);
+    let st = study(planning, &params, &[0, 1, 2]).unwrap();
     for p in &st.popups {
         assert_eq!(p.alternatives.len(), 3, "pop-up {}", p.name);
         let c = (p.centre.x as f64, p.centre.y as f64);
@@ -197,22 +208,12 @@ fn alternatives_stay_out_of_their_discs_and_the_decision_is_the_brute_force_opti
 
 #[test]
 fn the_stored_alternatives_are_those_planned_from_the_scenario() {
-    let dir = TempDir::new("ruz-stored");
-    let net = dir.file("n.bin");
-    let ruz = scenario("ruz-popups.geojson");
-    ok(skyroute(&["build", &ruz, "-o", &net]), "build");
-    let bytes = std::fs::read(&net).unwrap();
-    let s = skyroute_prep::scenario::load(std::path::Path::new(&ruz)).unwrap();
-    let network = skyroute::Network::from_bytes(&bytes).unwrap();
-    let frame = skyroute_prep::export::network_frame(&network);
-    let planning = Planning {
-        bytes: &bytes,
-        scenario: &s,
-        frame: &frame,
-        options: Default::default(),
-    };
-    let params = skyroute_prep::ruz::risk_params(&s);
-    let fresh = plan_study(&planning, &params, &[0, 1, 2]).unwrap();
+    with_ruz_popups("ruz-stored", check_stored);
+}
+
+fn check_stored(planning: &Planning, network: &skyroute::Network) {
+    let params = skyroute_prep::ruz::risk_params(planning.scenario);
+    let fresh = plan_study(planning, &params, &[0, 1, 2]).unwrap();
     let stored = network.alternatives_summary().unwrap();
     assert_eq!(stored.popups, 3);
     assert_eq!(stored.nominal_steps, fresh.nominal.figures.steps);
@@ -254,7 +255,7 @@ fn the_stored_alternatives_are_those_planned_from_the_scenario() {
         }
     }
     // The study read back from the image flies the same routes.
-    let read = study(&planning, &params, &[0, 1, 2]).unwrap();
+    let read = study(planning, &params, &[0, 1, 2]).unwrap();
     for (p, q) in read.popups.iter().zip(&fresh.popups) {
         for (a, b) in p.alternatives.iter().zip(&q.alternatives) {
             assert_eq!(a.length_m, b.length_m, "{}", p.name);
