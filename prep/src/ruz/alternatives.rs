@@ -21,7 +21,7 @@
 use crate::frame::LocalFrame;
 use crate::local::local;
 use crate::mission::{plan_mission_with, LocalPopup, Mission, MissionError, MissionOptions};
-use crate::scenario::Scenario;
+use crate::scenario::{Popup as ScenarioPopup, Scenario};
 use skyroute::planner::risk::{route_figures, RiskParams, RouteFigures};
 use skyroute::{Primitive, Vec2};
 
@@ -185,6 +185,25 @@ pub fn plan_study(
     params: &RiskParams,
     which: &[usize],
 ) -> Result<Study, String> {
+    study_with(planning, params, which, |_, p, centre, radars| {
+        alternatives_of(planning, params, radars, &p.name, centre, p.radius_m)
+    })
+}
+
+/// The nominal route (scored against the scenario's threats) and, for each scenario pop-up
+/// whose index `which` lists (in that order; an index past them is skipped), the alternatives
+/// `alternatives(index, pop-up, its centre, the known radars)` gives.
+pub fn study_with(
+    planning: &Planning,
+    params: &RiskParams,
+    which: &[usize],
+    mut alternatives: impl FnMut(
+        usize,
+        &ScenarioPopup,
+        Vec2,
+        &[Vec2],
+    ) -> Result<Vec<ScoredRoute>, String>,
+) -> Result<Study, String> {
     let s = planning.scenario;
     let frame = planning.frame;
     let radars: Vec<Vec2> = s
@@ -197,10 +216,13 @@ pub fn plan_study(
         .map_err(|e| format!("the nominal route: {e}"))?;
     let clearance = planning.scenario.planner.clearance_m.unwrap_or(0.0);
     let mut popups = Vec::new();
-    for p in which.iter().filter_map(|&i| s.popups.get(i)) {
+    for &i in which {
+        let Some(p) = s.popups.get(i) else {
+            continue;
+        };
         let centre = local(frame, p.lon, p.lat);
         let (d, _) = nearest_point(&nominal.route, centre);
-        let alternatives = alternatives_of(planning, params, &radars, &p.name, centre, p.radius_m)?;
+        let alternatives = alternatives(i, p, centre, &radars)?;
         popups.push(PopupAlternatives {
             name: p.name.clone(),
             centre,

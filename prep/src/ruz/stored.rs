@@ -6,12 +6,9 @@
 //! planned again from its stored discs (for the route file and `render`), its figures are the
 //! stored ones, which the aircraft decides with.
 
-use super::alternatives::{
-    nearest_point, plan_study, Planning, PopupAlternatives, ScoredRoute, Study,
-};
+use super::alternatives::{plan_study, study_with, Planning, ScoredRoute, Study};
 use super::{risk_params, LIMITS};
 use crate::frame::LocalFrame;
-use crate::local::local;
 use crate::mission::{LocalPopup, MissionOptions};
 use crate::scenario::Scenario;
 use skyroute::network::write::{
@@ -19,7 +16,7 @@ use skyroute::network::write::{
 };
 use skyroute::network::{StoredAlternative, StoredPopup};
 use skyroute::planner::risk::{RiskParams, RouteFigures};
-use skyroute::{Network, Vec2};
+use skyroute::Network;
 
 /// The section's contents for `study`: every pop-up with its alternatives' figures and their
 /// blocking discs (each alternative's discs after its pop-up's own), under the paper's limits.
@@ -138,24 +135,19 @@ pub fn stored_study(
         return Ok(None);
     };
     let s = planning.scenario;
-    let radars: Vec<Vec2> = s
-        .threats
+    if let Some(&i) = which
         .iter()
-        .map(|t| local(planning.frame, t.lon, t.lat))
-        .collect();
-    let nominal = planning
-        .score(params, &radars, Vec::new(), None)
-        .map_err(|e| format!("the nominal route: {e}"))?;
-    let clearance = s.planner.clearance_m.unwrap_or(0.0);
-    let mut popups = Vec::new();
-    for &i in which {
-        let (Some(sp), Some(p)) = (s.popups.get(i), net.stored_popup(i as u32)) else {
-            return Err(format!(
-                "pop-up {i}: the network stores the alternatives of {} pop-ups; rebuild it",
-                summary.popups
-            ));
-        };
-        let centre = local(planning.frame, sp.lon, sp.lat);
+        .find(|&&i| s.popups.get(i).is_none() || net.stored_popup(i as u32).is_none())
+    {
+        return Err(format!(
+            "pop-up {i}: the network stores the alternatives of {} pop-ups; rebuild it",
+            summary.popups
+        ));
+    }
+    let mut study = study_with(planning, params, which, |i, sp, centre, radars| {
+        let p = net
+            .stored_popup(i as u32)
+            .ok_or_else(|| format!("pop-up {:?}: not stored", sp.name))?;
         if centre.distance(p.centre) > 1.0 || (sp.radius_m as f32 - p.radius).abs() > 1e-3 {
             return Err(format!(
                 "pop-up {:?}: the network's stored pop-up is not the scenario's; rebuild it",
@@ -169,28 +161,13 @@ pub fn stored_study(
             };
             let discs = stored_discs(net, &sp.name, &p, &a);
             let mut route: ScoredRoute = planning
-                .score(params, &radars, discs, Some(centre))
+                .score(params, radars, discs, Some(centre))
                 .map_err(|e| format!("pop-up {:?}, alternative {}: {e}", sp.name, k + 1))?;
             route.figures = stored_figures(&a);
             alternatives.push(route);
         }
-        let (d, _) = nearest_point(&nominal.route, centre);
-        popups.push(PopupAlternatives {
-            name: sp.name.clone(),
-            centre,
-            radius_m: p.radius,
-            probability: sp.probability,
-            nominal_distance_m: d,
-            touches_nominal: d <= sp.radius_m + clearance,
-            alternatives,
-        });
-    }
-    let mut nominal = nominal;
-    nominal.figures.steps = summary.nominal_steps;
-    Ok(Some(Study {
-        params: *params,
-        radars,
-        nominal,
-        popups,
-    }))
+        Ok(alternatives)
+    })?;
+    study.nominal.figures.steps = summary.nominal_steps;
+    Ok(Some(study))
 }
