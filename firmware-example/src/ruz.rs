@@ -95,44 +95,15 @@ pub struct RuzFixture {
     pub worst_expected: Result<Expected, DecisionError>,
 }
 
-/// The decision's inputs, in fixed memory: up to [`MAX_DECISION_POPUPS`] ×
-/// [`MAX_ALTERNATIVES`] alternatives.
-struct Inputs {
-    alts: [[Alternative; MAX_ALTERNATIVES]; MAX_DECISION_POPUPS],
-    counts: [usize; MAX_DECISION_POPUPS],
-    popups: usize,
-}
-
-impl Inputs {
-    /// Copies `rows` (at most the capacities; the rest is left out).
-    fn from_rows(rows: &[&[Alternative]]) -> Self {
-        let mut s = Inputs {
-            alts: [[Alternative::default(); MAX_ALTERNATIVES]; MAX_DECISION_POPUPS],
-            counts: [0; MAX_DECISION_POPUPS],
-            popups: rows.len().min(MAX_DECISION_POPUPS),
-        };
-        for ((dst, count), row) in s.alts.iter_mut().zip(&mut s.counts).zip(rows) {
-            for (d, a) in dst.iter_mut().zip(row.iter()) {
-                *d = *a;
-            }
-            *count = row.len().min(MAX_ALTERNATIVES);
-        }
-        s
+/// `decision_work_bound` of the first [`MAX_DECISION_POPUPS`] alternative counts of `counts`.
+fn bound_of(counts: impl Iterator<Item = usize>) -> u64 {
+    let mut c = [0usize; MAX_DECISION_POPUPS];
+    let mut n = 0;
+    for (slot, k) in c.iter_mut().zip(counts) {
+        *slot = k;
+        n += 1;
     }
-
-    /// The rows as `decide` takes them.
-    fn rows(&self) -> [&[Alternative]; MAX_DECISION_POPUPS] {
-        let mut out: [&[Alternative]; MAX_DECISION_POPUPS] = [&[]; MAX_DECISION_POPUPS];
-        for ((o, row), &n) in out.iter_mut().zip(&self.alts).zip(&self.counts) {
-            *o = row.get(..n).unwrap_or(&[]);
-        }
-        out
-    }
-
-    /// The decision's work bound for these counts.
-    fn bound(&self) -> u64 {
-        decision_work_bound(self.counts.get(..self.popups).unwrap_or(&[]))
-    }
+    decision_work_bound(c.get(..n).unwrap_or(&[]))
 }
 
 /// The decision's work bound for the stored alternatives of `announced`.
@@ -141,13 +112,10 @@ fn stored_bound<const V: usize, const E: usize, const P: usize, const R: usize>(
     announced: &[Announced],
 ) -> u64 {
     let net = planner.network();
-    let mut counts = [0usize; MAX_DECISION_POPUPS];
-    for (c, a) in counts.iter_mut().zip(announced) {
-        *c = net
-            .stored_popup(a.popup as u32)
-            .map_or(0, |p| p.alternatives as usize);
-    }
-    decision_work_bound(counts.get(..announced.len()).unwrap_or(&[]))
+    bound_of(announced.iter().map(|a| {
+        net.stored_popup(a.popup as u32)
+            .map_or(0, |p| p.alternatives as usize)
+    }))
 }
 
 /// Plans `fixture.query` as the ground tool plans a mission's leg: A* with the default
@@ -375,26 +343,19 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
     for a in fixture.announcements {
         verdict &= announce(planner, clock, fixture, a);
     }
-    let worst = Inputs::from_rows(fixture.worst);
+    let worst = fixture.worst;
     defmt::info!(
         "worst case: {=usize} pop-ups x {=usize} alternatives that no cut prunes",
-        worst.popups,
-        fixture.worst.first().map_or(0, |r| r.len())
+        worst.len(),
+        worst.first().map_or(0, |r| r.len())
     );
-    let rows = worst.rows();
-    let rows = rows.get(..worst.popups).unwrap_or(&[]);
     let (got, ticks) = crate::with_stack_peak("decide", || {
         let t = clock.now();
-        let got = decide(rows, &fixture.worst_limits);
+        let got = decide(worst, &fixture.worst_limits);
         (got, clock.now() - t)
     });
-    verdict &= check_decision(
-        "  decision",
-        &got,
-        ticks,
-        worst.bound(),
-        &fixture.worst_expected,
-    );
+    let bound = bound_of(worst.iter().map(|r| r.len()));
+    verdict &= check_decision("  decision", &got, ticks, bound, &fixture.worst_expected);
     defmt::info!("SysTick at {=u32} Hz", clock::CORE_HZ);
     log_stack();
     if verdict {
