@@ -419,6 +419,24 @@ fn capacity(n: u32, step: usize) -> usize {
     skyroute_prep::capacity::with_headroom(n as usize, step)
 }
 
+/// `pub const NAME: PlannerConfig = …;`, the settings of `config` as a Rust item.
+fn config_rs(name: &str, config: &PlannerConfig) -> String {
+    let radius = if config.connect_radius_m.is_finite() {
+        lit(config.connect_radius_m)
+    } else {
+        "f32::INFINITY".to_string()
+    };
+    format!(
+        "pub const {name}: skyroute::planner::PlannerConfig = skyroute::planner::PlannerConfig {{\n    \
+         start_candidates: {},\n    goal_candidates: {},\n    connect_radius_m: {radius},\n    \
+         free_goal_headings: {},\n    turn_rule: skyroute::planner::TurnRule::{:?},\n}};",
+        config.start_candidates,
+        config.goal_candidates,
+        config.free_goal_headings,
+        config.turn_rule
+    )
+}
+
 /// An `f32` literal that reads back as exactly the same value.
 fn lit(x: f32) -> String {
     format!("{x:?}_f32")
@@ -563,23 +581,8 @@ fn query_rs(
     let _ = writeln!(w, "pub const P_CAP: usize = {P_CAP};");
     let _ = writeln!(w, "/// Route primitives the planner holds.");
     let _ = writeln!(w, "pub const R_CAP: usize = {R_CAP};");
-    let config = config_for(network);
-    let radius = if config.connect_radius_m.is_finite() {
-        lit(config.connect_radius_m)
-    } else {
-        "f32::INFINITY".to_string()
-    };
     let _ = writeln!(w, "/// The planner's connection settings.");
-    let _ = writeln!(
-        w,
-        "pub const CONFIG: skyroute::planner::PlannerConfig = skyroute::planner::PlannerConfig {{\n    \
-         start_candidates: {},\n    goal_candidates: {},\n    connect_radius_m: {radius},\n    \
-         free_goal_headings: {},\n    turn_rule: skyroute::planner::TurnRule::{:?},\n}};",
-        config.start_candidates,
-        config.goal_candidates,
-        config.free_goal_headings,
-        config.turn_rule
-    );
+    let _ = writeln!(w, "{}", config_rs("CONFIG", &config_for(network)));
     let _ = writeln!(w, "/// The aircraft's pose when it plans.");
     let _ = writeln!(
         w,

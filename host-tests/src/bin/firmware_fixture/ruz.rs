@@ -16,7 +16,7 @@
 //! that no choice is ever cut: the decision visits exactly [`decision_work_bound`] nodes, its
 //! worst case.
 
-use super::{capacity, lit, write_fixture, Args, HOST_E, HOST_V, R_CAP};
+use super::{capacity, config_rs, lit, write_fixture, Args, HOST_E, HOST_V, R_CAP};
 use skyroute::network::Network;
 use skyroute::planner::alternatives::{decide_stored, Announced, SwitchError};
 use skyroute::planner::decision::{
@@ -467,16 +467,7 @@ fn query_rs(
         w,
         "/// The connection settings when an end does not connect with the default's."
     );
-    let _ = writeln!(
-        w,
-        "pub const WIDE_CONFIG: skyroute::planner::PlannerConfig = skyroute::planner::PlannerConfig {{\n    \
-         start_candidates: {},\n    goal_candidates: {},\n    connect_radius_m: f32::INFINITY,\n    \
-         free_goal_headings: {},\n    turn_rule: skyroute::planner::TurnRule::{:?},\n}};",
-        WIDE_CONFIG.start_candidates,
-        WIDE_CONFIG.goal_candidates,
-        WIDE_CONFIG.free_goal_headings,
-        WIDE_CONFIG.turn_rule
-    );
+    let _ = writeln!(w, "{}", config_rs("WIDE_CONFIG", &WIDE_CONFIG));
     let _ = writeln!(w, "/// Candidate headings of the heading-smoothing pass.");
     let _ = writeln!(
         w,
