@@ -40,7 +40,7 @@ const ROADMAP: &str = r#"{
     "This file is GeoJSON (RFC 7946). 'comments' and each feature's 'comment' are ignored by skyroute and by GIS tools; delete them freely.",
 VEHICLE_COMMENTS
     "planner: mode 'roadmap'. sample_spacing_m: distance between roadmap samples (smaller: denser network, longer build); neighbour_radius_m: samples closer than this get Dubins edges (about 3 turn radii); k_nearest_fallback: edges to that many nearest samples when none is in range; allow_ccc: also the three-arc Dubins words; clearance_m: distance kept from every zone; arc_step_m: step of the paper's discretised check (build --discretised, or --discretised=paper for the paper's reading); seed: the sampling's random seed.",
-    "no_fly: a Polygon never entered (plus the clearance). popup: a circular zone (radius_m) that may appear in flight with probability; plan avoids the scenario's pop-ups."
+    "no_fly: a Polygon never entered (plus the clearance); rings after the first are holes, areas inside it that are not part of the zone. popup: a circular zone (radius_m) that may appear in flight with probability; plan avoids the scenario's pop-ups."
   ],
 VEHICLE
   "planner": {

@@ -32,3 +32,4 @@ pub mod scenario_input;
 pub mod terrain;
 pub mod voronoi;
 pub mod voronoi_mission;
+pub mod zone_pieces;

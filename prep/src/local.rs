@@ -21,23 +21,44 @@ pub fn local_threats(s: &Scenario, frame: &LocalFrame) -> Vec<Threat> {
         .collect()
 }
 
-/// The scenario's obstacles in the local frame: no-fly polygons and threat discs.
+/// The scenario's obstacles in the local frame: no-fly polygons and threat discs, in the
+/// order the core numbers them (see [`local_obstacles_named`]).
 pub fn local_obstacles(s: &Scenario, frame: &LocalFrame) -> Vec<ObstacleSpec> {
-    let mut out: Vec<ObstacleSpec> = s
-        .no_fly
-        .iter()
-        .map(|z| {
-            ObstacleSpec::Polygon(
-                z.ring
-                    .iter()
-                    .map(|&(lon, lat)| local(frame, lon, lat))
-                    .collect(),
-            )
-        })
-        .collect();
-    out.extend(s.threats.iter().map(|t| ObstacleSpec::Circle {
-        centre: local(frame, t.lon, t.lat),
-        radius: t.radius_m as f32,
+    local_obstacles_named(s, frame)
+        .into_iter()
+        .map(|(o, _)| o)
+        .collect()
+}
+
+/// The scenario's obstacles in the local frame, each with the name of the scenario feature it
+/// comes from (as `no-fly zone "B12"` or `threat "T3"`): the no-fly zones in file order, then
+/// the threat discs. A zone without holes is one polygon; a zone with holes is the simple
+/// polygons of [`crate::zone_pieces::simple_pieces`], computed in the local frame, each named
+/// after the zone.
+pub fn local_obstacles_named(s: &Scenario, frame: &LocalFrame) -> Vec<(ObstacleSpec, String)> {
+    let to_local = |ring: &[(f64, f64)]| -> Vec<(f64, f64)> {
+        ring.iter()
+            .map(|&(lon, lat)| frame.to_local(lon, lat))
+            .collect()
+    };
+    let mut out = Vec::new();
+    for z in &s.no_fly {
+        let name = format!("no-fly zone {:?}", z.name);
+        let holes: Vec<Vec<(f64, f64)>> = z.holes.iter().map(|h| to_local(h)).collect();
+        for piece in crate::zone_pieces::simple_pieces(&to_local(&z.ring), &holes) {
+            let ring = piece
+                .iter()
+                .map(|&(x, y)| Vec2::new(x as f32, y as f32))
+                .collect();
+            out.push((ObstacleSpec::Polygon(ring), name.clone()));
+        }
+    }
+    out.extend(s.threats.iter().map(|t| {
+        let disc = ObstacleSpec::Circle {
+            centre: local(frame, t.lon, t.lat),
+            radius: t.radius_m as f32,
+        };
+        (disc, format!("threat {:?}", t.name))
     }));
     out
 }
@@ -45,14 +66,8 @@ pub fn local_obstacles(s: &Scenario, frame: &LocalFrame) -> Vec<ObstacleSpec> {
 /// The name of the scenario's no-fly zone or threat disc that contains the local point `p`
 /// (as `no-fly zone "B12"` or `threat "T3"`), if any.
 pub fn obstacle_containing(s: &Scenario, frame: &LocalFrame, p: Vec2) -> Option<String> {
-    let names = s
-        .no_fly
-        .iter()
-        .map(|z| format!("no-fly zone {:?}", z.name))
-        .chain(s.threats.iter().map(|t| format!("threat {:?}", t.name)));
-    local_obstacles(s, frame)
-        .iter()
-        .zip(names)
+    local_obstacles_named(s, frame)
+        .into_iter()
         .find(|(o, _)| match o {
             ObstacleSpec::Polygon(ring) => {
                 skyroute::geometry::predicates::point_in_polygon(p, ring.as_slice())

@@ -540,23 +540,17 @@ fn walk_back(stages: &[Stage], best: &[StageBest]) -> Result<Vec<usize>, Mission
 
 /// What a leg that began inside (or within the clearance of) a no-fly zone, threat or pop-up
 /// did first, for the command line: the region's name and the exit's length; `None` for a leg
-/// that began clear. The core numbers obstacles as the scenario's no-fly zones then its
-/// threats, and pop-ups by the order they were added (`popups`).
+/// that began clear. The core numbers obstacles as [`crate::local::local_obstacles_named`]
+/// does, and pop-ups by the order they were added (`popups`).
 pub fn exit_note(leg: &Leg, scenario: &Scenario, popups: &[LocalPopup]) -> Option<String> {
     let exit = leg.summary.exit?;
     let region = match exit.violated {
-        Violation::Obstacle(i) => scenario
-            .no_fly
-            .iter()
-            .map(|z| format!("no-fly zone {:?}", z.name))
-            .chain(
-                scenario
-                    .threats
-                    .iter()
-                    .map(|t| format!("threat {:?}", t.name)),
-            )
-            .nth(i as usize)
-            .unwrap_or_else(|| format!("network obstacle {i}")),
+        Violation::Obstacle(i) => {
+            crate::local::local_obstacles_named(scenario, &scenario.local_frame())
+                .into_iter()
+                .nth(i as usize)
+                .map_or_else(|| format!("network obstacle {i}"), |(_, name)| name)
+        }
         Violation::Popup(id) => popups
             .get(id as usize)
             .map_or_else(|| format!("pop-up {id}"), |p| p.name.clone()),

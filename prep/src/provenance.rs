@@ -217,6 +217,14 @@ pub fn scenario_items(s: &Scenario) -> Result<Vec<Item>, DemUnreadable> {
                 for &(lon, lat) in &z.ring {
                     f.f64(lon).f64(lat);
                 }
+                // Holes follow the ring, each its length then its points; a zone without holes
+                // adds nothing.
+                for hole in &z.holes {
+                    f.u64(hole.len() as u64);
+                    for &(lon, lat) in hole {
+                        f.f64(lon).f64(lat);
+                    }
+                }
             },
         ));
     }

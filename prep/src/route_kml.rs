@@ -31,16 +31,30 @@ fn coordinates(points: impl Iterator<Item = (f64, f64)>, alt: f64) -> String {
         .join(" ")
 }
 
-/// A polygon placemark of a ring `(lon, lat)` (closed here).
-fn polygon(out: &mut String, name: &str, style: &str, ring: &[(f64, f64)]) {
-    let closed = ring.iter().chain(ring.first()).copied();
+/// A polygon placemark of a ring `(lon, lat)` and its holes (each closed here).
+fn polygon(
+    out: &mut String,
+    name: &str,
+    style: &str,
+    ring: &[(f64, f64)],
+    holes: &[Vec<(f64, f64)>],
+) {
+    let boundary = |r: &[(f64, f64)]| {
+        format!(
+            "<LinearRing><coordinates>{}</coordinates></LinearRing>",
+            coordinates(r.iter().chain(r.first()).copied(), 0.0)
+        )
+    };
+    let inner: String = holes
+        .iter()
+        .map(|h| format!("<innerBoundaryIs>{}</innerBoundaryIs>", boundary(h)))
+        .collect();
     let _ = writeln!(
         out,
         "<Placemark><name>{}</name><styleUrl>#{style}</styleUrl><Polygon><tessellate>1</tessellate>\
-         <outerBoundaryIs><LinearRing><coordinates>{}</coordinates></LinearRing></outerBoundaryIs>\
-         </Polygon></Placemark>",
+         <outerBoundaryIs>{}</outerBoundaryIs>{inner}</Polygon></Placemark>",
         escape(name),
-        coordinates(closed, 0.0)
+        boundary(ring)
     );
 }
 
@@ -97,12 +111,12 @@ pub fn route_kml(route_json: &Value, s: &Scenario, out: &MissionOutput) -> Resul
     }
     k.push_str("</Folder>\n<Folder><name>No-fly zones</name>\n");
     for z in &s.no_fly {
-        polygon(&mut k, &z.name, "zone", &z.ring);
+        polygon(&mut k, &z.name, "zone", &z.ring, &z.holes);
     }
     k.push_str("</Folder>\n<Folder><name>Pop-ups</name>\n");
     for (name, ring) in popup_rings(&m) {
         let ring: Vec<(f64, f64)> = ring.iter().map(|&(lat, lon)| (lon, lat)).collect();
-        polygon(&mut k, &name, "popup", &ring);
+        polygon(&mut k, &name, "popup", &ring, &[]);
     }
     k.push_str("</Folder>\n");
     if !s.landmarks.is_empty() {

@@ -194,14 +194,33 @@ fn signed_area2(ring: &[(f64, f64)]) -> f64 {
         .sum()
 }
 
-/// The plan file's `geoFence`: the no-fly zones as clockwise exclusion polygons, the pop-ups as
-/// exclusion circles.
+/// The rings `(lon, lat)` that fence no-fly zone `z`: its ring, or for a zone with holes (which
+/// a geofence polygon cannot have) the simple pieces the core checks, computed in `frame`.
+fn fence_rings(z: &crate::scenario::NoFly, frame: &LocalFrame) -> Vec<Vec<(f64, f64)>> {
+    if z.holes.is_empty() {
+        return vec![z.ring.clone()];
+    }
+    let to_local = |r: &[(f64, f64)]| -> Vec<(f64, f64)> {
+        r.iter()
+            .map(|&(lon, lat)| frame.to_local(lon, lat))
+            .collect()
+    };
+    let holes: Vec<Vec<(f64, f64)>> = z.holes.iter().map(|h| to_local(h)).collect();
+    crate::zone_pieces::simple_pieces(&to_local(&z.ring), &holes)
+        .into_iter()
+        .map(|piece| piece.iter().map(|&(x, y)| frame.to_geo(x, y)).collect())
+        .collect()
+}
+
+/// The plan file's `geoFence`: the no-fly zones as clockwise exclusion polygons (a zone with
+/// holes as several), the pop-ups as exclusion circles.
 fn geofence(s: &Scenario, m: &MissionRoute) -> Value {
     let polygons: Vec<Value> = s
         .no_fly
         .iter()
-        .map(|z| {
-            let mut ring: Vec<(f64, f64)> = z.ring.iter().map(|&(lon, lat)| (lat, lon)).collect();
+        .flat_map(|z| fence_rings(z, &m.frame))
+        .map(|fence| {
+            let mut ring: Vec<(f64, f64)> = fence.iter().map(|&(lon, lat)| (lat, lon)).collect();
             if signed_area2(&ring) > 0.0 {
                 ring.reverse();
             }

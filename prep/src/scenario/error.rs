@@ -91,8 +91,12 @@ pub enum ErrorKind {
     BadPosition(usize),
     /// The polygon's ring does not end where it starts.
     RingNotClosed,
-    /// The polygon has holes (interior rings), which are not supported.
-    Holes(usize),
+    /// A hole is not strictly inside its polygon's exterior ring: it crosses or touches the
+    /// ring, or lies outside it.
+    HoleOutside,
+    /// This hole meets the polygon's hole of this index (counting the exterior as 0): their
+    /// rings touch or cross, or one lies inside the other.
+    HolesMeet(usize),
     /// The polygon's ring has fewer than 3 distinct points.
     TooFewPoints(usize),
     /// More of something than the scenario format's limit allows (see [`super::limits`]).
@@ -199,9 +203,15 @@ impl fmt::Display for ErrorKind {
                 f,
                 "polygon ring is not closed (its last position must repeat its first)"
             ),
-            ErrorKind::Holes(n) => write!(
+            ErrorKind::HoleOutside => write!(
                 f,
-                "polygon has {n} rings: holes are not supported, give one exterior ring"
+                "this hole is not strictly inside the polygon's exterior ring (ring 0): it \
+                 touches or crosses it, or lies outside"
+            ),
+            ErrorKind::HolesMeet(k) => write!(
+                f,
+                "this hole meets hole {k} of the same polygon: holes must lie apart, neither \
+                 touching nor inside another"
             ),
             ErrorKind::TooMany { what, limit } => {
                 write!(f, "more than {limit} {what}, the scenario format's limit")

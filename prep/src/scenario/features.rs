@@ -1,7 +1,7 @@
 //! Feature geometries (points, polygons) and landmark rosettes.
 
 use super::error::ErrorKind;
-use super::geometry::{convex_hull, first_self_intersection};
+use super::geometry::{convex_hull, first_rings_meeting, first_self_intersection, point_in_ring};
 use super::json::describe;
 use super::parser::{At, Parser, R};
 use super::types::*;
@@ -71,10 +71,10 @@ impl Parser<'_> {
         self.position(at, c, "geometry.coordinates")
     }
 
-    /// The rings of a no-fly geometry: a `Polygon` gives one, a `MultiPolygon` one per member
-    /// polygon (each becomes its own zone). Each polygon has exactly one ring: holes are
-    /// refused by name.
-    pub(super) fn polygons(&mut self, at: &At, g: &Map<String, Value>) -> R<Vec<Vec<(f64, f64)>>> {
+    /// The polygons of a no-fly geometry: a `Polygon` gives one, a `MultiPolygon` one per
+    /// member polygon (each becomes its own zone). Each polygon is its exterior ring and its
+    /// holes, checked (see [`Self::polygon`]).
+    pub(super) fn polygons(&mut self, at: &At, g: &Map<String, Value>) -> R<Vec<ZoneRings>> {
         let t = self.req(at, g, "type", "geometry.type")?;
         let t = self.string(at, t, "geometry.type")?.to_owned();
         let field = "geometry.coordinates";
@@ -112,8 +112,11 @@ impl Parser<'_> {
         }
     }
 
-    /// One polygon's coordinates `c` (at `field`): its single ring, checked.
-    fn polygon(&mut self, at: &At, c: &Value, field: &str) -> R<Vec<(f64, f64)>> {
+    /// One polygon's coordinates `c` (at `field`): its exterior ring and its holes (RFC 7946
+    /// §3.1.6: the first ring is the exterior, the others are holes). Every ring is checked as
+    /// [`Self::ring`] does; each hole must lie strictly inside the exterior, and the holes
+    /// strictly apart from one another (no shared point, none inside another).
+    fn polygon(&mut self, at: &At, c: &Value, field: &str) -> R<ZoneRings> {
         let rings = c.as_array().ok_or_else(|| {
             self.err(
                 at,
@@ -124,38 +127,87 @@ impl Parser<'_> {
                 },
             )
         })?;
-        match rings.len() {
-            0 => return Err(self.err(at, field, ErrorKind::TooFewPoints(0))),
-            1 => {}
-            n => return Err(self.err(at, field, ErrorKind::Holes(n))),
+        if rings.is_empty() {
+            return Err(self.err(at, field, ErrorKind::TooFewPoints(0)));
         }
-        let ring_field = format!("{field}[0]");
-        let ring_v = rings[0].as_array().ok_or_else(|| {
+        if rings.len() - 1 > super::limits::MAX_HOLES {
+            let too_many = ErrorKind::TooMany {
+                what: "holes in one polygon",
+                limit: super::limits::MAX_HOLES as u64,
+            };
+            return Err(self.err(at, field, too_many));
+        }
+        let exterior = self.ring(at, &rings[0], field, 0, true)?;
+        let mut holes = Vec::with_capacity(rings.len() - 1);
+        for (k, hole) in rings.iter().enumerate().skip(1) {
+            holes.push(self.ring(at, hole, field, k, false)?);
+        }
+        let all: Vec<&[(f64, f64)]> = std::iter::once(exterior.as_slice())
+            .chain(holes.iter().map(Vec::as_slice))
+            .collect();
+        if let Some((a, b)) = first_rings_meeting(&all) {
+            let kind = match a {
+                0 => ErrorKind::HoleOutside,
+                _ => ErrorKind::HolesMeet(a),
+            };
+            return Err(self.err(at, format!("{field}[{b}]"), kind));
+        }
+        for (k, hole) in holes.iter().enumerate() {
+            // The rings do not meet, so one vertex tells where a whole ring lies.
+            if !point_in_ring(hole[0], &exterior) {
+                return Err(self.err(at, format!("{field}[{}]", k + 1), ErrorKind::HoleOutside));
+            }
+            if let Some(j) = (0..holes.len()).find(|&j| j != k && point_in_ring(holes[j][0], hole))
+            {
+                let field = format!("{field}[{}]", j + 1);
+                return Err(self.err(at, field, ErrorKind::HolesMeet(k + 1)));
+            }
+        }
+        Ok(ZoneRings { exterior, holes })
+    }
+
+    /// Ring `k` of a polygon (`c` at `field[k]`): closed, within the vertex limit, at least 3
+    /// distinct points, simple. A self-intersecting exterior is replaced by its convex hull when
+    /// [`super::ParseOptions::hull_self_intersecting_no_fly`] allows it (with a warning); a
+    /// hole never is, since its hull would shrink the zone.
+    fn ring(
+        &mut self,
+        at: &At,
+        c: &Value,
+        field: &str,
+        k: usize,
+        exterior: bool,
+    ) -> R<Vec<(f64, f64)>> {
+        let ring_field = format!("{field}[{k}]");
+        let ring_v = c.as_array().ok_or_else(|| {
             self.err(
                 at,
                 &ring_field,
                 ErrorKind::WrongType {
                     expected: "an array of positions",
-                    found: describe(&rings[0]),
+                    found: describe(c),
                 },
             )
         })?;
+        // The exterior's errors name the polygon (its only ring in most scenarios); a hole's
+        // name the hole.
+        let whole = if exterior { field } else { ring_field.as_str() };
         if ring_v.len() > super::limits::MAX_RING_VERTICES + 1 {
             let too_many = ErrorKind::TooMany {
                 what: "ring vertices",
                 limit: super::limits::MAX_RING_VERTICES as u64,
             };
-            return Err(self.err(at, field, too_many));
+            return Err(self.err(at, whole, too_many));
         }
         let mut ring = Vec::with_capacity(ring_v.len());
         for (i, p) in ring_v.iter().enumerate() {
             ring.push(self.position(at, p, &format!("{ring_field}[{i}]"))?);
         }
         if ring.is_empty() {
-            return Err(self.err(at, field, ErrorKind::TooFewPoints(0)));
+            return Err(self.err(at, whole, ErrorKind::TooFewPoints(0)));
         }
         if ring.first() != ring.last() || ring.len() < 2 {
-            return Err(self.err(at, field, ErrorKind::RingNotClosed));
+            return Err(self.err(at, whole, ErrorKind::RingNotClosed));
         }
         ring.pop();
         // Drop consecutive repeats (including last-to-first): they add no vertex.
@@ -170,35 +222,24 @@ impl Parser<'_> {
         distinct.sort_unstable();
         distinct.dedup();
         if distinct.len() < 3 {
-            return Err(self.err(at, field, ErrorKind::TooFewPoints(distinct.len())));
+            return Err(self.err(at, whole, ErrorKind::TooFewPoints(distinct.len())));
         }
         if let Some((edge_a, edge_b, overlap)) = first_self_intersection(&ring) {
-            if !self.hull_self_intersecting_no_fly {
-                return Err(self.err(
-                    at,
-                    field,
-                    ErrorKind::SelfIntersecting {
-                        edge_a,
-                        edge_b,
-                        overlap,
-                    },
-                ));
+            let refused = ErrorKind::SelfIntersecting {
+                edge_a,
+                edge_b,
+                overlap,
+            };
+            if !(exterior && self.hull_self_intersecting_no_fly) {
+                return Err(self.err(at, whole, refused));
             }
             let hull = convex_hull(&ring);
             if hull.len() < 3 {
-                return Err(self.err(
-                    at,
-                    field,
-                    ErrorKind::SelfIntersecting {
-                        edge_a,
-                        edge_b,
-                        overlap,
-                    },
-                ));
+                return Err(self.err(at, whole, refused));
             }
             let warning = self.err(
                 at,
-                field,
+                whole,
                 ErrorKind::ReplacedByHull {
                     before: ring.len(),
                     after: hull.len(),

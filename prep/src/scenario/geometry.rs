@@ -118,30 +118,67 @@ pub(super) fn first_self_intersection(ring: &[P]) -> Option<(usize, usize, bool)
             keep((0, n - 1, true));
         }
     }
+    let edges: Vec<(P, P)> = (0..n).map(edge).collect();
+    for_close_pairs(&edges, |lo, hi| {
+        let adjacent = hi == lo + 1 || (lo == 0 && hi == n - 1);
+        let ((a, b), (c, d)) = (edges[lo], edges[hi]);
+        if !adjacent && segments_meet(a, b, c, d) {
+            keep((lo, hi, false));
+        }
+    });
+    first
+}
+
+/// Calls `visit(i, j)` (with `i < j`) for every pair of `edges` whose bounding boxes overlap:
+/// a sort-and-sweep on the edges' x-extents, each edge compared only with the earlier edges
+/// whose x-extent still reaches it, and passed on when the y-extents overlap too. O(n log n +
+/// k) for k such pairs.
+fn for_close_pairs(edges: &[(P, P)], mut visit: impl FnMut(usize, usize)) {
     let bounds = |i: usize| {
-        let (a, b) = edge(i);
+        let (a, b) = edges[i];
         (a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1))
     };
-    let mut order: Vec<usize> = (0..n).collect();
+    let mut order: Vec<usize> = (0..edges.len()).collect();
     order.sort_by(|&i, &j| bounds(i).0.total_cmp(&bounds(j).0));
     let mut active: Vec<usize> = Vec::new();
     for &j in &order {
         let (x_min, _, y_min, y_max) = bounds(j);
         active.retain(|&i| bounds(i).1 >= x_min);
         for &i in &active {
-            let (lo, hi) = (i.min(j), i.max(j));
-            let adjacent = hi == lo + 1 || (lo == 0 && hi == n - 1);
             let (_, _, iy_min, iy_max) = bounds(i);
-            if adjacent || iy_max < y_min || y_max < iy_min {
+            if iy_max < y_min || y_max < iy_min {
                 continue;
             }
-            let ((a, b), (c, d)) = (edge(lo), edge(hi));
-            if segments_meet(a, b, c, d) {
-                keep((lo, hi, false));
-            }
+            visit(i.min(j), i.max(j));
         }
         active.push(j);
     }
+}
+
+/// The first pair of rings `(a, b)`, `a < b` (smallest `a`, then smallest `b`), whose
+/// boundaries meet: an edge of one touches or crosses an edge of the other. Each ring is closed
+/// (its last vertex joins its first); meetings within one ring are not looked for here (see
+/// [`first_self_intersection`]).
+pub(super) fn first_rings_meeting(rings: &[&[P]]) -> Option<(usize, usize)> {
+    let mut edges = Vec::new();
+    let mut owner = Vec::new();
+    for (r, ring) in rings.iter().enumerate() {
+        for i in 0..ring.len() {
+            edges.push((ring[i], ring[(i + 1) % ring.len()]));
+            owner.push(r);
+        }
+    }
+    let mut first: Option<(usize, usize)> = None;
+    for_close_pairs(&edges, |i, j| {
+        let (ra, rb) = (owner[i].min(owner[j]), owner[i].max(owner[j]));
+        if ra == rb || first.is_some_and(|f| f <= (ra, rb)) {
+            return;
+        }
+        let ((a, b), (c, d)) = (edges[i], edges[j]);
+        if segments_meet(a, b, c, d) {
+            first = Some((ra, rb));
+        }
+    });
     first
 }
 
@@ -165,6 +202,18 @@ pub(super) fn point_in_ring(p: P, ring: &[P]) -> bool {
         }
     }
     winding != 0
+}
+
+/// Whether `p` lies inside or on the boundary of the zone of exterior `ring` less `holes`: in
+/// the ring, and not strictly inside any hole (a hole's boundary belongs to the zone).
+pub(super) fn point_in_zone(p: P, ring: &[P], holes: &[Vec<P>]) -> bool {
+    let on_boundary = |h: &[P]| {
+        (0..h.len()).any(|i| {
+            let (a, b) = (h[i], h[(i + 1) % h.len()]);
+            orient(a, b, p) == 0 && within(a, b, p)
+        })
+    };
+    point_in_ring(p, ring) && !holes.iter().any(|h| point_in_ring(p, h) && !on_boundary(h))
 }
 
 /// The convex hull of `points`, counter-clockwise, without collinear vertices (Andrew's

@@ -70,6 +70,9 @@ pub mod limits {
     pub const MAX_SCENARIO_BYTES: u64 = 16 << 20;
     /// The most vertices in one no-fly ring.
     pub const MAX_RING_VERTICES: usize = 100_000;
+    /// The most holes in one no-fly polygon (each hole adds about two pieces to the obstacles
+    /// the core checks, see `zone_pieces`).
+    pub const MAX_HOLES: usize = 1_000;
     /// The most waypoints in a scenario: each free-heading waypoint costs `plan` about a
     /// quarter of a second on the urban network, so this is two minutes of planning.
     pub const MAX_WAYPOINTS: usize = 500;
@@ -147,5 +150,7 @@ pub fn parse_with(
 mod tests;
 #[cfg(test)]
 mod tests_geometry;
+#[cfg(test)]
+mod tests_holes;
 #[cfg(test)]
 mod tests_inputs;

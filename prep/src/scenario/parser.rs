@@ -1,9 +1,9 @@
 //! The parser: typed access to JSON members, and the feature collection.
 
 use super::error::{ErrorKind, FeatureRef, ScenarioError};
-use super::geometry::point_in_ring;
+use super::geometry::point_in_zone;
 use super::json::{describe, NON_FINITE};
-use super::types::{Circle, Endpoint, Landmark, Mode, NoFly, Popup, Scenario};
+use super::types::{Circle, Endpoint, Landmark, Mode, NoFly, Popup, Scenario, ZoneRings};
 use serde_json::{Map, Value};
 use std::path::Path;
 
@@ -362,14 +362,18 @@ impl Parser<'_> {
         match kind {
             "no_fly" => {
                 // A MultiPolygon's members become zones named "NAME[k]".
-                let rings = self.polygons(&at, geometry)?;
-                let parts = rings.len();
-                for (k, ring) in rings.into_iter().enumerate() {
+                let polygons = self.polygons(&at, geometry)?;
+                let parts = polygons.len();
+                for (k, ZoneRings { exterior, holes }) in polygons.into_iter().enumerate() {
                     let name = match parts {
                         1 => name.clone(),
                         _ => format!("{name}[{k}]"),
                     };
-                    s.no_fly.push(NoFly { name, ring });
+                    s.no_fly.push(NoFly {
+                        name,
+                        ring: exterior,
+                        holes,
+                    });
                     seen.no_fly.push(me.clone());
                 }
             }
@@ -516,11 +520,12 @@ impl Parser<'_> {
         Ok(())
     }
 
-    /// Endpoints must be flyable: not inside, nor on the edge of, any no-fly polygon.
+    /// Endpoints must be flyable: not inside, nor on the edge of, any no-fly polygon (a point
+    /// in one of its holes is outside it).
     fn endpoints_outside_no_fly(&self, s: &Scenario, seen: &Seen) -> R<()> {
         for p in &seen.placed {
             for (zone, zref) in s.no_fly.iter().zip(&seen.no_fly) {
-                if point_in_ring((p.lon, p.lat), &zone.ring) {
+                if point_in_zone((p.lon, p.lat), &zone.ring, &zone.holes) {
                     return Err(self.err(
                         &At {
                             feature: Some(p.at.clone()),

@@ -161,6 +161,18 @@ pub struct NoFly {
     /// The ring, `(lon, lat)` degrees, in file order, without the closing duplicate (and without
     /// consecutive duplicates). Simple: at least 3 vertices, no self-intersection.
     pub ring: Vec<(f64, f64)>,
+    /// Its holes, rings as [`NoFly::ring`], in file order: areas inside the ring that are not
+    /// part of the zone. Each lies strictly inside the ring and apart from the others.
+    pub holes: Vec<Vec<(f64, f64)>>,
+}
+
+/// A polygon as the scenario parser reads it: its exterior ring and its holes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ZoneRings {
+    /// The exterior ring (see [`NoFly::ring`]).
+    pub exterior: Vec<(f64, f64)>,
+    /// The holes (see [`NoFly::holes`]).
+    pub holes: Vec<Vec<(f64, f64)>>,
 }
 
 /// Number of overflight headings in a landmark rosette: 0°, 30°, … 330°.

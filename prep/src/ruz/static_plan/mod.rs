@@ -158,6 +158,8 @@ pub fn problem(s: &Scenario, frame: &LocalFrame, popups: &[usize]) -> Result<Pro
                 radius: p.radius_m,
             }),
     );
+    // A zone's holes are left out: the static planners keep out of the whole exterior ring,
+    // which is conservative (a hole is reachable only through the zone around it).
     let zones = s
         .no_fly
         .iter()
