@@ -3,6 +3,7 @@
 pub mod build;
 pub mod build_limits;
 pub mod capacity;
+pub mod cli_values;
 pub mod dem;
 pub mod export;
 pub mod frame;

@@ -2,8 +2,8 @@
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
-use skyroute::planner::decision::DecisionLimits;
 use skyroute_prep::build::{build, BuildOptions};
+use skyroute_prep::cli_values::*;
 use skyroute_prep::init::init_command;
 use skyroute_prep::output::{refuse_overwriting_inputs, write_atomically};
 use skyroute_prep::plan_cli::{load_scenario, plan_command, CliResult, NoRoute, PlanRequest};
@@ -327,138 +327,6 @@ enum Command {
         #[arg(long, value_parser = parse_mode)]
         mode: Option<Mode>,
     },
-}
-
-fn parse_popup(s: &str) -> Result<(f64, f64, f64), String> {
-    let v: Vec<f64> = s
-        .split(',')
-        .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
-        .collect::<Result<_, _>>()?;
-    match v[..] {
-        [lon, lat, r] if lon.abs() <= 180.0 && lat.abs() <= 90.0 && r > 0.0 && r.is_finite() => {
-            Ok((lon, lat, r))
-        }
-        _ => Err(format!(
-            "expected LON,LAT,RADIUS_M with |lon| <= 180, |lat| <= 90, radius > 0, got {s:?}"
-        )),
-    }
-}
-
-fn parse_start(s: &str) -> Result<(f64, f64, f64), String> {
-    let v: Vec<f64> = s
-        .split(',')
-        .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
-        .collect::<Result<_, _>>()?;
-    match v[..] {
-        [lon, lat, h] if lon.abs() <= 180.0 && lat.abs() <= 90.0 && h.is_finite() => Ok((lon, lat, h)),
-        _ => Err(format!(
-            "expected LON,LAT,HEADING_DEG with |lon| <= 180, |lat| <= 90, a finite heading, got {s:?}"
-        )),
-    }
-}
-
-fn parse_mode(s: &str) -> Result<Mode, String> {
-    match s.trim() {
-        "roadmap" => Ok(Mode::Roadmap),
-        "landmark" => Ok(Mode::Landmark),
-        "terrain" => Ok(Mode::Terrain),
-        "voronoi" => Ok(Mode::Voronoi),
-        _ => Err(format!(
-            "expected roadmap, landmark, terrain or voronoi, got {s:?}"
-        )),
-    }
-}
-
-fn parse_autopilot(s: &str) -> Result<Autopilot, String> {
-    match s.trim() {
-        "px4" => Ok(Autopilot::Px4),
-        "ardupilot" => Ok(Autopilot::ArduPilot),
-        _ => Err(format!("expected px4 or ardupilot, got {s:?}")),
-    }
-}
-
-fn parse_altitude(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(a) if a.is_finite() => Ok(a),
-        _ => Err(format!("expected a finite number of metres, got {s:?}")),
-    }
-}
-
-fn parse_weight(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f32>() {
-        Ok(k) if (0.0..=1.0).contains(&k) => Ok(k),
-        _ => Err(format!("expected a weight in [0, 1], got {s:?}")),
-    }
-}
-
-fn parse_sagitta(s: &str) -> Result<Sagitta, String> {
-    match s {
-        "added" => Ok(Sagitta::Added),
-        "paper" => Ok(Sagitta::InClearance),
-        _ => Err(format!("expected added or paper, got {s:?}")),
-    }
-}
-
-fn parse_turn_rule(s: &str) -> Result<skyroute::TurnRule, String> {
-    match s.trim() {
-        "paper" => Ok(skyroute::TurnRule::Paper),
-        "shared-equally" => Ok(skyroute::TurnRule::SharedEqually),
-        _ => Err(format!("expected paper or shared-equally, got {s:?}")),
-    }
-}
-
-fn limits(time_max: f32, fuel_max: f32) -> DecisionLimits {
-    DecisionLimits { time_max, fuel_max }
-}
-
-fn parse_limit(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f32>() {
-        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
-        _ => Err(format!("expected a non-negative number, got {s:?}")),
-    }
-}
-
-fn parse_radius(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f32>() {
-        Ok(r) if r.is_finite() && r > 0.0 => Ok(r),
-        _ => Err(format!("expected a positive number of metres, got {s:?}")),
-    }
-}
-
-fn parse_positive(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
-        _ => Err(format!("expected a positive number of metres, got {s:?}")),
-    }
-}
-
-fn parse_non_negative(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
-        _ => Err(format!("expected a number of metres, 0 or more, got {s:?}")),
-    }
-}
-
-fn parse_finite(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(x) if x.is_finite() => Ok(x),
-        _ => Err(format!("expected a finite number of metres, got {s:?}")),
-    }
-}
-
-fn parse_area(s: &str) -> Result<(f64, f64, f64, f64), String> {
-    let v: Vec<f64> = s
-        .split(',')
-        .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
-        .collect::<Result<_, _>>()?;
-    match v[..] {
-        [x0, y0, x1, y1] if v.iter().all(|x| x.is_finite()) && x0 < x1 && y0 < y1 => {
-            Ok((x0, y0, x1, y1))
-        }
-        _ => Err(format!(
-            "expected MIN_X,MIN_Y,MAX_X,MAX_Y with MIN < MAX, got {s:?}"
-        )),
-    }
 }
 
 /// `skyroute build`.
