@@ -263,6 +263,11 @@ enum Command {
     /// written: the comments are foreign members (`comments`, each feature's `comment`) that
     /// skyroute and GIS tools ignore.
     Init(InitArgs),
+    /// Write a scenario from the files people have: no-fly zones from KML, the route (home and
+    /// mission positions) and its exclusion fences from a QGroundControl .plan, joined to a
+    /// base scenario (--base, by default the roadmap template). The result is checked as a
+    /// scenario before it is written.
+    Import(skyroute_prep::import::ImportArgs),
     /// The static planners of Ruz et al. (MILP, A* with inertia) start → goal, scored by risk.
     StaticPlan(skyroute_prep::ruz::static_plan::cli::StaticPlanArgs),
     /// Describe a network image: mode, counts and bytes, what it records of its scenario, the
@@ -587,6 +592,10 @@ fn run(cli: Cli) -> CliResult {
             histograms: histograms.as_deref(),
         }),
         Command::Init(a) => init(&a),
+        Command::Import(a) => {
+            println!("{}", skyroute_prep::import::import_command(&a)?);
+            Ok(())
+        }
         Command::StaticPlan(a) => skyroute_prep::ruz::static_plan::cli::static_plan_command(&a),
         Command::Info { network } => info(&network),
         Command::Export {
