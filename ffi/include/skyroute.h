@@ -55,7 +55,7 @@
 #define SR_EXIT_POPUP 2
 
 // What a call did: `SR_STATUS_OK` (0), a misuse of the API (1–99), or why the core refused:
-// loading 100–199, planning 200–299, pop-ups 300–399. The numbers are fixed; the numbers
+// loading 100–199, planning 200–299, pop-ups 300–399, latitude and longitude 400–499. The numbers are fixed; the numbers
 // the core's errors carry (counts, indices) are not reported through the C API.
 enum sr_status
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
@@ -76,6 +76,8 @@ enum sr_status
   // The caller's array holds fewer primitives than the route has: the first ones were written,
   // and the count says how many the route has.
   SR_STATUS_BUFFER_TOO_SMALL = 5,
+  // The call needs a network and none has been loaded (`sr_load`).
+  SR_STATUS_NO_NETWORK = 6,
   // `LoadError::Truncated`: The image ends before the header or the body it declares.
   SR_STATUS_LOAD_TRUNCATED = 100,
   // `LoadError::TrailingBytes`: The image continues past the body the header declares.
@@ -259,6 +261,18 @@ enum sr_status
   SR_STATUS_POPUP_NOT_SIMPLE = 304,
   // `PopupError::UnknownId`: No active pop-up has this id.
   SR_STATUS_POPUP_UNKNOWN_ID = 305,
+  // `GeoError::NonFinite`: A coordinate or heading is NaN or infinite.
+  SR_STATUS_GEO_NON_FINITE = 400,
+  // `GeoError::Latitude`: A latitude outside [−90, 90] degrees.
+  SR_STATUS_GEO_LATITUDE = 401,
+  // `GeoError::Longitude`: A longitude outside [−180, 180] degrees.
+  SR_STATUS_GEO_LONGITUDE = 402,
+  // `GeoError::Heading`: A compass heading outside [−360, 360] degrees.
+  SR_STATUS_GEO_HEADING = 403,
+  // `GeoError::OutOfFrame`: The point lies outside the local frame's valid region (too far
+  // east or west of the origin's meridian, beyond a pole, or past the planner's coordinate
+  // range).
+  SR_STATUS_GEO_OUT_OF_FRAME = 404,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -272,6 +286,27 @@ typedef int32_t sr_status;
 // into the memory given to it. It reads its network from the image given to the last
 // successful `sr_load`, in place.
 typedef struct sr_planner sr_planner;
+
+// A pose in the network's local frame: metres east (`x`) and north (`y`) of its origin, the
+// heading in radians counter-clockwise from east (as `sr_query` takes them).
+typedef struct {
+  // East, metres.
+  float x;
+  // North, metres.
+  float y;
+  // Radians counter-clockwise from east (grid east), in (−π, π].
+  float heading;
+} sr_pose;
+
+// A pose on the WGS-84 ellipsoid.
+typedef struct {
+  // Longitude, degrees east, in [−180, 180).
+  double lon_deg;
+  // Latitude, degrees north.
+  double lat_deg;
+  // Compass heading: degrees clockwise from true north, in [0, 360).
+  double compass_deg;
+} sr_geo_pose;
 
 // One planning request, in the network's local frame: metres east (`x`) and north (`y`) of
 // its origin; headings in radians counter-clockwise from east.
@@ -426,6 +461,34 @@ sr_status sr_network_counts(const sr_planner *planner, uint32_t *vertices, uint3
 // `planner` is NULL or a handle from `sr_planner_init`; `work` is NULL or points to a
 // writable integer.
 sr_status sr_worst_case_work(const sr_planner *planner, uint64_t *work);
+
+// Converts a position (degrees) and compass heading (degrees clockwise from true north, in
+// [−360, 360]) to the loaded network's local frame and writes it to `*pose`, ready for an
+// `sr_query`. Refused with `SR_STATUS_NO_NETWORK` before a network is loaded, and with an
+// `SR_STATUS_GEO_…` status for a non-finite or out-of-range value or a point outside the
+// frame's valid region (`*pose` is then not written).
+//
+// # Safety
+// `planner` is NULL or a handle from `sr_planner_init`; `pose` is NULL or points to a writable
+// `sr_pose`.
+sr_status sr_geo_to_local(const sr_planner *planner,
+                          double lon_deg,
+                          double lat_deg,
+                          double compass_deg,
+                          sr_pose *pose);
+
+// Converts a pose of the loaded network's local frame (a route's point, an arrival heading) to
+// longitude, latitude and compass heading and writes it to `*geo`. Refused as
+// `sr_geo_to_local` refuses (`*geo` is then not written).
+//
+// # Safety
+// `planner` is NULL or a handle from `sr_planner_init`; `geo` is NULL or points to a writable
+// `sr_geo_pose`.
+sr_status sr_local_to_geo(const sr_planner *planner,
+                          float x,
+                          float y,
+                          float heading,
+                          sr_geo_pose *geo);
 
 // Plans `query` with at most `budget` work (`sr_worst_case_work` gives a budget that always
 // suffices) and writes the route's summary to `*summary`. On an error `*summary` is not

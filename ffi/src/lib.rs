@@ -14,6 +14,10 @@
 //! state (a release build of `sr_planner_init` writes it in place, with no planner-sized copy
 //! on the stack); the library keeps no pointer to it beyond the handle it writes.
 //!
+//! Positions in and out: `sr_geo_to_local` turns the autopilot's latitude, longitude and compass
+//! heading into the network's local frame for an `sr_query`, and `sr_local_to_geo` turns a
+//! route's points and headings back.
+//!
 //! Calls are not thread-safe: one call at a time per planner. Every failure is a status: a
 //! pointer that must not be NULL and is NULL returns `SR_STATUS_NULL_POINTER`, and the core's
 //! errors are values. Should a panic happen all the same, on the target (`target_os = "none"`)
@@ -29,10 +33,12 @@
 #[cfg(not(target_os = "none"))]
 extern crate std;
 
+mod geo;
 mod plan;
 mod popups;
 mod status;
 
+pub use geo::{geo_status, sr_geo_to_local, sr_local_to_geo, SrGeoPose, SrPose};
 pub use plan::{
     sr_plan, sr_route_primitives, SrArc, SrLine, SrPrimitive, SrQuery, SrRouteSummary, SrWork,
     SR_EXIT_NONE, SR_EXIT_OBSTACLE, SR_EXIT_POPUP, SR_PRIMITIVE_ARC, SR_PRIMITIVE_LINE,

@@ -7,7 +7,7 @@ use skyroute::planner::{PlanError, PopupError};
 use skyroute::LoadError;
 
 /// What a call did: `SR_STATUS_OK` (0), a misuse of the API (1–99), or why the core refused:
-/// loading 100–199, planning 200–299, pop-ups 300–399. The numbers are fixed; the numbers
+/// loading 100–199, planning 200–299, pop-ups 300–399, latitude and longitude 400–499. The numbers are fixed; the numbers
 /// the core's errors carry (counts, indices) are not reported through the C API.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(i32)]
@@ -26,6 +26,8 @@ pub enum SrStatus {
     /// The caller's array holds fewer primitives than the route has: the first ones were written,
     /// and the count says how many the route has.
     BufferTooSmall = 5,
+    /// The call needs a network and none has been loaded (`sr_load`).
+    NoNetwork = 6,
     /// `LoadError::Truncated`: The image ends before the header or the body it declares.
     LoadTruncated = 100,
     /// `LoadError::TrailingBytes`: The image continues past the body the header declares.
@@ -209,6 +211,18 @@ pub enum SrStatus {
     PopupNotSimple = 304,
     /// `PopupError::UnknownId`: No active pop-up has this id.
     PopupUnknownId = 305,
+    /// `GeoError::NonFinite`: A coordinate or heading is NaN or infinite.
+    GeoNonFinite = 400,
+    /// `GeoError::Latitude`: A latitude outside [−90, 90] degrees.
+    GeoLatitude = 401,
+    /// `GeoError::Longitude`: A longitude outside [−180, 180] degrees.
+    GeoLongitude = 402,
+    /// `GeoError::Heading`: A compass heading outside [−360, 360] degrees.
+    GeoHeading = 403,
+    /// `GeoError::OutOfFrame`: The point lies outside the local frame's valid region (too far
+    /// east or west of the origin's meridian, beyond a pole, or past the planner's coordinate
+    /// range).
+    GeoOutOfFrame = 404,
 }
 
 /// The status for a `LoadError`.
@@ -309,6 +323,7 @@ impl SrStatus {
             SrStatus::MemoryTooSmall => c"SR_STATUS_MEMORY_TOO_SMALL",
             SrStatus::InvalidArgument => c"SR_STATUS_INVALID_ARGUMENT",
             SrStatus::BufferTooSmall => c"SR_STATUS_BUFFER_TOO_SMALL",
+            SrStatus::NoNetwork => c"SR_STATUS_NO_NETWORK",
             SrStatus::LoadTruncated => c"SR_STATUS_LOAD_TRUNCATED",
             SrStatus::LoadTrailingBytes => c"SR_STATUS_LOAD_TRAILING_BYTES",
             SrStatus::LoadBadMagic => c"SR_STATUS_LOAD_BAD_MAGIC",
@@ -379,6 +394,11 @@ impl SrStatus {
             SrStatus::PopupOutOfRange => c"SR_STATUS_POPUP_OUT_OF_RANGE",
             SrStatus::PopupNotSimple => c"SR_STATUS_POPUP_NOT_SIMPLE",
             SrStatus::PopupUnknownId => c"SR_STATUS_POPUP_UNKNOWN_ID",
+            SrStatus::GeoNonFinite => c"SR_STATUS_GEO_NON_FINITE",
+            SrStatus::GeoLatitude => c"SR_STATUS_GEO_LATITUDE",
+            SrStatus::GeoLongitude => c"SR_STATUS_GEO_LONGITUDE",
+            SrStatus::GeoHeading => c"SR_STATUS_GEO_HEADING",
+            SrStatus::GeoOutOfFrame => c"SR_STATUS_GEO_OUT_OF_FRAME",
         }
     }
 }
@@ -401,13 +421,14 @@ impl SrStatus {
 }
 
 /// Every status, in the order of their numbers.
-const ALL: [SrStatus; 76] = [
+const ALL: [SrStatus; 82] = [
     SrStatus::Ok,
     SrStatus::NullPointer,
     SrStatus::MemoryMisaligned,
     SrStatus::MemoryTooSmall,
     SrStatus::InvalidArgument,
     SrStatus::BufferTooSmall,
+    SrStatus::NoNetwork,
     SrStatus::LoadTruncated,
     SrStatus::LoadTrailingBytes,
     SrStatus::LoadBadMagic,
@@ -478,4 +499,9 @@ const ALL: [SrStatus; 76] = [
     SrStatus::PopupOutOfRange,
     SrStatus::PopupNotSimple,
     SrStatus::PopupUnknownId,
+    SrStatus::GeoNonFinite,
+    SrStatus::GeoLatitude,
+    SrStatus::GeoLongitude,
+    SrStatus::GeoHeading,
+    SrStatus::GeoOutOfFrame,
 ];

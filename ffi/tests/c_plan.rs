@@ -17,10 +17,10 @@
 //! changes the route.
 
 use skyroute::planner::{Exit, PlanError, Violation};
-use skyroute::{Goal, Planner, Popup, Primitive, Query, RouteSummary, Search, Vec2};
+use skyroute::{GeoError, Goal, Planner, Popup, Primitive, Query, RouteSummary, Search, Vec2};
 use skyroute_ffi::{
-    load_status, plan_status, popup_status, CorePlanner, SrPlanner, SrStatus, SR_EXIT_NONE,
-    SR_EXIT_OBSTACLE, SR_EXIT_POPUP,
+    geo_status, load_status, plan_status, popup_status, CorePlanner, SrPlanner, SrStatus,
+    SR_EXIT_NONE, SR_EXIT_OBSTACLE, SR_EXIT_POPUP,
 };
 use std::fmt::Write as _;
 use std::mem::{align_of, size_of};
@@ -289,8 +289,81 @@ fn expected(image: &'static [u8], query: &Query, popup: Vec2) -> String {
     status_line(&mut out, "remove popups", SrStatus::Ok);
     let r = p.plan(query, budget);
     plan_lines(&mut out, p, "plan cleared", r);
+    geo_lines(&mut out, p, query, budget);
     writeln!(out, "failures 0").unwrap();
     out
+}
+
+/// The start through latitude and longitude and back (the core's `LocalFrame`, as the C ABI's
+/// `sr_local_to_geo` and `sr_geo_to_local` use it), the plan from the converted pose, and the
+/// conversions refused.
+fn geo_lines(out: &mut String, p: &mut CorePlanner, query: &Query, budget: u64) {
+    status_line(out, "geo before load", SrStatus::NullPointer);
+    let frame = p.network().local_frame();
+    let (lon, lat) = frame
+        .lon_lat(query.start.position)
+        .expect("the start is in the frame");
+    let compass = frame.compass_deg(&query.start).expect("a finite heading");
+    status_line(out, "local to geo", SrStatus::Ok);
+    let h = hex_f64;
+    writeln!(
+        out,
+        "geo lon {} lat {} compass {}",
+        h(lon),
+        h(lat),
+        h(compass)
+    )
+    .unwrap();
+    let back = frame.pose(lon, lat, compass).expect("back to the frame");
+    status_line(out, "geo to local", SrStatus::Ok);
+    let f = hex_float;
+    writeln!(
+        out,
+        "local x {} y {} heading {}",
+        f(back.position.x),
+        f(back.position.y),
+        f(back.heading)
+    )
+    .unwrap();
+    let from_geo = Query {
+        start: back,
+        ..*query
+    };
+    let r = p.plan(&from_geo, budget);
+    plan_lines(out, p, "plan from geo", r);
+    let refused = |r: Result<skyroute::Pose, GeoError>| geo_status(&r.expect_err("refused"));
+    status_line(out, "geo latitude 91", refused(frame.pose(lon, 91.0, 0.0)));
+    status_line(
+        out,
+        "geo heading nan",
+        refused(frame.pose(lon, lat, f64::NAN)),
+    );
+    status_line(
+        out,
+        "geo far east",
+        refused(frame.pose(lon + 90.0, lat, 0.0)),
+    );
+    status_line(out, "geo null out", SrStatus::NullPointer);
+}
+
+/// `d` as C's `printf("%a", d)` writes it with glibc (normal and zero values).
+fn hex_f64(d: f64) -> String {
+    if d == 0.0 {
+        return format!("{}0x0p+0", if d.is_sign_negative() { "-" } else { "" });
+    }
+    let sign = if d.is_sign_negative() { "-" } else { "" };
+    let bits = d.to_bits();
+    let exponent = ((bits >> 52) & 0x7ff) as i64 - 1023;
+    let mut digits = format!("{:013x}", bits & ((1u64 << 52) - 1));
+    while digits.ends_with('0') {
+        digits.pop();
+    }
+    let fraction = if digits.is_empty() {
+        String::new()
+    } else {
+        format!(".{digits}")
+    };
+    format!("{sign}0x1{fraction}p{exponent:+}")
 }
 
 fn env_path(name: &str) -> String {
@@ -357,4 +430,7 @@ fn hex_floats_are_written_as_glibc_writes_them() {
     assert_eq!(hex_float(0.0), "0x0p+0");
     assert_eq!(hex_float(-0.0), "-0x0p+0");
     assert_eq!(hex_float(f32::MIN_POSITIVE / 2.0), "0x1p-127");
+    assert_eq!(hex_f64(1.0), "0x1p+0");
+    assert_eq!(hex_f64(0.1), "0x1.999999999999ap-4");
+    assert_eq!(hex_f64(-11.5), "-0x1.7p+3");
 }

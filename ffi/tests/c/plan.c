@@ -14,6 +14,7 @@
 #include "skyroute.h"
 
 #include <inttypes.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -192,6 +193,34 @@ int main(int argc, char **argv) {
     expect("remove unknown", sr_remove_popup(planner, 9), SR_STATUS_POPUP_UNKNOWN_ID);
     expect("remove popups", sr_remove_popups(planner), SR_STATUS_OK);
     plan(planner, "plan cleared", &query, budget, SR_STATUS_OK);
+
+    /* The start in latitude and longitude and back, then planned from the converted pose. */
+    sr_pose unloaded_pose;
+    expect("geo before load", sr_geo_to_local(NULL, 0.0, 0.0, 0.0, &unloaded_pose),
+           SR_STATUS_NULL_POINTER);
+    sr_geo_pose geo;
+    memset(&geo, 0, sizeof geo);
+    expect("local to geo", sr_local_to_geo(planner, v[0], v[1], v[2], &geo), SR_STATUS_OK);
+    printf("geo lon %a lat %a compass %a\n", geo.lon_deg, geo.lat_deg, geo.compass_deg);
+    sr_pose pose;
+    memset(&pose, 0, sizeof pose);
+    expect("geo to local",
+           sr_geo_to_local(planner, geo.lon_deg, geo.lat_deg, geo.compass_deg, &pose),
+           SR_STATUS_OK);
+    printf("local x %a y %a heading %a\n", (double)pose.x, (double)pose.y, (double)pose.heading);
+    sr_query from_geo = query;
+    from_geo.start_x = pose.x;
+    from_geo.start_y = pose.y;
+    from_geo.start_heading = pose.heading;
+    plan(planner, "plan from geo", &from_geo, budget, SR_STATUS_OK);
+    expect("geo latitude 91", sr_geo_to_local(planner, geo.lon_deg, 91.0, 0.0, &pose),
+           SR_STATUS_GEO_LATITUDE);
+    expect("geo heading nan", sr_geo_to_local(planner, geo.lon_deg, geo.lat_deg, NAN, &pose),
+           SR_STATUS_GEO_NON_FINITE);
+    expect("geo far east", sr_geo_to_local(planner, geo.lon_deg + 90.0, geo.lat_deg, 0.0, &pose),
+           SR_STATUS_GEO_OUT_OF_FRAME);
+    expect("geo null out", sr_local_to_geo(planner, v[0], v[1], v[2], NULL),
+           SR_STATUS_NULL_POINTER);
 
     printf("failures %d\n", failures);
     return failures == 0 ? 0 : 1;
