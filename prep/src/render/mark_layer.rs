@@ -1,6 +1,6 @@
 //! Pop-ups, start, waypoints and goal with their labels, and the north arrow.
 
-use super::draw::{text, View, MARGIN_PX};
+use super::draw::{clamp_label, map_text, text, View, MARGIN_PX};
 use super::picture::{EndpointMark, PopupMark};
 use std::fmt::Write as _;
 
@@ -58,9 +58,9 @@ pub(super) fn endpoints(svg: &mut String, endpoints: &[EndpointMark], view: &Vie
     }
 }
 
-/// The labels of the endpoints and pop-ups. Drawn last, so no line covers them, and unclipped,
-/// so none is cut at the map's edge; each endpoint's goes on the side away from its heading
-/// tick.
+/// The labels of the endpoints and pop-ups. Drawn last, so no line covers them, unclipped and
+/// moved inside the map where they would reach past it ([`map_text`]), so none is cut at the
+/// map's edge; each endpoint's goes on the side away from its heading tick.
 pub(super) fn labels(
     svg: &mut String,
     endpoints: &[EndpointMark],
@@ -84,14 +84,21 @@ pub(super) fn labels(
         } else {
             ly
         };
-        text(svg, lx, ly, 17.0, anchor, "#000", &label);
+        // A label that would reach past the map's side goes under the marker instead of over
+        // it.
+        let (cx, _) = clamp_label(view, (lx, ly), 17.0, anchor, &label);
+        if (cx - lx).abs() > 4.0 {
+            map_text(svg, view, (x, y + 28.0), 17.0, "middle", "#000", &label);
+        } else {
+            map_text(svg, view, (lx, ly), 17.0, anchor, "#000", &label);
+        }
     }
     for c in popups {
         let (x, y) = view.px(c.centre.0, c.centre.1);
-        text(
+        map_text(
             svg,
-            x,
-            y - c.radius * scale - 6.0,
+            view,
+            (x, y - c.radius * scale - 6.0),
             14.0,
             "middle",
             "#b71c1c",

@@ -1,0 +1,76 @@
+//! A landmark network's landmarks (a triangle each, labelled by name) and its edges, the
+//! Hermite chains between overflights.
+
+use super::draw::{map_text, View};
+use super::picture::LandmarkMark;
+use skyroute::Network;
+use std::fmt::Write as _;
+
+/// The landmarks' colour.
+pub(super) const LANDMARK_COLOUR: &str = "#6a1b9a";
+
+/// The landmark symbol centred at `(x, y)`: a triangle pointing up, white-edged.
+pub(super) fn symbol(x: f64, y: f64) -> String {
+    format!(
+        r##"<path class="landmark" d="M{x:.1} {:.1}L{:.1} {:.1}H{:.1}Z" fill="{LANDMARK_COLOUR}" stroke="#fff" stroke-width="1.5"/>"##,
+        y - 8.0,
+        x + 7.0,
+        y + 5.0,
+        x - 7.0
+    )
+}
+
+/// The landmarks' symbols (inside the map's clip).
+pub(super) fn landmarks(svg: &mut String, marks: &[LandmarkMark], view: &View) {
+    for m in marks {
+        let (x, y) = view.px(m.position.0, m.position.1);
+        let _ = writeln!(svg, "{}", symbol(x, y));
+    }
+}
+
+/// The landmarks' names, right of and below each symbol (left of it in the map's right
+/// tenth), kept inside the map.
+pub(super) fn labels(svg: &mut String, marks: &[LandmarkMark], view: &View) {
+    for m in marks {
+        let (x, y) = view.px(m.position.0, m.position.1);
+        let right = x - super::draw::MARGIN_PX < 0.9 * view.map_w;
+        let (lx, anchor) = if right {
+            (x + 9.0, "start")
+        } else {
+            (x - 9.0, "end")
+        };
+        map_text(
+            svg,
+            view,
+            (lx, y + 14.0),
+            12.0,
+            anchor,
+            LANDMARK_COLOUR,
+            &m.name,
+        );
+    }
+}
+
+/// A landmark network's edges: each Hermite chain as a polyline through points about 50 m
+/// apart along its pieces, one path.
+pub(super) fn chain_edges(net: &Network, view: &View) -> String {
+    let mut d = String::new();
+    for e in 0..net.edge_count() {
+        let mut first = true;
+        for k in 0..net.chain_piece_count(e) {
+            let Some(seg) = net.chain_piece(e, k) else {
+                continue;
+            };
+            let n = (seg.length() / 50.0).ceil().clamp(1.0, 400.0) as usize;
+            for j in 0..=n {
+                let Some(q) = seg.position(seg.t_max() * j as f32 / n as f32) else {
+                    continue;
+                };
+                let (x, y) = view.pv(q);
+                let _ = write!(d, "{}{x:.1} {y:.1}", if first { "M" } else { "L" });
+                first = false;
+            }
+        }
+    }
+    d
+}
