@@ -43,6 +43,11 @@ impl View {
     pub(super) fn pv(&self, p: Vec2) -> (f64, f64) {
         self.px(p.x as f64, p.y as f64)
     }
+    /// Whether the pixel `(x, y)` lies on the map, or within `reach` pixels of it.
+    pub(super) fn shows(&self, (x, y): (f64, f64), reach: f64) -> bool {
+        let inside = |v: f64, len: f64| v >= MARGIN_PX - reach && v <= MARGIN_PX + len + reach;
+        inside(x, self.map_w) && inside(y, self.map_h)
+    }
 }
 
 /// Appends path data for a primitive. Starts with a move when `pen` (the current point, pixels)

@@ -33,6 +33,8 @@ const STEPS_ARCSEC: [f64; 19] = [
     20.0 * 3600.0,
     30.0 * 3600.0,
 ];
+/// Its labels' font size, pixels.
+const LABEL_PX: f64 = 11.0;
 /// Points per graticule line.
 const SAMPLES: usize = 48;
 
@@ -197,7 +199,27 @@ pub(super) fn lines(
             });
         }
     }
-    Some((step, labels))
+    Some((step, spaced(labels)))
+}
+
+/// The labels left when those that would overlap an earlier one along the same edge are
+/// dropped (meridians' by their estimated width, parallels' by their height).
+fn spaced(labels: Vec<Label>) -> Vec<Label> {
+    let mut kept: Vec<Label> = Vec::new();
+    for l in labels {
+        let clear = kept.iter().filter(|k| k.anchor == l.anchor).all(|k| {
+            if l.anchor == "middle" {
+                let half = |k: &Label| 0.34 * LABEL_PX * k.text.chars().count() as f64 + 4.0;
+                (l.at.0 - k.at.0).abs() >= half(k) + half(&l)
+            } else {
+                (l.at.1 - k.at.1).abs() >= LABEL_PX + 4.0
+            }
+        });
+        if clear {
+            kept.push(l);
+        }
+    }
+    kept
 }
 
 /// A graticule label: where, how anchored, what.
@@ -210,6 +232,6 @@ pub(super) struct Label {
 /// The graticule's labels (outside the map's clip, kept inside the map).
 pub(super) fn labels(svg: &mut String, view: &View, labels: &[Label]) {
     for l in labels {
-        map_text(svg, view, l.at, 11.0, l.anchor, LABEL_COLOUR, &l.text);
+        map_text(svg, view, l.at, LABEL_PX, l.anchor, LABEL_COLOUR, &l.text);
     }
 }

@@ -28,11 +28,14 @@ pub(super) fn landmarks(svg: &mut String, marks: &[LandmarkMark], view: &View) {
     }
 }
 
-/// The landmarks' names, right of and below each symbol (left of it in the map's right
-/// tenth), kept inside the map.
+/// The names of the landmarks on the map, right of and below each symbol (left of it in the
+/// map's right tenth), kept inside the map.
 pub(super) fn labels(svg: &mut String, marks: &[LandmarkMark], view: &View) {
     for m in marks {
         let (x, y) = view.px(m.position.0, m.position.1);
+        if !view.shows((x, y), 1.0) {
+            continue;
+        }
         let right = x - super::draw::MARGIN_PX < 0.9 * view.map_w;
         let (lx, anchor) = if right {
             (x + 9.0, "start")

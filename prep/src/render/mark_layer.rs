@@ -58,9 +58,10 @@ pub(super) fn endpoints(svg: &mut String, endpoints: &[EndpointMark], view: &Vie
     }
 }
 
-/// The labels of the endpoints and pop-ups. Drawn last, so no line covers them, unclipped and
-/// moved inside the map where they would reach past it ([`map_text`]), so none is cut at the
-/// map's edge; each endpoint's goes on the side away from its heading tick.
+/// The labels of the endpoints and pop-ups on the map (a pop-up's when its disc's box reaches
+/// the map). Drawn last, so no line covers them, unclipped and moved inside the map where they
+/// would reach past it ([`map_text`]), so none is cut at the map's edge; each endpoint's goes
+/// on the side away from its heading tick.
 pub(super) fn labels(
     svg: &mut String,
     endpoints: &[EndpointMark],
@@ -70,6 +71,9 @@ pub(super) fn labels(
     let scale = view.scale;
     for e in endpoints {
         let (x, y) = view.px(e.position.0, e.position.1);
+        if !view.shows((x, y), 1.0) {
+            continue;
+        }
         let label = match e.kind {
             "start" => format!("{} (start)", e.name),
             "goal" => format!("{} (goal)", e.name),
@@ -95,6 +99,9 @@ pub(super) fn labels(
     }
     for c in popups {
         let (x, y) = view.px(c.centre.0, c.centre.1);
+        if !view.shows((x, y), c.radius * scale) {
+            continue;
+        }
         map_text(
             svg,
             view,
