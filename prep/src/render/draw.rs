@@ -187,6 +187,24 @@ pub(super) fn clamp_label(
     (x, y)
 }
 
+/// The box `[x0, y0, x1, y1]` (pixels) a label takes once [`clamp_label`] has placed it, by the
+/// same estimate of its size.
+pub(super) fn label_box(view: &View, at: (f64, f64), size: f64, anchor: &str, s: &str) -> [f64; 4] {
+    let (x, y) = clamp_label(view, at, size, anchor, s);
+    let w = 0.68 * size * s.chars().count() as f64;
+    let left = match anchor {
+        "end" => x - w,
+        "middle" => x - w / 2.0,
+        _ => x,
+    };
+    [left, y - size, left + w, y + 0.25 * size]
+}
+
+/// Whether two boxes `[x0, y0, x1, y1]` overlap.
+pub(super) fn overlap(a: &[f64; 4], b: &[f64; 4]) -> bool {
+    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+}
+
 /// Whether a network is drawn as a Voronoi network (heat map, threat sites, dark edges).
 pub(super) fn is_voronoi(net: &Network) -> bool {
     match net.mode() {

@@ -1,7 +1,7 @@
 //! A landmark network's landmarks (a triangle each, labelled by name) and its edges, the
 //! Hermite chains between overflights.
 
-use super::draw::{map_text, View};
+use super::draw::{label_box, map_text, overlap, View};
 use super::picture::LandmarkMark;
 use skyroute::Network;
 use std::fmt::Write as _;
@@ -28,29 +28,39 @@ pub(super) fn landmarks(svg: &mut String, marks: &[LandmarkMark], view: &View) {
     }
 }
 
-/// The names of the landmarks on the map, right of and below each symbol (left of it in the
-/// map's right tenth), kept inside the map.
-pub(super) fn labels(svg: &mut String, marks: &[LandmarkMark], view: &View) {
+/// The landmarks' labels' font size, pixels.
+const LABEL_PX: f64 = 12.0;
+
+/// The names of the landmarks on the map, kept inside the map: right of and below each symbol
+/// (left of it in the map's right tenth), else the first of the other three corners where the
+/// name overlaps neither `avoid` (boxes in pixels: the endpoints' markers and labels) nor a
+/// name already placed.
+pub(super) fn labels(svg: &mut String, marks: &[LandmarkMark], view: &View, avoid: &[[f64; 4]]) {
+    let mut taken = avoid.to_vec();
     for m in marks {
         let (x, y) = view.px(m.position.0, m.position.1);
         if !view.shows((x, y), 1.0) {
             continue;
         }
-        let right = x - super::draw::MARGIN_PX < 0.9 * view.map_w;
-        let (lx, anchor) = if right {
-            (x + 9.0, "start")
+        let right = (x + 9.0, "start");
+        let left = (x - 9.0, "end");
+        let sides = if x - super::draw::MARGIN_PX < 0.9 * view.map_w {
+            [right, left]
         } else {
-            (x - 9.0, "end")
+            [left, right]
         };
-        map_text(
-            svg,
-            view,
-            (lx, y + 14.0),
-            12.0,
-            anchor,
-            LANDMARK_COLOUR,
-            &m.name,
-        );
+        let candidates = [y + 14.0, y - 9.0]
+            .into_iter()
+            .flat_map(|ly| sides.map(|(lx, anchor)| ((lx, ly), anchor)));
+        let boxed: Vec<_> = candidates
+            .map(|(at, anchor)| (at, anchor, label_box(view, at, LABEL_PX, anchor, &m.name)))
+            .collect();
+        let (at, anchor, b) = boxed
+            .iter()
+            .find(|(_, _, b)| !taken.iter().any(|t| overlap(t, b)))
+            .unwrap_or(&boxed[0]);
+        taken.push(*b);
+        map_text(svg, view, *at, LABEL_PX, anchor, LANDMARK_COLOUR, &m.name);
     }
 }
 

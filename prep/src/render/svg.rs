@@ -97,7 +97,8 @@ pub fn render_svg(pic: &Picture) -> String {
     if let Some((_, labels)) = &graticule {
         graticule::labels(&mut svg, &view, labels);
     }
-    landmark_layer::labels(&mut svg, &pic.landmarks, &view);
+    let taken = mark_layer::endpoint_boxes(&pic.endpoints, &view);
+    landmark_layer::labels(&mut svg, &pic.landmarks, &view, &taken);
     mark_layer::labels(&mut svg, &pic.endpoints, &pic.popups, &view);
     mark_layer::north_arrow(&mut svg);
     if let Some(p) = &profile {

@@ -103,3 +103,35 @@ fn labels_are_moved_inside_the_map() {
         (150.0, 120.0)
     );
 }
+
+#[test]
+fn a_landmark_name_keeps_clear_of_an_endpoint_label() {
+    use super::draw::label_box;
+    use super::landmark_layer::labels;
+    let view = View {
+        min_x: 0.0,
+        max_y: 200.0,
+        scale: 1.0,
+        map_w: 300.0,
+        map_h: 200.0,
+    };
+    let marks = [LandmarkMark {
+        name: "L17".into(),
+        position: (100.0, 100.0),
+    }];
+    let mut free = String::new();
+    labels(&mut free, &marks, &view, &[]);
+    assert!(free.contains(r#"text-anchor="start""#), "{free}");
+    // An endpoint label right of and below the landmark: the name goes to its left.
+    let (x, y) = view.px(100.0, 100.0);
+    let avoid = [label_box(
+        &view,
+        (x + 10.0, y + 14.0),
+        17.0,
+        "start",
+        "Q (goal)",
+    )];
+    let mut moved = String::new();
+    labels(&mut moved, &marks, &view, &avoid);
+    assert!(moved.contains(r#"text-anchor="end""#), "{moved}");
+}
