@@ -1,9 +1,10 @@
 //! The longitude/latitude graticule: meridians and parallels at a round spacing chosen from the
 //! map's extent, drawn as polylines through the frame (transverse Mercator bends them a little),
 //! labelled in degrees and minutes where they leave the map: meridians at its bottom edge,
-//! parallels at its right edge.
+//! parallels at its right edge (a label that would overlap another, or an endpoint's marker or
+//! label, is left out).
 
-use super::draw::{map_text, BBox, View, MARGIN_PX};
+use super::draw::{label_box, map_text, overlap, BBox, View, MARGIN_PX};
 use crate::frame::LocalFrame;
 use std::fmt::Write as _;
 
@@ -229,9 +230,13 @@ pub(super) struct Label {
     text: String,
 }
 
-/// The graticule's labels (outside the map's clip, kept inside the map).
-pub(super) fn labels(svg: &mut String, view: &View, labels: &[Label]) {
+/// The graticule's labels (outside the map's clip, kept inside the map), but for those that
+/// would overlap one of the boxes `avoid` (pixels: the endpoints' markers and labels).
+pub(super) fn labels(svg: &mut String, view: &View, labels: &[Label], avoid: &[[f64; 4]]) {
     for l in labels {
-        map_text(svg, view, l.at, LABEL_PX, l.anchor, LABEL_COLOUR, &l.text);
+        let b = label_box(view, l.at, LABEL_PX, l.anchor, &l.text);
+        if !avoid.iter().any(|a| overlap(a, &b)) {
+            map_text(svg, view, l.at, LABEL_PX, l.anchor, LABEL_COLOUR, &l.text);
+        }
     }
 }

@@ -94,10 +94,10 @@ pub fn render_svg(pic: &Picture) -> String {
     landmark_layer::landmarks(&mut svg, &pic.landmarks, &view);
     mark_layer::endpoints(&mut svg, &pic.endpoints, &view);
     let _ = writeln!(svg, "</g>");
-    if let Some((_, labels)) = &graticule {
-        graticule::labels(&mut svg, &view, labels);
-    }
     let taken = mark_layer::endpoint_boxes(&pic.endpoints, &view);
+    if let Some((_, labels)) = &graticule {
+        graticule::labels(&mut svg, &view, labels, &taken);
+    }
     landmark_layer::labels(&mut svg, &pic.landmarks, &view, &taken);
     mark_layer::labels(&mut svg, &pic.endpoints, &pic.popups, &view);
     mark_layer::north_arrow(&mut svg);
