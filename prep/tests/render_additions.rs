@@ -130,18 +130,43 @@ fn a_landmark_network_shows_named_landmarks_its_chains_and_a_graticule() {
     let bytes = std::fs::read(&net).unwrap();
     let n = Network::from_bytes(&bytes).unwrap();
     assert!(pts.len() > 10 * n.edge_count() as usize, "{}", pts.len());
-    for s in symbols.iter().take(names.len()) {
-        // The triangle's apex is 8 px above the landmark.
-        let d = s.attribute("d").unwrap();
-        let apex = path_points(&d[..d.find('H').unwrap()])[0];
-        let (x, y) = (apex.0, apex.1 + 8.0);
-        let near = pts
-            .iter()
+    // The landmarks' pixels, from their symbols (the triangle's apex is 8 px above).
+    let at: Vec<(f64, f64)> = symbols
+        .iter()
+        .take(names.len())
+        .map(|s| {
+            let d = s.attribute("d").unwrap();
+            let apex = path_points(&d[..d.find('H').unwrap()])[0];
+            (apex.0, apex.1 + 8.0)
+        })
+        .collect();
+    let nearest = |(x, y): (f64, f64)| {
+        pts.iter()
             .map(|p| (p.0 - x).hypot(p.1 - y))
-            .fold(f64::INFINITY, f64::min);
+            .fold(f64::INFINITY, f64::min)
+    };
+    for &p in &at {
         assert!(
-            near < 2.0,
-            "no chain within {near} px of the landmark at ({x}, {y})"
+            nearest(p) < 2.0,
+            "no chain within 2 px of the landmark at {p:?}"
+        );
+    }
+    // The view, from landmarks A and C: x_px = a + k x, y_px = b - k y.
+    let site = |i: u32| n.landmark_site(i).unwrap().0;
+    let (sa, sc) = (site(0), site(2));
+    let k = (at[2].0 - at[0].0) / (sc.x - sa.x) as f64;
+    let (a, b) = (at[0].0 - k * sa.x as f64, at[0].1 + k * sa.y as f64);
+    // The middle of the first piece of every edge's chain lies on the drawn edges (the
+    // polyline's points are at most about 50 m, under 3 px, apart).
+    for e in 0..n.edge_count() {
+        let Some(seg) = n.chain_piece(e, 0) else {
+            continue;
+        };
+        let q = seg.position(0.5 * seg.t_max()).unwrap();
+        let p = (a + k * q.x as f64, b - k * q.y as f64);
+        assert!(
+            nearest(p) < 2.0,
+            "edge {e}: its chain's point {q:?} is not drawn"
         );
     }
 
