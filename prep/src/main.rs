@@ -305,7 +305,8 @@ enum Command {
         /// drawn one colour each, with a legend entry "k = …, length …, exposure …" each).
         #[arg(long)]
         route: Vec<PathBuf>,
-        /// The scenario: draws its start, waypoints, goal and `popup` features.
+        /// The scenario: draws its start, waypoints, goal and `popup` features, and names a
+        /// landmark network's landmarks (numbered L1, L2, … without it).
         #[arg(long)]
         scenario: Option<PathBuf>,
         /// A circular pop-up obstacle to draw, `LON,LAT,RADIUS_M` (repeatable).

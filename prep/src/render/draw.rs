@@ -22,12 +22,15 @@ pub(super) fn xml(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// Maps the local frame (metres, `y` north) to the picture (pixels, `y` down).
+/// Maps the local frame (metres, `y` north) to the picture (pixels, `y` down), and the map's
+/// size in pixels (its top-left corner is at `(MARGIN_PX, MARGIN_PX)`).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct View {
     pub(super) min_x: f64,
     pub(super) max_y: f64,
     pub(super) scale: f64,
+    pub(super) map_w: f64,
+    pub(super) map_h: f64,
 }
 
 impl View {
@@ -39,6 +42,11 @@ impl View {
     }
     pub(super) fn pv(&self, p: Vec2) -> (f64, f64) {
         self.px(p.x as f64, p.y as f64)
+    }
+    /// Whether the pixel `(x, y)` lies on the map, or within `reach` pixels of it.
+    pub(super) fn shows(&self, (x, y): (f64, f64), reach: f64) -> bool {
+        let inside = |v: f64, len: f64| v >= MARGIN_PX - reach && v <= MARGIN_PX + len + reach;
+        inside(x, self.map_w) && inside(y, self.map_h)
     }
 }
 
@@ -138,11 +146,78 @@ pub(super) fn text(svg: &mut String, x: f64, y: f64, size: f64, anchor: &str, fi
     );
 }
 
+/// [`text`] at `(x, y)` moved as little as needed to lie wholly inside the map (its width
+/// estimated from the number of characters), so that no label is cut at the map's edge or
+/// reaches past the picture.
+pub(super) fn map_text(
+    svg: &mut String,
+    view: &View,
+    (x, y): (f64, f64),
+    size: f64,
+    anchor: &str,
+    fill: &str,
+    s: &str,
+) {
+    let (x, y) = clamp_label(view, (x, y), size, anchor, s);
+    text(svg, x, y, size, anchor, fill, s);
+}
+
+/// The position of a label of `s` at `size` anchored `anchor` at `(x, y)`, moved to lie wholly
+/// inside the map: bold sans-serif characters are taken as at most 0.68 `size` wide, the text
+/// as reaching `size` above its baseline and a quarter of it below.
+pub(super) fn clamp_label(
+    view: &View,
+    (x, y): (f64, f64),
+    size: f64,
+    anchor: &str,
+    s: &str,
+) -> (f64, f64) {
+    let w = 0.68 * size * s.chars().count() as f64;
+    let before = match anchor {
+        "end" => w,
+        "middle" => w / 2.0,
+        _ => 0.0,
+    };
+    let pad = 3.0;
+    let (x0, x1) = (MARGIN_PX + pad, MARGIN_PX + view.map_w - pad);
+    let (y0, y1) = (MARGIN_PX + pad, MARGIN_PX + view.map_h - pad);
+    // The left edge wins when the text is wider than the map.
+    let x = x.min(x1 - (w - before)).max(x0 + before);
+    let y = y.min(y1 - 0.25 * size).max(y0 + size);
+    (x, y)
+}
+
+/// The box `[x0, y0, x1, y1]` (pixels) a label takes once [`clamp_label`] has placed it, by the
+/// same estimate of its size.
+pub(super) fn label_box(view: &View, at: (f64, f64), size: f64, anchor: &str, s: &str) -> [f64; 4] {
+    let (x, y) = clamp_label(view, at, size, anchor, s);
+    let w = 0.68 * size * s.chars().count() as f64;
+    let left = match anchor {
+        "end" => x - w,
+        "middle" => x - w / 2.0,
+        _ => x,
+    };
+    [left, y - size, left + w, y + 0.25 * size]
+}
+
+/// Whether two boxes `[x0, y0, x1, y1]` overlap.
+pub(super) fn overlap(a: &[f64; 4], b: &[f64; 4]) -> bool {
+    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+}
+
 /// Whether a network is drawn as a Voronoi network (heat map, threat sites, dark edges).
 pub(super) fn is_voronoi(net: &Network) -> bool {
     match net.mode() {
         Mode::Voronoi => true,
         Mode::Roadmap | Mode::Landmark | Mode::Terrain | Mode::Unknown(_) => false,
+    }
+}
+
+/// Whether a network is a landmark network (landmark symbols, Hermite chain edges).
+pub(super) fn is_landmark(net: &Network) -> bool {
+    match net.mode() {
+        Mode::Landmark => true,
+        Mode::Roadmap | Mode::Terrain | Mode::Voronoi | Mode::Unknown(_) => false,
     }
 }
 

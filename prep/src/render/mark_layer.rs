@@ -1,6 +1,6 @@
 //! Pop-ups, start, waypoints and goal with their labels, and the north arrow.
 
-use super::draw::{text, View, MARGIN_PX};
+use super::draw::{clamp_label, label_box, map_text, text, View, MARGIN_PX};
 use super::picture::{EndpointMark, PopupMark};
 use std::fmt::Write as _;
 
@@ -58,9 +58,10 @@ pub(super) fn endpoints(svg: &mut String, endpoints: &[EndpointMark], view: &Vie
     }
 }
 
-/// The labels of the endpoints and pop-ups. Drawn last, so no line covers them, and unclipped,
-/// so none is cut at the map's edge; each endpoint's goes on the side away from its heading
-/// tick.
+/// The labels of the endpoints and pop-ups on the map (a pop-up's when its disc's box reaches
+/// the map). Drawn last, so no line covers them, unclipped and moved inside the map where they
+/// would reach past it ([`map_text`]), so none is cut at the map's edge; each endpoint's goes
+/// where [`endpoint_label`] puts it.
 pub(super) fn labels(
     svg: &mut String,
     endpoints: &[EndpointMark],
@@ -68,36 +69,71 @@ pub(super) fn labels(
     view: &View,
 ) {
     let scale = view.scale;
-    for e in endpoints {
-        let (x, y) = view.px(e.position.0, e.position.1);
-        let label = match e.kind {
-            "start" => format!("{} (start)", e.name),
-            "goal" => format!("{} (goal)", e.name),
-            _ => e.name.clone(),
-        };
-        let (lx, ly, anchor) = match e.heading {
-            Some(h) if h.cos() > 0.3 => (x - 12.0, y + 6.0, "end"),
-            _ => (x + 12.0, y + 6.0, "start"),
-        };
-        let ly = if e.heading.is_some_and(|h| h.sin().abs() > 0.9) {
-            y - 12.0
-        } else {
-            ly
-        };
-        text(svg, lx, ly, 17.0, anchor, "#000", &label);
+    for (at, anchor, label) in endpoints.iter().filter_map(|e| endpoint_label(e, view)) {
+        map_text(svg, view, at, ENDPOINT_LABEL_PX, anchor, "#000", &label);
     }
     for c in popups {
         let (x, y) = view.px(c.centre.0, c.centre.1);
-        text(
+        if !view.shows((x, y), c.radius * scale) {
+            continue;
+        }
+        map_text(
             svg,
-            x,
-            y - c.radius * scale - 6.0,
+            view,
+            (x, y - c.radius * scale - 6.0),
             14.0,
             "middle",
             "#b71c1c",
             &format!("{} ({:.0} m)", c.name, c.radius),
         );
     }
+}
+
+/// The endpoints' labels' font size, pixels.
+const ENDPOINT_LABEL_PX: f64 = 17.0;
+
+/// Where an endpoint's label goes (before [`map_text`] keeps it inside the map), how it is
+/// anchored and what it says; `None` for an endpoint off the map. It goes on the side away
+/// from the heading tick, or under the marker when it would reach past the map's side.
+fn endpoint_label(e: &EndpointMark, view: &View) -> Option<((f64, f64), &'static str, String)> {
+    let (x, y) = view.px(e.position.0, e.position.1);
+    if !view.shows((x, y), 1.0) {
+        return None;
+    }
+    let label = match e.kind {
+        "start" => format!("{} (start)", e.name),
+        "goal" => format!("{} (goal)", e.name),
+        _ => e.name.clone(),
+    };
+    let (lx, ly, anchor) = match e.heading {
+        Some(h) if h.cos() > 0.3 => (x - 12.0, y + 6.0, "end"),
+        _ => (x + 12.0, y + 6.0, "start"),
+    };
+    let ly = if e.heading.is_some_and(|h| h.sin().abs() > 0.9) {
+        y - 12.0
+    } else {
+        ly
+    };
+    let (cx, _) = clamp_label(view, (lx, ly), ENDPOINT_LABEL_PX, anchor, &label);
+    if (cx - lx).abs() > 4.0 {
+        Some(((x, y + 28.0), "middle", label))
+    } else {
+        Some(((lx, ly), anchor, label))
+    }
+}
+
+/// The boxes (pixels) the endpoints' markers and labels take, for other labels to keep clear
+/// of.
+pub(super) fn endpoint_boxes(endpoints: &[EndpointMark], view: &View) -> Vec<[f64; 4]> {
+    let mut boxes = Vec::new();
+    for e in endpoints {
+        let (x, y) = view.px(e.position.0, e.position.1);
+        boxes.push([x - 8.0, y - 8.0, x + 8.0, y + 8.0]);
+        if let Some((at, anchor, label)) = endpoint_label(e, view) {
+            boxes.push(label_box(view, at, ENDPOINT_LABEL_PX, anchor, &label));
+        }
+    }
+    boxes
 }
 
 /// The north arrow in the map's top-left corner.

@@ -3,24 +3,36 @@
 //! resvg).
 //!
 //! The map is drawn in the network's local frame with grid north up and the same scale on both
-//! axes. Layers, bottom to top: a 100 m / 500 m grid; the clearance band around every obstacle;
-//! obstacles (grey); for a terrain network, the cells blocked at its altitude (grey); the network's edges (thin, light); pop-ups (red); the route, one colour per
-//! leg, with a white casing and arrowheads every so often in the direction of flight; start,
-//! waypoints and goal, labelled by name, with heading ticks where the heading is fixed. A panel
-//! on the right holds the title, a legend, the legs with their lengths, the route's smallest
-//! distance to any obstacle or pop-up (in red when it is below the network's clearance) and a
-//! scale bar. A route flying a decision among pop-up bypass alternatives (`plan
-//! --popup-appears`) is drawn thin and dark over the nominal route and every alternative, with
-//! their legend in the panel (`decision_layer`).
+//! axes. Layers, bottom to top: a metric grid at round distances (fine and coarse); the
+//! longitude/latitude graticule (meridians and parallels at a round spacing, dashed;
+//! `graticule`); the clearance band around every obstacle; obstacles (grey); for a terrain
+//! network, the cells blocked at its altitude (grey); the network's edges (thin, light; a
+//! landmark network's are its Hermite chains); pop-ups (red); the route, one colour per leg,
+//! with a white casing and arrowheads every so often in the direction of flight; a landmark
+//! network's landmarks (purple triangles); start, waypoints and goal with heading ticks where
+//! the heading is fixed. Over everything, unclipped but moved inside the map
+//! (`draw::clamp_label`): the graticule's labels in degrees and minutes at the map's bottom and
+//! right edges, the landmarks' names (from the scenario, else `L1`, `L2`, …), the endpoints'
+//! names and the pop-ups' labels. For a terrain network with a route, a strip under the map
+//! plots the terrain elevation under the (first) route against distance flown, with the
+//! route's altitude and the altitude less the safety height (`profile_layer`). A panel on the
+//! right holds the title, a legend with an entry for every kind of mark drawn, the legs with
+//! their lengths, the route's smallest distance to any obstacle or pop-up (in red when it is
+//! below the network's clearance) and a scale bar. A route flying a decision among pop-up
+//! bypass alternatives (`plan --popup-appears`) is drawn thin and dark over the nominal route
+//! and every alternative, with their legend in the panel (`decision_layer`).
 
 mod decision_layer;
 mod draw;
+mod graticule;
+mod landmark_layer;
 mod mark_layer;
 mod network_layer;
 mod obstacle_layer;
 mod panel;
 mod picture;
 mod png;
+mod profile_layer;
 mod route_file;
 mod route_layer;
 mod svg;
@@ -30,8 +42,8 @@ mod threat_layer;
 
 pub(crate) use panel::primitive_obstacle_distance;
 pub use picture::{
-    scenario_marks, AlternativeMark, DecisionMark, DecisionPopup, EndpointMark, Picture, PopupMark,
-    Route, RouteLeg, ThreatMark,
+    scenario_marks, AlternativeMark, DecisionMark, DecisionPopup, EndpointMark, LandmarkMark,
+    Picture, PopupMark, Route, RouteLeg, ThreatMark,
 };
 pub use png::svg_to_png;
 pub use route_file::{
@@ -117,6 +129,31 @@ fn read_route_on(path: &Path, net: &Network, net_path: &Path) -> Result<Route, S
         ));
     }
     Ok(r)
+}
+
+/// A landmark network's landmarks, named as in the scenario when one is given: the
+/// scenario's landmark at the same index if it lies within a metre of the network's (the
+/// builder keeps the scenario's order), else `L` and the landmark's number from 1.
+fn landmark_marks(
+    net: &Network,
+    s: Option<&scenario::Scenario>,
+    frame: &crate::frame::LocalFrame,
+) -> Vec<LandmarkMark> {
+    let count = net.landmark().map_or(0, |l| l.landmark_count);
+    (0..count)
+        .filter_map(|i| {
+            let (p, _) = net.landmark_site(i)?;
+            let position = (p.x as f64, p.y as f64);
+            let named = s.and_then(|s| s.landmarks.get(i as usize)).filter(|l| {
+                let (x, y) = frame.to_local(l.lon, l.lat);
+                (x - position.0).hypot(y - position.1) < 1.0
+            });
+            Some(LandmarkMark {
+                name: named.map_or_else(|| format!("L{}", i + 1), |l| l.name.clone()),
+                position,
+            })
+        })
+        .collect()
 }
 
 /// Reads the inputs, draws, writes the picture(s). Returns the files written. Errors name the
@@ -216,8 +253,10 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
                 .filter(|n| !n.is_empty())
         })
         .unwrap_or_else(|| req.network.display().to_string());
+    let landmarks = landmark_marks(&net, s.as_ref(), &frame);
     let pic = Picture {
         title,
+        landmarks,
         network: Some(net),
         edges: !req.no_edges,
         routes,

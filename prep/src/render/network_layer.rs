@@ -1,6 +1,6 @@
 //! The map's background grid and the network's edges and vertices.
 
-use super::draw::{is_voronoi, nice_length, path_data, BBox, View, MARGIN_PX};
+use super::draw::{is_landmark, is_voronoi, nice_length, path_data, BBox, View, MARGIN_PX};
 use skyroute::Network;
 use std::fmt::Write as _;
 
@@ -35,22 +35,29 @@ pub(super) fn grid(svg: &mut String, view: &View, bb: BBox, map_w: f64, map_h: f
 }
 
 /// The network's edges, one path, and its vertices as dots (a Voronoi network's darker, to show
-/// over the heat map).
+/// over the heat map; a landmark network's edges are its Hermite chains).
 pub(super) fn edges(svg: &mut String, net: &Network, view: &View) {
     let (edge_colour, edge_width, rendering) = if is_voronoi(net) {
         ("#34495e", 1.3, "geometricPrecision")
+    } else if is_landmark(net) {
+        ("#b4c6dc", 0.8, "geometricPrecision")
     } else {
         ("#c9d6e6", 1.0, "crispEdges")
     };
-    let mut d = String::new();
-    for i in 0..net.edge_count() {
-        if let Some(path) = net.edge_path(i) {
-            let mut pen = None;
-            for p in path.primitives().iter().flatten() {
-                path_data(&mut d, p, view, &mut pen);
+    let d = if is_landmark(net) {
+        super::landmark_layer::chain_edges(net, view)
+    } else {
+        let mut d = String::new();
+        for i in 0..net.edge_count() {
+            if let Some(path) = net.edge_path(i) {
+                let mut pen = None;
+                for p in path.primitives().iter().flatten() {
+                    path_data(&mut d, p, view, &mut pen);
+                }
             }
         }
-    }
+        d
+    };
     let _ = writeln!(
         svg,
         r##"<path class="edges" d="{d}" fill="none" stroke="{edge_colour}" stroke-width="{edge_width}" shape-rendering="{rendering}"/>"##

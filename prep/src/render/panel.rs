@@ -1,11 +1,15 @@
-//! The panel right of the map: title, network figures, legend, the route's legs and its
-//! smallest distances to obstacles and pop-ups, and the scale bar.
+//! The panel right of the map: title, network figures, legend (a line for every kind of mark
+//! drawn), the route's legs and its smallest distances to obstacles and pop-ups, and the scale
+//! bar.
 
 use super::decision_layer;
 use super::draw::{
     is_terrain, is_voronoi, metres, nice_length, xml, LEG_COLOURS, MARGIN_PX, PANEL_PX,
 };
+use super::graticule::{spacing_text, GRATICULE_COLOUR};
+use super::landmark_layer::symbol as landmark_symbol;
 use super::picture::{Picture, PopupMark, Route};
+use super::profile_layer::{ALTITUDE_COLOUR, SAFETY_COLOUR, TERRAIN_COLOUR};
 use super::route_layer::{route_colour, route_width};
 use super::threat_layer::site_symbol;
 use skyroute::geometry::predicates::{
@@ -15,10 +19,19 @@ use skyroute::network::Obstacle;
 use skyroute::{Network, Primitive, Segment, Vec2};
 use std::fmt::Write as _;
 
+/// What the legend shows besides the picture's own marks.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Extras {
+    /// The graticule's spacing, degrees, when one is drawn.
+    pub(super) graticule_deg: Option<f64>,
+    /// Whether the terrain profile strip is drawn.
+    pub(super) profile: bool,
+}
+
 /// The panel's text from its top, at `px0`: heading, legend and route summary.
-pub(super) fn panel(svg: &mut String, pic: &Picture, px0: f64) {
+pub(super) fn panel(svg: &mut String, pic: &Picture, px0: f64, extras: Extras) {
     let sym_y = heading(svg, pic, px0);
-    let sym_y = legend(svg, pic, px0, sym_y);
+    let sym_y = legend(svg, pic, px0, sym_y, extras);
     match pic.routes.as_slice() {
         [] => {}
         [route] => match &route.decision {
@@ -140,7 +153,7 @@ fn heading(svg: &mut String, pic: &Picture, px0: f64) -> f64 {
 }
 
 /// The legend's symbols, from `sym_y` down; returns where it ends.
-fn legend(svg: &mut String, pic: &Picture, px0: f64, mut sym_y: f64) -> f64 {
+fn legend(svg: &mut String, pic: &Picture, px0: f64, mut sym_y: f64, extras: Extras) -> f64 {
     let net = pic.network.as_ref();
     let clearance = net.map_or(0.0, |n| n.clearance() as f64);
     let mut symbol = |svg: &mut String, shape: String, label: &str| {
@@ -189,6 +202,41 @@ fn legend(svg: &mut String, pic: &Picture, px0: f64, mut sym_y: f64) -> f64 {
             } else {
                 "network edge / vertex"
             },
+        );
+    }
+    if let Some(step) = extras.graticule_deg {
+        symbol(
+            svg,
+            format!(
+                r##"<path d="M{{X}} {{Y}}h32" stroke="{GRATICULE_COLOUR}" stroke-width="0.9" stroke-dasharray="6 4"/>"##
+            ),
+            &format!("graticule (lon/lat), every {}", spacing_text(step)),
+        );
+    }
+    if !pic.landmarks.is_empty() {
+        symbol(
+            svg,
+            format!(
+                r##"<g transform="translate({{X}} {{Y}})">{}</g>"##,
+                landmark_symbol(16.0, 1.0)
+            ),
+            "landmark, with its name",
+        );
+    }
+    if extras.profile {
+        symbol(
+            svg,
+            format!(
+                r##"<g transform="translate({{X}} {{Y}})"><path d="M0 8L8 -2L16 3L24 -6L32 8Z" fill="{TERRAIN_COLOUR}" fill-opacity="0.75" stroke="#6d4c41"/></g>"##
+            ),
+            "profile: terrain under the route",
+        );
+        symbol(
+            svg,
+            format!(
+                r##"<g transform="translate({{X}} {{Y}})"><path d="M0 -3h32" stroke="{ALTITUDE_COLOUR}" stroke-width="2"/><path d="M0 5h32" stroke="{SAFETY_COLOUR}" stroke-width="2" stroke-dasharray="6 4"/></g>"##
+            ),
+            "profile: route altitude / less safety height",
         );
     }
     if pic.threats.iter().any(|t| !t.popped) {

@@ -46,6 +46,8 @@ pub struct Route {
     /// The decision among pop-up bypass alternatives it flies (`plan --popup-appears`: its
     /// `decision` member), if any.
     pub decision: Option<DecisionMark>,
+    /// The altitude it is flown at, metres (`altitude_m`: routes on a terrain network).
+    pub altitude_m: Option<f64>,
 }
 
 /// One bypass alternative of a pop-up, as a route file's `decision` records it.
@@ -136,6 +138,15 @@ pub struct EndpointMark {
     pub heading: Option<f64>,
 }
 
+/// A landmark to draw, in the local frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LandmarkMark {
+    /// Label: its name in the scenario, or `L` and its number in the network.
+    pub name: String,
+    /// Position, metres.
+    pub position: (f64, f64),
+}
+
 /// Everything a picture shows.
 #[derive(Clone, Debug, Default)]
 pub struct Picture<'a> {
@@ -155,6 +166,8 @@ pub struct Picture<'a> {
     pub endpoints: Vec<EndpointMark>,
     /// Pop-up threats.
     pub popups: Vec<PopupMark>,
+    /// Landmarks (a landmark network's).
+    pub landmarks: Vec<LandmarkMark>,
     /// Width of the map in pixels (the legend panel comes on top).
     pub map_width_px: f64,
     /// Draw only this part of the frame, `(min_x, min_y, max_x, max_y)` metres; everything

@@ -296,6 +296,7 @@ pub fn route_from_json(v: &Value) -> Result<Route, String> {
         exposure_flown: v.get("exposure_flown").and_then(Value::as_f64),
         scenario_popups_applied: v.get("scenario_popups_applied").and_then(Value::as_bool),
         decision: decision_from_json(v)?,
+        altitude_m: v.get("altitude_m").and_then(Value::as_f64),
     })
 }
 

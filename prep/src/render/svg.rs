@@ -1,10 +1,11 @@
 //! The SVG document: the map's extent and view, then the layers bottom to top, then the panel.
 
-use super::draw::{is_voronoi, xml, BBox, View, FONT, MARGIN_PX, PANEL_PX};
+use super::draw::{is_landmark, is_voronoi, xml, BBox, View, FONT, MARGIN_PX, PANEL_PX};
 use super::picture::Picture;
 use super::route_layer::{route_colour, route_width, Colouring};
 use super::{
-    decision_layer, mark_layer, network_layer, obstacle_layer, panel, route_layer, threat_layer,
+    decision_layer, graticule, landmark_layer, mark_layer, network_layer, obstacle_layer, panel,
+    profile_layer, route_layer, threat_layer,
 };
 use std::fmt::Write as _;
 
@@ -26,9 +27,17 @@ pub fn render_svg(pic: &Picture) -> String {
         min_x: bb.0,
         max_y: bb.3,
         scale,
+        map_w,
+        map_h,
+    };
+    let profile = net.and_then(|n| profile_layer::profile(n, pic.routes.first()?));
+    let strip = if profile.is_some() {
+        profile_layer::STRIP_PX
+    } else {
+        0.0
     };
     let width = map_w + 2.0 * MARGIN_PX + PANEL_PX;
-    let height = (map_h + 2.0 * MARGIN_PX).max(700.0);
+    let height = (map_h + 2.0 * MARGIN_PX + strip).max(700.0);
 
     let mut svg = String::new();
     let _ = writeln!(
@@ -52,6 +61,8 @@ pub fn render_svg(pic: &Picture) -> String {
         threat_layer::heat_map(&mut svg, &pic.threats, &view, map_w, map_h);
     }
     let (fine, coarse) = network_layer::grid(&mut svg, &view, bb, map_w, map_h);
+    let graticule =
+        net.and_then(|n| graticule::lines(&mut svg, &crate::export::network_frame(n), &view, bb));
     if let Some(net) = net {
         obstacle_layer::obstacles(&mut svg, net, &view, clearance);
         obstacle_layer::terrain_cells(&mut svg, net, &view);
@@ -80,12 +91,25 @@ pub fn render_svg(pic: &Picture) -> String {
     for (i, route) in pic.routes.iter().enumerate() {
         route_layer::route(&mut svg, route, &view, colouring(i));
     }
+    landmark_layer::landmarks(&mut svg, &pic.landmarks, &view);
     mark_layer::endpoints(&mut svg, &pic.endpoints, &view);
     let _ = writeln!(svg, "</g>");
+    let taken = mark_layer::endpoint_boxes(&pic.endpoints, &view);
+    if let Some((_, labels)) = &graticule {
+        graticule::labels(&mut svg, &view, labels, &taken);
+    }
+    landmark_layer::labels(&mut svg, &pic.landmarks, &view, &taken);
     mark_layer::labels(&mut svg, &pic.endpoints, &pic.popups, &view);
     mark_layer::north_arrow(&mut svg);
+    if let Some(p) = &profile {
+        profile_layer::strip(&mut svg, p, MARGIN_PX + map_h + 20.0, map_w);
+    }
     let px0 = MARGIN_PX * 2.0 + map_w;
-    panel::panel(&mut svg, pic, px0);
+    let extras = panel::Extras {
+        graticule_deg: graticule.as_ref().map(|g| g.0),
+        profile: profile.is_some(),
+    };
+    panel::panel(&mut svg, pic, px0, extras);
     panel::scale_bar(&mut svg, px0, height, scale, (fine, coarse));
     if voronoi {
         threat_layer::colour_bar(&mut svg, px0, height - MARGIN_PX - 110.0, PANEL_PX - 60.0);
@@ -94,8 +118,8 @@ pub fn render_svg(pic: &Picture) -> String {
     svg
 }
 
-/// The box of everything drawn (obstacles, edges or vertices, route, endpoints, pop-ups), or a
-/// 200 m square round the origin when there is nothing.
+/// The box of everything drawn (obstacles, edges or vertices, landmarks, route, endpoints,
+/// pop-ups), or a 200 m square round the origin when there is nothing.
 fn extent(pic: &Picture) -> BBox {
     let net = pic.network.as_ref();
     let mut bb = BBox::empty();
@@ -105,7 +129,19 @@ fn extent(pic: &Picture) -> BBox {
                 bb.add_box(lo, hi);
             }
         }
-        if pic.edges {
+        if pic.edges && is_landmark(net) {
+            for e in 0..net.edge_count() {
+                for k in 0..net.chain_piece_count(e) {
+                    if let Some(seg) = net.chain_piece(e, k) {
+                        for t in [0.0, 0.25, 0.5, 0.75, 1.0] {
+                            if let Some(q) = seg.position(seg.t_max() * t) {
+                                bb.add(q.x as f64, q.y as f64);
+                            }
+                        }
+                    }
+                }
+            }
+        } else if pic.edges {
             for i in 0..net.edge_count() {
                 if let Some(path) = net.edge_path(i) {
                     for p in path.primitives().iter().flatten() {
@@ -143,6 +179,9 @@ fn extent(pic: &Picture) -> BBox {
     }
     for e in &pic.endpoints {
         bb.add(e.position.0, e.position.1);
+    }
+    for l in &pic.landmarks {
+        bb.add(l.position.0, l.position.1);
     }
     for c in &pic.popups {
         bb.add(c.centre.0 - c.radius, c.centre.1 - c.radius);
