@@ -33,6 +33,10 @@ pub struct RouteFixture {
     pub expected_work: u64,
     /// Work budget of each plan: the network's worst case (the host's `Planner::worst_case_work`).
     pub budget: u64,
+    /// The start as the autopilot gives it: longitude, latitude, compass heading (degrees).
+    pub start_geo: (f64, f64, f64),
+    /// `start_geo` in the network's frame as the host converts it.
+    pub start_from_geo: Pose,
 }
 
 /// Plan cycles to run.
@@ -40,13 +44,17 @@ pub const CYCLES: u32 = 3;
 /// Largest accepted relative difference between the target's and the host's route length.
 pub const TOLERANCE: f32 = 1e-4;
 
-/// Adds the fixture's pop-up, then plans [`CYCLES`] times with the [`RouteTask`]; true only if
-/// every route's length matches the host's.
+/// Converts the start from latitude and longitude, adds the fixture's pop-up, then plans
+/// [`CYCLES`] times with the [`RouteTask`]; true only if the conversion and every route's length
+/// match the host's.
 pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
     planner: &mut Planner<'_, V, E, P, R>,
     clock: Clock,
     fixture: &RouteFixture,
 ) -> bool {
+    if !convert_start(planner, clock, fixture) {
+        return false;
+    }
     let (x, y, radius) = fixture.popup;
     let (popup, popup_ticks) = crate::with_stack_peak("add_popup", || {
         let t = clock.now();
@@ -217,4 +225,47 @@ fn log_phases<const V: usize, const E: usize, const P: usize, const R: usize>(
             false
         }
     }
+}
+
+/// Converts the fixture's start from longitude, latitude and compass heading to the network's
+/// frame, as an autopilot passes its position ([`skyroute::LocalFrame::pose`], `f64` maths in
+/// software on the M4F), timed; true only if the pose is the host's bit for bit.
+fn convert_start<const V: usize, const E: usize, const P: usize, const R: usize>(
+    planner: &Planner<'_, V, E, P, R>,
+    clock: Clock,
+    fixture: &RouteFixture,
+) -> bool {
+    let (lon, lat, compass) = fixture.start_geo;
+    let t = clock.now();
+    let converted = planner.network().local_frame().pose(lon, lat, compass);
+    let ticks = clock.now() - t;
+    let want = fixture.start_from_geo;
+    match converted {
+        Ok(p) if same_bits(&p, &want) => {
+            defmt::info!(
+                "start from lon {=f64} lat {=f64} compass {=f64}: {} in {=u64} ticks, the host's bit for bit",
+                lon,
+                lat,
+                compass,
+                p,
+                ticks
+            );
+            true
+        }
+        Ok(p) => {
+            defmt::error!("start from lat/lon: {}, host {}", p, want);
+            false
+        }
+        Err(e) => {
+            defmt::error!("start from lat/lon refused: {}", e);
+            false
+        }
+    }
+}
+
+/// Whether two poses have the same bits.
+fn same_bits(a: &Pose, b: &Pose) -> bool {
+    a.position.x.to_bits() == b.position.x.to_bits()
+        && a.position.y.to_bits() == b.position.y.to_bits()
+        && a.heading.to_bits() == b.heading.to_bits()
 }

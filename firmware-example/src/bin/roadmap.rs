@@ -34,6 +34,8 @@ const FIXTURE: RouteFixture = RouteFixture {
     expected_primitives: EXPECTED_PRIMITIVES,
     expected_work: EXPECTED_WORK,
     budget: BUDGET,
+    start_geo: START_GEO,
+    start_from_geo: START_FROM_GEO,
 };
 
 #[entry]

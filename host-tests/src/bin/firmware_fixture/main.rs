@@ -635,8 +635,41 @@ fn query_rs(
         "/// Work budget: the network's worst case (`Planner::worst_case_work`)."
     );
     let _ = writeln!(w, "pub const BUDGET: u64 = {budget};");
+    geo_rs(w, network, &start);
 
     q
+}
+
+/// The start as an autopilot gives it (longitude, latitude, compass heading, through the
+/// network's frame) and the pose the host converts it back to: the firmware converts
+/// `START_GEO` itself and must get `START_FROM_GEO` bit for bit.
+fn geo_rs(w: &mut String, network: &Network<'_>, start: &skyroute::Pose) {
+    let frame = network.local_frame();
+    let ((lon, lat), compass) = match (frame.lon_lat(start.position), frame.compass_deg(start)) {
+        (Ok(p), Ok(c)) => (p, c),
+        _ => ((0.0, 0.0), 0.0),
+    };
+    let back = frame.pose(lon, lat, compass).unwrap_or(*start);
+    let _ = writeln!(
+        w,
+        "/// The start as the autopilot gives it: longitude, latitude (degrees), compass heading\n\
+         /// (degrees clockwise from true north), from the network's frame on the host."
+    );
+    let _ = writeln!(
+        w,
+        "pub const START_GEO: (f64, f64, f64) = ({lon:?}_f64, {lat:?}_f64, {compass:?}_f64);"
+    );
+    let _ = writeln!(
+        w,
+        "/// `START_GEO` in the network's frame as the host converts it (`LocalFrame::pose`)."
+    );
+    let _ = writeln!(
+        w,
+        "pub const START_FROM_GEO: skyroute::Pose = skyroute::Pose::new({}, {}, {});",
+        lit(back.position.x),
+        lit(back.position.y),
+        lit(back.heading)
+    );
 }
 
 /// Writes the fixture into `out`: `network.bin` (when the firmware embeds a network) and
