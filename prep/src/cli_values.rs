@@ -152,3 +152,12 @@ pub fn parse_area(s: &str) -> Result<(f64, f64, f64, f64), String> {
         )),
     }
 }
+
+/// A free-heading rule by name: cheapest or paper.
+pub fn parse_free_headings(s: &str) -> Result<crate::mission::FreeHeadingRule, String> {
+    match s.trim() {
+        "cheapest" => Ok(crate::mission::FreeHeadingRule::Cheapest),
+        "paper" => Ok(crate::mission::FreeHeadingRule::MostClearOutEdges),
+        _ => Err(format!("expected cheapest or paper, got {s:?}")),
+    }
+}

@@ -7,6 +7,7 @@ pub mod cli_values;
 pub mod dem;
 pub mod export;
 pub mod frame;
+pub mod free_heading;
 pub mod import;
 pub mod info;
 pub mod init;

@@ -46,6 +46,101 @@ message names the file and the field, or the option):
 Option values must be finite numbers, lengths positive (--node-spacing and --node-margin
 may be 0); a malformed value is a usage error, exit code 2.";
 
+/// `skyroute plan`'s arguments.
+#[derive(clap::Args)]
+struct PlanArgs {
+    /// The network image.
+    network: PathBuf,
+    /// The scenario the network was built from, whose start, waypoints and goal to visit.
+    #[arg(long)]
+    scenario: PathBuf,
+    /// A circular pop-up obstacle, `LON,LAT,RADIUS_M` (repeatable).
+    #[arg(long, value_parser = parse_popup)]
+    popup: Vec<(f64, f64, f64)>,
+    /// Plan from `LON,LAT,HEADING_DEG` (compass heading) instead of the scenario's start:
+    /// re-planning from where the aircraft is. Roadmap, terrain and Voronoi networks (a
+    /// landmark network has its start built in).
+    #[arg(long, value_parser = parse_start, allow_hyphen_values = true)]
+    start: Option<(f64, f64, f64)>,
+    /// Leave the scenario's `popup` features out (plan the nominal route); the route file
+    /// says so.
+    #[arg(long)]
+    no_scenario_popups: bool,
+    /// Connect each leg's start and goal only to vertices within this many metres. By
+    /// default the network's radius (1000 m for roadmaps, unbounded for terrain) is
+    /// widened to the 32 nearest vertices however far when an end does not connect.
+    #[arg(long, value_parser = parse_radius)]
+    connect_radius: Option<f32>,
+    /// Terrain networks: how the turns at the two ends of a straight share it. `paper`
+    /// (the default): the paper's equations 1–2, the two cuts together within the
+    /// straight's length (exact; the search needs one state per transition of the graph,
+    /// `skyroute info`); `shared-equally`: each cut within half of it (stricter: fewer
+    /// routes; one state per edge, what the small firmware runs).
+    #[arg(long, value_parser = parse_turn_rule)]
+    turn_rule: Option<skyroute::TurnRule>,
+    /// How a waypoint without a heading gets one: `cheapest` (the default: every 10° tried,
+    /// the cheapest mission kept) or `paper` (Niendorf et al.: the heading with the most
+    /// collision-free Dubins paths to the network's vertices within the neighbour radius,
+    /// among those with one from them, fixed before the legs are planned).
+    #[arg(long, value_parser = parse_free_headings, default_value = "cheapest")]
+    free_headings: skyroute_prep::mission::FreeHeadingRule,
+    /// Weather for landmark networks, a name from the scenario's `weather` (default: its
+    /// first); roadmap and terrain networks have none.
+    #[arg(long)]
+    weather: Option<String>,
+    /// Read the scenario with self-intersecting no-fly polygons replaced by their hulls (as
+    /// `build --hull-repair`).
+    #[arg(long)]
+    hull_repair: bool,
+    /// Where to write the route: `.json` the detailed route file (local frame, every
+    /// primitive), `.geojson` RFC 7946 GeoJSON (lon/lat, a feature per leg and pop-up),
+    /// `.plan` a QGroundControl plan (mission, no-fly zones as geofence, goal as rally
+    /// point), `.waypoints` the MAVLink QGC WPL 110 text format, `.kml` KML for Google Earth
+    /// (docs/AUTOPILOTS.md).
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Take the scenario as this mode, as the network was built (`build --mode`).
+    #[arg(long, value_parser = parse_mode)]
+    mode: Option<Mode>,
+    /// Voronoi networks: the weight k of length against exposure, in [0, 1] (default: the
+    /// scenario's planner.threat_weight, or 0.5). 1 flies the shortest route, 0 the least
+    /// exposed. Roadmap networks: plans on the ground instead of with the onboard core (which
+    /// does not weigh exposure): Dijkstra over the roadmap's Dubins edges with cost
+    /// k·L + (1 − k)·exposure to the scenario's threats (three-point rule), ends joined by
+    /// Dubins paths to the nearest vertices, no post-processing.
+    #[arg(long, value_parser = parse_weight)]
+    threat_weight: Option<f32>,
+    /// Voronoi networks: a radar that popped up in flight, `LON,LAT,RADIUS_M` (repeatable;
+    /// RADIUS_M is its exposure's reference distance, like a scenario threat's).
+    #[arg(long, value_parser = parse_popup)]
+    threat: Vec<(f64, f64, f64)>,
+    /// Roadmap and terrain networks: the scenario's pop-up NAME may appear, with its
+    /// `probability` (repeatable; Ruz et al.). With this option only the named pop-ups are
+    /// considered and the scenario's other pop-ups are left out: for each named one, 3
+    /// bypass alternatives that never enter its disc are planned and scored by risk, time
+    /// and fuel, one per pop-up is chosen (least total risk with the mean time and fuel
+    /// factors within --time-limit and --fuel-limit), and the route flies every chosen
+    /// alternative. The route file records the alternatives and the choice; when no choice
+    /// meets the limits, exit code 3 names the tightest.
+    #[arg(long, value_name = "NAME", conflicts_with_all = ["popup", "no_scenario_popups"])]
+    popup_appears: Vec<String>,
+    /// With --popup-appears: the largest mean time factor f_t = 1 − τ/T (τ the nominal
+    /// route's time, T the alternative's).
+    #[arg(long, default_value_t = skyroute_prep::ruz::cli::TIME_LIMIT, value_parser = parse_limit)]
+    time_limit: f32,
+    /// With --popup-appears: the largest mean fuel factor (mean normalised turn effort).
+    #[arg(long, default_value_t = skyroute_prep::ruz::cli::FUEL_LIMIT, value_parser = parse_limit)]
+    fuel_limit: f32,
+    /// `.plan` outputs: the flight stack, `px4` (firmwareType 12) or `ardupilot` (3).
+    #[arg(long, default_value = "px4", value_parser = parse_autopilot)]
+    autopilot: Autopilot,
+    /// `.plan`, `.waypoints` and `.kml` outputs: the altitude, metres above home (default
+    /// 100); on a terrain network metres above mean sea level (default the network's
+    /// altitude).
+    #[arg(long = "altitude", value_parser = parse_altitude)]
+    altitude_m: Option<f64>,
+}
+
 /// `skyroute init`'s arguments.
 #[derive(clap::Args)]
 struct InitArgs {
@@ -144,92 +239,7 @@ enum Command {
     /// goal and every pop-up lie on the network's map, and it applies the scenario's `popup`
     /// features and every `--popup`, recorded in the route file.
     #[command(after_help = EXIT_CODES)]
-    Plan {
-        /// The network image.
-        network: PathBuf,
-        /// The scenario the network was built from, whose start, waypoints and goal to visit.
-        #[arg(long)]
-        scenario: PathBuf,
-        /// A circular pop-up obstacle, `LON,LAT,RADIUS_M` (repeatable).
-        #[arg(long, value_parser = parse_popup)]
-        popup: Vec<(f64, f64, f64)>,
-        /// Plan from `LON,LAT,HEADING_DEG` (compass heading) instead of the scenario's start:
-        /// re-planning from where the aircraft is. Roadmap, terrain and Voronoi networks (a
-        /// landmark network has its start built in).
-        #[arg(long, value_parser = parse_start, allow_hyphen_values = true)]
-        start: Option<(f64, f64, f64)>,
-        /// Leave the scenario's `popup` features out (plan the nominal route); the route file
-        /// says so.
-        #[arg(long)]
-        no_scenario_popups: bool,
-        /// Connect each leg's start and goal only to vertices within this many metres. By
-        /// default the network's radius (1000 m for roadmaps, unbounded for terrain) is
-        /// widened to the 32 nearest vertices however far when an end does not connect.
-        #[arg(long, value_parser = parse_radius)]
-        connect_radius: Option<f32>,
-        /// Terrain networks: how the turns at the two ends of a straight share it. `paper`
-        /// (the default): the paper's equations 1–2, the two cuts together within the
-        /// straight's length (exact; the search needs one state per transition of the graph,
-        /// `skyroute info`); `shared-equally`: each cut within half of it (stricter: fewer
-        /// routes; one state per edge, what the small firmware runs).
-        #[arg(long, value_parser = parse_turn_rule)]
-        turn_rule: Option<skyroute::TurnRule>,
-        /// Weather for landmark networks, a name from the scenario's `weather` (default: its
-        /// first); roadmap and terrain networks have none.
-        #[arg(long)]
-        weather: Option<String>,
-        /// Read the scenario with self-intersecting no-fly polygons replaced by their hulls (as
-        /// `build --hull-repair`).
-        #[arg(long)]
-        hull_repair: bool,
-        /// Where to write the route: `.json` the detailed route file (local frame, every
-        /// primitive), `.geojson` RFC 7946 GeoJSON (lon/lat, a feature per leg and pop-up),
-        /// `.plan` a QGroundControl plan (mission, no-fly zones as geofence, goal as rally
-        /// point), `.waypoints` the MAVLink QGC WPL 110 text format, `.kml` KML for Google Earth
-        /// (docs/AUTOPILOTS.md).
-        #[arg(short, long)]
-        output: PathBuf,
-        /// Take the scenario as this mode, as the network was built (`build --mode`).
-        #[arg(long, value_parser = parse_mode)]
-        mode: Option<Mode>,
-        /// Voronoi networks: the weight k of length against exposure, in [0, 1] (default: the
-        /// scenario's planner.threat_weight, or 0.5). 1 flies the shortest route, 0 the least
-        /// exposed. Roadmap networks: plans on the ground instead of with the onboard core (which
-        /// does not weigh exposure): Dijkstra over the roadmap's Dubins edges with cost
-        /// k·L + (1 − k)·exposure to the scenario's threats (three-point rule), ends joined by
-        /// Dubins paths to the nearest vertices, no post-processing.
-        #[arg(long, value_parser = parse_weight)]
-        threat_weight: Option<f32>,
-        /// Voronoi networks: a radar that popped up in flight, `LON,LAT,RADIUS_M` (repeatable;
-        /// RADIUS_M is its exposure's reference distance, like a scenario threat's).
-        #[arg(long, value_parser = parse_popup)]
-        threat: Vec<(f64, f64, f64)>,
-        /// Roadmap and terrain networks: the scenario's pop-up NAME may appear, with its
-        /// `probability` (repeatable; Ruz et al.). With this option only the named pop-ups are
-        /// considered and the scenario's other pop-ups are left out: for each named one, 3
-        /// bypass alternatives that never enter its disc are planned and scored by risk, time
-        /// and fuel, one per pop-up is chosen (least total risk with the mean time and fuel
-        /// factors within --time-limit and --fuel-limit), and the route flies every chosen
-        /// alternative. The route file records the alternatives and the choice; when no choice
-        /// meets the limits, exit code 3 names the tightest.
-        #[arg(long, value_name = "NAME", conflicts_with_all = ["popup", "no_scenario_popups"])]
-        popup_appears: Vec<String>,
-        /// With --popup-appears: the largest mean time factor f_t = 1 − τ/T (τ the nominal
-        /// route's time, T the alternative's).
-        #[arg(long, default_value_t = skyroute_prep::ruz::cli::TIME_LIMIT, value_parser = parse_limit)]
-        time_limit: f32,
-        /// With --popup-appears: the largest mean fuel factor (mean normalised turn effort).
-        #[arg(long, default_value_t = skyroute_prep::ruz::cli::FUEL_LIMIT, value_parser = parse_limit)]
-        fuel_limit: f32,
-        /// `.plan` outputs: the flight stack, `px4` (firmwareType 12) or `ardupilot` (3).
-        #[arg(long, default_value = "px4", value_parser = parse_autopilot)]
-        autopilot: Autopilot,
-        /// `.plan`, `.waypoints` and `.kml` outputs: the altitude, metres above home (default
-        /// 100); on a terrain network metres above mean sea level (default the network's
-        /// altitude).
-        #[arg(long = "altitude", value_parser = parse_altitude)]
-        altitude_m: Option<f64>,
-    },
+    Plan(PlanArgs),
     /// The Monte Carlo study of pop-ups under uncertainty (Ruz et al.): missions in which the
     /// scenario's pop-ups appear by their probabilities, flown with the decision on risk, time
     /// and fuel and with a baseline deciding on time and fuel alone (docs/RUZ.md).
@@ -471,6 +481,7 @@ fn demo_command(dir: &Path) -> CliResult {
         scenario_popups: true,
         connect_radius_m: None,
         turn_rule: None,
+        free_headings: Default::default(),
         weather: None,
         hull_repair: false,
         output: &route,
@@ -501,6 +512,56 @@ fn demo_command(dir: &Path) -> CliResult {
     Ok(())
 }
 
+/// `skyroute plan`: a mission on a network, or with `--popup-appears` a decision among its
+/// pop-ups' alternatives.
+fn plan(a: PlanArgs) -> CliResult {
+    let PlanArgs {
+        network,
+        scenario: scenario_path,
+        popup,
+        start,
+        no_scenario_popups,
+        connect_radius,
+        turn_rule,
+        free_headings,
+        weather,
+        hull_repair,
+        output,
+        mode,
+        threat_weight,
+        threat,
+        popup_appears,
+        time_limit,
+        fuel_limit,
+        autopilot,
+        altitude_m,
+    } = a;
+    let request = PlanRequest {
+        network: &network,
+        scenario: &scenario_path,
+        popups: &popup,
+        start,
+        scenario_popups: !no_scenario_popups,
+        connect_radius_m: connect_radius,
+        turn_rule,
+        free_headings,
+        weather: weather.as_deref(),
+        hull_repair,
+        output: &output,
+        mode,
+        threat_weight,
+        threats: &threat,
+        popup_appears: &popup_appears,
+        limits: limits(time_limit, fuel_limit),
+        mission: MissionOutput::new(autopilot, altitude_m),
+    };
+    let command = match popup_appears.is_empty() {
+        true => plan_command,
+        false => plan_decided_command,
+    };
+    command(&request)
+}
+
 fn run(cli: Cli) -> CliResult {
     match cli.command {
         Command::Build {
@@ -529,50 +590,7 @@ fn run(cli: Cli) -> CliResult {
             };
             build_command(&path, &output, &options, hull_repair, mode)
         }
-        Command::Plan {
-            network,
-            scenario: scenario_path,
-            popup,
-            start,
-            no_scenario_popups,
-            connect_radius,
-            turn_rule,
-            weather,
-            hull_repair,
-            output,
-            mode,
-            threat_weight,
-            threat,
-            popup_appears,
-            time_limit,
-            fuel_limit,
-            autopilot,
-            altitude_m,
-        } => {
-            let request = PlanRequest {
-                network: &network,
-                scenario: &scenario_path,
-                popups: &popup,
-                start,
-                scenario_popups: !no_scenario_popups,
-                connect_radius_m: connect_radius,
-                turn_rule,
-                weather: weather.as_deref(),
-                hull_repair,
-                output: &output,
-                mode,
-                threat_weight,
-                threats: &threat,
-                popup_appears: &popup_appears,
-                limits: limits(time_limit, fuel_limit),
-                mission: MissionOutput::new(autopilot, altitude_m),
-            };
-            let command = match popup_appears.is_empty() {
-                true => plan_command,
-                false => plan_decided_command,
-            };
-            command(&request)
-        }
+        Command::Plan(a) => plan(a),
         Command::Demo { output } => demo_command(&output),
         Command::Montecarlo {
             network,

@@ -8,6 +8,7 @@
 //! collision-free way out is reported, by name, as an inevitable-collision state.
 
 use crate::frame::LocalFrame;
+pub use crate::free_heading::FreeHeadingRule;
 use crate::local::{local, local_heading};
 use crate::scenario::{Endpoint, Scenario};
 use rayon::prelude::*;
@@ -77,6 +78,9 @@ pub struct Mission {
     pub queries: usize,
     /// Work summed over every query run.
     pub work: Work,
+    /// Under [`FreeHeadingRule::MostClearOutEdges`], each waypoint without a heading: its name,
+    /// the heading fixed for it (radians, local frame) and its clear out-edges. Empty otherwise.
+    pub fixed_headings: Vec<(String, f32, usize)>,
 }
 
 /// Why a mission could not be planned.
@@ -171,6 +175,8 @@ pub struct MissionOptions {
     /// Terrain networks: how consecutive turns share a straight (`None`: the planner's
     /// default, the paper's rule, [`TurnRule::Paper`]).
     pub turn_rule: Option<TurnRule>,
+    /// How a waypoint without a heading gets one.
+    pub free_headings: FreeHeadingRule,
 }
 
 /// Plans `q`, and when `adaptive` and an end did not connect, plans it again with the connect
@@ -352,7 +358,13 @@ fn plan_mission_in_pool(
     popups: &[LocalPopup],
     options: &MissionOptions,
 ) -> Result<Mission, MissionError> {
-    let stages = mission_stages(scenario, frame)?;
+    let mut stages = mission_stages(scenario, frame)?;
+    let fixed_headings = match options.free_headings {
+        FreeHeadingRule::Cheapest => Vec::new(),
+        FreeHeadingRule::MostClearOutEdges => {
+            fix_free_headings(&mut stages, bytes, scenario, frame, popups)?
+        }
+    };
     let mut queries = 0;
     let mut work = Work::default();
     // best[i][k]: cheapest cost to stage i copy k, and the copy of stage i−1 it came from.
@@ -377,7 +389,54 @@ fn plan_mission_in_pool(
         length,
         queries,
         work,
+        fixed_headings,
     })
+}
+
+/// Fixes each free waypoint's heading by the paper's rule
+/// ([`crate::free_heading::most_clear_out_edges`]): among its heading copies, the one with the
+/// most clear out-edges to the network's vertices within the scenario's neighbour radius (the
+/// core's connect radius without one), against the scenario's obstacles and `popups`. Returns
+/// each waypoint's name, heading and count.
+fn fix_free_headings(
+    stages: &mut [Stage],
+    bytes: &[u8],
+    scenario: &Scenario,
+    frame: &LocalFrame,
+    popups: &[LocalPopup],
+) -> Result<Vec<(String, f32, usize)>, MissionError> {
+    let net = skyroute::Network::from_bytes(bytes).map_err(MissionError::Load)?;
+    let mut obstacles = crate::local::local_obstacles(scenario, frame);
+    obstacles.extend(
+        popups
+            .iter()
+            .map(|p| skyroute::network::write::ObstacleSpec::Circle {
+                centre: p.centre,
+                radius: p.radius,
+            }),
+    );
+    let radius = scenario
+        .planner
+        .neighbour_radius_m
+        .map_or(PlannerConfig::DEFAULT.connect_radius_m, |r| r as f32);
+    let last = stages.len().saturating_sub(1);
+    let mut fixed = Vec::new();
+    for st in stages.iter_mut().take(last).skip(1) {
+        if st.headings.len() < 2 {
+            continue;
+        }
+        let headings: Vec<f32> = st.headings.iter().flatten().copied().collect();
+        let (h, count) = crate::free_heading::most_clear_out_edges(
+            &net,
+            &obstacles,
+            st.position,
+            &headings,
+            radius,
+        );
+        st.headings = vec![Some(h)];
+        fixed.push((st.name.clone(), h, count));
+    }
+    Ok(fixed)
 }
 
 /// Per copy of a stage: the cheapest cost to reach it and the copy of the previous stage it

@@ -43,6 +43,8 @@ pub struct PlanRequest<'a> {
     pub connect_radius_m: Option<f32>,
     /// `--turn-rule`: terrain networks' turn rule (`None`: the paper's).
     pub turn_rule: Option<skyroute::TurnRule>,
+    /// How a waypoint without a heading gets one (roadmap and terrain missions).
+    pub free_headings: crate::mission::FreeHeadingRule,
     pub weather: Option<&'a str>,
     pub hull_repair: bool,
     pub output: &'a Path,
@@ -265,9 +267,16 @@ fn plan_mission_route(
     let options = MissionOptions {
         connect_radius_m: req.connect_radius_m,
         turn_rule: req.turn_rule,
+        free_headings: req.free_headings,
     };
     let m = plan_mission_with(bytes, s, frame, popups, &options)
         .map_err(|e| planning_error(req.scenario, &e, e.is_bad_input()))?;
+    for (name, heading, count) in &m.fixed_headings {
+        println!(
+            "  {name}: heading {:.0}° (grid) fixed by the paper's rule, {count} clear out-edges",
+            skyroute::geometry::compass_deg_from_heading(*heading)
+        );
+    }
     for l in &m.legs {
         println!(
             "  {} -> {}: {:.1} m ({:.1} m before post-processing), {} network edges, work {}{}",

@@ -364,6 +364,7 @@ pub fn plan_decided_command(req: &PlanRequest) -> CliResult {
         options: MissionOptions {
             connect_radius_m: req.connect_radius_m,
             turn_rule: req.turn_rule,
+            free_headings: req.free_headings,
         },
     };
     let (mut json, flown) = plan_decided(&planning, &which, &req.limits).map_err(

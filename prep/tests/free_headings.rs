@@ -1,0 +1,63 @@
+//! `plan --free-headings paper`: Niendorf et al.'s rule fixes a free waypoint's heading as the
+//! one with the most clear out-edges. A waypoint 37 m west of a no-fly zone, with a 300 m turn
+//! radius, has no clear way east, so the rule must not point it east; the default rule plans the
+//! same mission too.
+
+mod common;
+use common::{ok, skyroute, stdout, TempDir};
+
+#[test]
+fn the_papers_rule_turns_a_waypoint_beside_a_zone_away_from_it() {
+    let dir = TempDir::new("free-headings");
+    let sc = dir.file("s.geojson");
+    ok(skyroute(&["init", &sc]), "init");
+    // The template's waypoint W1 moves next to the west side (lon 11.612) of zone Z1.
+    let text = std::fs::read_to_string(&sc)
+        .unwrap()
+        .replace("[11.630, 48.112]", "[11.6115, 48.100]");
+    std::fs::write(&sc, text).unwrap();
+    let (net, route) = (dir.file("n.bin"), dir.file("r.json"));
+    ok(skyroute(&["build", &sc, "-o", &net]), "build");
+    let o = ok(
+        skyroute(&[
+            "plan",
+            &net,
+            "--scenario",
+            &sc,
+            "--free-headings",
+            "paper",
+            "-o",
+            &route,
+        ]),
+        "plan --free-headings paper",
+    );
+    let said = stdout(&o);
+    let line = said
+        .lines()
+        .find(|l| l.contains("W1: heading"))
+        .unwrap_or_else(|| panic!("no fixed heading for W1 in {said}"));
+    let compass: f64 = line
+        .split("heading ")
+        .nth(1)
+        .and_then(|r| r.split('°').next())
+        .and_then(|d| d.parse().ok())
+        .unwrap();
+    let clear: usize = line
+        .split(", ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap();
+    let from_east = (compass - 90.0)
+        .rem_euclid(360.0)
+        .min((90.0 - compass).rem_euclid(360.0));
+    assert!(
+        from_east > 60.0,
+        "W1 heads {compass}°, toward the zone: {line}"
+    );
+    assert!(clear > 0, "{line}");
+    ok(
+        skyroute(&["plan", &net, "--scenario", &sc, "-o", &route]),
+        "plan (default rule)",
+    );
+}
