@@ -7,8 +7,9 @@ use skyroute::planner::{PlanError, PopupError};
 use skyroute::LoadError;
 
 /// What a call did: `SR_STATUS_OK` (0), a misuse of the API (1–99), or why the core refused:
-/// loading 100–199, planning 200–299, pop-ups 300–399, latitude and longitude 400–499. The numbers are fixed; the numbers
-/// the core's errors carry (counts, indices) are not reported through the C API.
+/// loading 100–199, planning 200–299, pop-ups 300–399, latitude and longitude 400–499. The
+/// numbers are fixed; the numbers the core's errors carry (counts, indices) are not reported
+/// through the C API.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(i32)]
 pub enum SrStatus {

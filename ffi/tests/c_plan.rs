@@ -294,11 +294,12 @@ fn expected(image: &'static [u8], query: &Query, popup: Vec2) -> String {
     out
 }
 
-/// The start through latitude and longitude and back (the core's `LocalFrame`, as the C ABI's
-/// `sr_local_to_geo` and `sr_geo_to_local` use it), the plan from the converted pose, and the
-/// conversions refused.
+/// The start through latitude and longitude and back, the plan from the converted pose, and the
+/// conversions refused. The Rust side calls the core's `LocalFrame` that `sr_local_to_geo` and
+/// `sr_geo_to_local` wrap, so this checks the wrappers (argument order, struct layout, status
+/// mapping); the projection itself is checked against PROJ in `host-tests/tests/core/geo.rs`.
 fn geo_lines(out: &mut String, p: &mut CorePlanner, query: &Query, budget: u64) {
-    status_line(out, "geo before load", SrStatus::NullPointer);
+    status_line(out, "geo null planner", SrStatus::NullPointer);
     let frame = p.network().local_frame();
     let (lon, lat) = frame
         .lon_lat(query.start.position)

@@ -152,7 +152,7 @@ fn arguments_out_of_their_domain_are_refused() {
 }
 
 #[test]
-fn a_planner_without_a_network_has_no_route_and_an_empty_one() {
+fn a_planner_without_a_network_has_no_route_and_converts_no_position() {
     let mut mem = memory();
     let h = planner(&mut mem);
     let (mut v, mut e, mut n) = (9u32, 9u32, 9usize);
@@ -172,5 +172,26 @@ fn a_planner_without_a_network_has_no_route_and_an_empty_one() {
         );
         assert_eq!(sr_remove_popups(h), SrStatus::Ok);
         assert_eq!(sr_remove_popup(h, 0), SrStatus::PopupUnknownId);
+        // No frame to convert through: refused, and the outputs are not written.
+        let mut pose = SrPose {
+            x: 7.0,
+            y: 7.0,
+            heading: 7.0,
+        };
+        assert_eq!(
+            sr_geo_to_local(h, 11.0, 48.0, 90.0, &mut pose),
+            SrStatus::NoNetwork
+        );
+        assert_eq!(pose.x, 7.0);
+        let mut geo = SrGeoPose::default();
+        assert_eq!(
+            sr_local_to_geo(h, 0.0, 0.0, 0.0, &mut geo),
+            SrStatus::NoNetwork
+        );
+        assert_eq!(geo, SrGeoPose::default());
+        assert_eq!(
+            sr_geo_to_local(h, 11.0, 48.0, 90.0, null_mut()),
+            SrStatus::NullPointer
+        );
     }
 }

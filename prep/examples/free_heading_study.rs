@@ -1,7 +1,8 @@
 //! The two ways a waypoint without a heading gets one, side by side on a mission: skyroute's
 //! default (the cheapest chain over 36 heading copies) and Niendorf et al.'s (the heading with
 //! the most clear out-edges, `plan --free-headings paper`). For each rule: the mission's length
-//! and core queries, then its robustness: for every leg leaving a free waypoint, a pop-up disc of
+//! and core queries, then its robustness: for every leg leaving a waypoint (every leg but the
+//! first; on the urban mission every waypoint is free), a pop-up disc of
 //! `RADIUS_M` is placed `d` metres straight ahead of the waypoint along the heading the rule
 //! gave it, and the leg is re-planned from that pose to its end (free arrival heading) with the
 //! onboard core. Reported: how many re-plans find a route, and their mean detour over the same

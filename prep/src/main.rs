@@ -79,9 +79,10 @@ struct PlanArgs {
     #[arg(long, value_parser = parse_turn_rule)]
     turn_rule: Option<skyroute::TurnRule>,
     /// How a waypoint without a heading gets one: `cheapest` (the default: every 10° tried,
-    /// the cheapest mission kept) or `paper` (Niendorf et al.: the heading with the most
-    /// collision-free Dubins paths to the network's vertices within the neighbour radius,
-    /// among those with one from them, fixed before the legs are planned).
+    /// the cheapest mission kept) or `paper` (Niendorf et al., roadmap networks only: the
+    /// heading with the most Dubins paths clear of every zone and pop-up to the network's
+    /// vertices within the connect or neighbour radius, among those with one from them, fixed
+    /// before the legs are planned).
     #[arg(long, value_parser = parse_free_headings, default_value = "cheapest")]
     free_headings: skyroute_prep::mission::FreeHeadingRule,
     /// Weather for landmark networks, a name from the scenario's `weather` (default: its

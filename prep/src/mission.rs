@@ -79,7 +79,8 @@ pub struct Mission {
     /// Work summed over every query run.
     pub work: Work,
     /// Under [`FreeHeadingRule::MostClearOutEdges`], each waypoint without a heading: its name,
-    /// the heading fixed for it (radians, local frame) and its clear out-edges. Empty otherwise.
+    /// the heading fixed for it (radians, local frame; NaN when no heading had a clear way in
+    /// and out, and the default rule chose) and its clear out-edges. Empty otherwise.
     pub fixed_headings: Vec<(String, f32, usize)>,
 }
 
@@ -224,7 +225,14 @@ fn explain(
         PlanError::InsideObstacle { field, obstacle } => {
             match crate::local::obstacle_containing(scenario, frame, at(field)) {
                 Some(name) => format!("{name} contains it"),
-                None => format!("network obstacle {obstacle} contains it"),
+                // Within the clearance of an obstacle but outside it: name it by the core's index.
+                None => crate::local::local_obstacles_named(scenario, frame)
+                    .into_iter()
+                    .nth(obstacle as usize)
+                    .map_or_else(
+                        || format!("network obstacle {obstacle} contains it"),
+                        |(_, name)| format!("it lies within the clearance of {name}"),
+                    ),
             }
         }
         PlanError::StartUnconnected | PlanError::GoalUnconnected => {
@@ -359,16 +367,6 @@ fn plan_mission_in_pool(
     options: &MissionOptions,
 ) -> Result<Mission, MissionError> {
     let mut stages = mission_stages(scenario, frame)?;
-    let fixed_headings = match options.free_headings {
-        FreeHeadingRule::Cheapest => Vec::new(),
-        FreeHeadingRule::MostClearOutEdges => {
-            fix_free_headings(&mut stages, bytes, scenario, frame, popups)?
-        }
-    };
-    let mut queries = 0;
-    let mut work = Work::default();
-    // best[i][k]: cheapest cost to stage i copy k, and the copy of stage i−1 it came from.
-    let mut best: Vec<StageBest> = vec![vec![Some((0.0, 0))]];
     let inputs = Inputs {
         bytes,
         scenario,
@@ -376,6 +374,14 @@ fn plan_mission_in_pool(
         popups,
         options,
     };
+    let fixed_headings = match options.free_headings {
+        FreeHeadingRule::Cheapest => Vec::new(),
+        FreeHeadingRule::MostClearOutEdges => fix_free_headings(&mut stages, &inputs)?,
+    };
+    let mut queries = 0;
+    let mut work = Work::default();
+    // best[i][k]: cheapest cost to stage i copy k, and the copy of stage i−1 it came from.
+    let mut best: Vec<StageBest> = vec![vec![Some((0.0, 0))]];
     for i in 1..stages.len() {
         let (prev, next) = (&stages[i - 1], &stages[i]);
         let (stage_best, n) = best_into(&inputs, prev, next, &best[i - 1], i == 1, &mut work)?;
@@ -395,16 +401,22 @@ fn plan_mission_in_pool(
 
 /// Fixes each free waypoint's heading by the paper's rule
 /// ([`crate::free_heading::most_clear_out_edges`]): among its heading copies, the one with the
-/// most clear out-edges to the network's vertices within the scenario's neighbour radius (the
-/// core's connect radius without one), against the scenario's obstacles and `popups`. Returns
-/// each waypoint's name, heading and count.
+/// most clear out-edges to the network's vertices within `--connect-radius`, else the
+/// scenario's neighbour radius, else the core's connect radius, against the scenario's
+/// obstacles and `popups`. A waypoint with no heading that has a clear way in and out keeps
+/// all its copies (the default rule decides it; count 0). Returns each waypoint's name, the
+/// heading fixed (NaN when none was) and its count.
 fn fix_free_headings(
     stages: &mut [Stage],
-    bytes: &[u8],
-    scenario: &Scenario,
-    frame: &LocalFrame,
-    popups: &[LocalPopup],
+    inputs: &Inputs,
 ) -> Result<Vec<(String, f32, usize)>, MissionError> {
+    let Inputs {
+        bytes,
+        scenario,
+        frame,
+        popups,
+        options,
+    } = *inputs;
     let net = skyroute::Network::from_bytes(bytes).map_err(MissionError::Load)?;
     let mut obstacles = crate::local::local_obstacles(scenario, frame);
     obstacles.extend(
@@ -415,10 +427,12 @@ fn fix_free_headings(
                 radius: p.radius,
             }),
     );
-    let radius = scenario
-        .planner
-        .neighbour_radius_m
-        .map_or(PlannerConfig::DEFAULT.connect_radius_m, |r| r as f32);
+    let radius = options.connect_radius_m.unwrap_or_else(|| {
+        scenario
+            .planner
+            .neighbour_radius_m
+            .map_or(PlannerConfig::DEFAULT.connect_radius_m, |r| r as f32)
+    });
     let last = stages.len().saturating_sub(1);
     let mut fixed = Vec::new();
     for st in stages.iter_mut().take(last).skip(1) {
@@ -433,6 +447,10 @@ fn fix_free_headings(
             &headings,
             radius,
         );
+        if count == 0 {
+            fixed.push((st.name.clone(), f32::NAN, 0));
+            continue;
+        }
         st.headings = vec![Some(h)];
         fixed.push((st.name.clone(), h, count));
     }

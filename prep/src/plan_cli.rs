@@ -123,6 +123,16 @@ pub fn plan_command(req: &PlanRequest) -> CliResult {
         )
         .into());
     }
+    let paper_rule = req.free_headings != crate::mission::FreeHeadingRule::Cheapest;
+    if paper_rule && (s.planner.mode != scenario::Mode::Roadmap || req.threat_weight.is_some()) {
+        return Err(format!(
+            "--free-headings paper counts a roadmap's clear out-edges: it applies to roadmap \
+             networks without --threat-weight; {} is a {} network",
+            req.network.display(),
+            net.mode().name()
+        )
+        .into());
+    }
     let on = || format!("{} on {}", req.scenario.display(), req.network.display());
     check_binding(&s, &net).map_err(|e| format!("{}: {e}", on()))?;
     let s = with_start(s, req.start, &net, req.network)?;
@@ -272,10 +282,16 @@ fn plan_mission_route(
     let m = plan_mission_with(bytes, s, frame, popups, &options)
         .map_err(|e| planning_error(req.scenario, &e, e.is_bad_input()))?;
     for (name, heading, count) in &m.fixed_headings {
-        println!(
-            "  {name}: heading {:.0}° (grid) fixed by the paper's rule, {count} clear out-edges",
-            skyroute::geometry::compass_deg_from_heading(*heading)
-        );
+        match heading.is_nan() {
+            false => println!(
+                "  {name}: heading {:.0}° (grid) fixed by the paper's rule, {count} clear out-edges",
+                skyroute::geometry::compass_deg_from_heading(*heading)
+            ),
+            true => println!(
+                "  {name}: no heading has a clear way in and out within the radius; the default \
+                 rule chooses it"
+            ),
+        }
     }
     for l in &m.legs {
         println!(

@@ -7,13 +7,23 @@
 //! some piece: a path may not slip between two pieces along a shared edge.
 //!
 //! The strip is chosen so that it holds no other hole whole (see [`strip_across`]), so every
-//! other hole ends up a hole of at most one piece, or opened: each cut removes at least one
-//! hole and the number of pieces grows linearly with the number of holes.
+//! other hole ends up a hole of at most one piece, or opened. Every piece a cut makes has fewer
+//! holes than the polygon cut, which is what ends the loop; a piece that comes back from the
+//! clipping with as many holes (a hole so thin that the clipping's grid closes the strip) keeps
+//! its exterior only. So does a hole less than [`MIN_HOLE_WIDTH_M`] wide, which the `f32`
+//! coordinates the core is given could not keep open with an overlap. Filling a hole only
+//! forbids more: every fallback is on the safe side. For a convex exterior each hole adds about
+//! one piece; a ragged exterior can fall into more pieces at each cut.
 
 use geo::{BooleanOps, Coord, LineString, Polygon, Rect};
 
 /// A planar point, metres (the local frame).
 pub type Point = (f64, f64);
+
+/// The narrowest hole kept open, metres across (its widest gap between vertex abscissae): the
+/// overlap of two pieces is half of it, and must stay wider than the `f32` spacing of the core's
+/// coordinates (under 8 mm within its ±64 km range).
+pub const MIN_HOLE_WIDTH_M: f64 = 0.05;
 
 /// The simple polygons whose union is the region inside `exterior` and outside every one of
 /// `holes` (rings without a closing repeat; the holes lie strictly inside the exterior and
@@ -36,7 +46,13 @@ pub fn simple_pieces(exterior: &[Point], holes: &[Vec<Point>]) -> Vec<Vec<Point>
             }
             continue;
         };
-        let (c, eps) = strip_across(hole, &p.interiors()[1..]);
+        let holes = p.interiors().len();
+        let Some((c, eps)) = strip_across(hole, &p.interiors()[1..]) else {
+            // Too thin to keep open: the hole is filled.
+            let others = p.interiors()[1..].to_vec();
+            queue.push(Polygon::new(p.exterior().clone(), others));
+            continue;
+        };
         let (lo, hi) = y_span(p.exterior());
         let x_span = x_range(p.exterior());
         let left = Rect::new(
@@ -61,8 +77,17 @@ pub fn simple_pieces(exterior: &[Point], holes: &[Vec<Point>]) -> Vec<Vec<Point>
             },
         )
         .to_polygon();
-        queue.extend(p.intersection(&left));
-        queue.extend(p.intersection(&right));
+        for piece in p
+            .intersection(&left)
+            .into_iter()
+            .chain(p.intersection(&right))
+        {
+            if piece.interiors().len() < holes {
+                queue.push(piece);
+            } else {
+                queue.push(Polygon::new(piece.exterior().clone(), vec![]));
+            }
+        }
     }
     out
 }
@@ -72,23 +97,26 @@ pub fn simple_pieces(exterior: &[Point], holes: &[Vec<Point>]) -> Vec<Vec<Point>
 /// hole's interior (a vertical line strictly inside a simple ring's x-range meets its interior,
 /// and no vertex lies within the gap); ε is at most a quarter of that gap, and below half of
 /// the largest distance from `c` of each other hole's vertices, so no other hole fits in the
-/// strip whole.
-fn strip_across(hole: &LineString<f64>, others: &[LineString<f64>]) -> (f64, f64) {
+/// strip whole. `None` for a hole narrower than [`MIN_HOLE_WIDTH_M`].
+fn strip_across(hole: &LineString<f64>, others: &[LineString<f64>]) -> Option<(f64, f64)> {
     let mut xs: Vec<f64> = hole.coords().map(|c| c.x).collect();
     xs.sort_by(f64::total_cmp);
     xs.dedup();
-    let (mut c, mut gap) = (xs[0], 0.0);
+    let (mut c, mut gap) = (*xs.first()?, 0.0);
     for w in xs.windows(2) {
         if w[1] - w[0] > gap {
             (c, gap) = (0.5 * (w[0] + w[1]), w[1] - w[0]);
         }
+    }
+    if !(gap >= MIN_HOLE_WIDTH_M) {
+        return None;
     }
     let mut eps = 0.25 * gap;
     for o in others {
         let reach = o.coords().map(|p| (p.x - c).abs()).fold(0.0, f64::max);
         eps = eps.min(0.5 * reach);
     }
-    (c, eps)
+    Some((c, eps))
 }
 
 /// A closed geo ring of an open ring of points.
@@ -287,6 +315,24 @@ mod tests {
             vec![(1.0, 200.0), (3.0, 200.0), (2.0, 260.0)],
         ];
         check(&square(0.0, 0.0, 2000.0), &holes);
+    }
+
+    #[test]
+    fn another_holes_vertex_on_the_strip_edge() {
+        // The square hole's widest gap is [-10, 10]: c = 0, and ε = 1 puts the triangle's
+        // vertex (1, 50) exactly on the strip's edge x = c + ε.
+        let holes = vec![
+            square(0.0, 0.0, 20.0),
+            vec![(-2.0, 50.0), (1.0, 50.0), (0.0, 60.0)],
+        ];
+        check(&square(0.0, 20.0, 200.0), &holes);
+    }
+
+    #[test]
+    fn a_hole_thinner_than_the_limit_is_filled() {
+        let thin = vec![(0.0, 0.0), (0.01, 0.0), (0.005, 30.0)];
+        let pieces = simple_pieces(&square(0.0, 0.0, 200.0), &[thin]);
+        assert_eq!(pieces, vec![square(0.0, 0.0, 200.0)]);
     }
 
     #[test]

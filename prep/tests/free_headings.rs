@@ -61,3 +61,27 @@ fn the_papers_rule_turns_a_waypoint_beside_a_zone_away_from_it() {
         "plan (default rule)",
     );
 }
+
+#[test]
+fn the_papers_rule_is_refused_where_there_is_no_roadmap() {
+    let dir = TempDir::new("free-headings-voronoi");
+    let sc = dir.file("v.geojson");
+    ok(skyroute(&["init", &sc, "--mode", "voronoi"]), "init");
+    let net = dir.file("v.bin");
+    ok(skyroute(&["build", &sc, "-o", &net]), "build");
+    let e = common::one_line_error(&skyroute(&[
+        "plan",
+        &net,
+        "--scenario",
+        &sc,
+        "--free-headings",
+        "paper",
+        "-o",
+        &dir.file("r.json"),
+    ]));
+    assert!(
+        e.contains("--free-headings paper counts a roadmap's clear out-edges"),
+        "{e}"
+    );
+    assert!(e.contains("voronoi network"), "{e}");
+}

@@ -162,3 +162,38 @@ fn bad_imports_are_refused_by_name_and_write_nothing() {
     let e = one_line_error(&skyroute(&["import", &kml, "-o", &sc]));
     assert!(e.contains("exists; pass --force"), "{e}");
 }
+
+#[test]
+fn a_plan_holding_only_a_fence_adds_its_zones_and_keeps_the_bases_route() {
+    let dir = TempDir::new("import-fence");
+    let base = dir.file("base.geojson");
+    ok(skyroute(&["init", &base]), "init");
+    // Home and no mission items: the fence alone (an exclusion circle north of the template's
+    // route, and one item at 0, 0 that is listed as left out).
+    let fence = r#"{"fileType": "Plan", "groundStation": "QGroundControl", "version": 1,
+      "geoFence": {"circles": [{"circle": {"center": [48.125, 11.645], "radius": 200},
+                                "inclusion": false, "version": 1}],
+                   "polygons": [], "version": 2},
+      "mission": {"plannedHomePosition": [48.100, 11.600, 500], "version": 2, "items": [
+        {"autoContinue": true, "command": 16, "doJumpId": 1, "frame": 3,
+         "params": [0, 0, 0, null, 0, 0, 50], "type": "SimpleItem"}]},
+      "rallyPoints": {"points": [], "version": 2}}"#;
+    let plan = dir.file("fence.plan");
+    std::fs::write(&plan, fence).unwrap();
+    let sc = dir.file("s.geojson");
+    let o = ok(
+        skyroute(&["import", &plan, "--base", &base, "-o", &sc]),
+        "import",
+    );
+    let said = common::stdout(&o);
+    assert!(
+        said.contains("ITEM0 (at latitude and longitude 0"),
+        "{said}"
+    );
+    assert!(said.contains("HOME (no route)"), "{said}");
+    let s = skyroute_prep::scenario::load(std::path::Path::new(&sc)).unwrap();
+    let names: Vec<&str> = s.no_fly.iter().map(|z| z.name.as_str()).collect();
+    assert_eq!(names, ["Z1", "FENCE_CIRCLE0"]);
+    assert_eq!(s.start.as_ref().unwrap().name, "S");
+    assert_eq!(s.goal.as_ref().unwrap().name, "G");
+}

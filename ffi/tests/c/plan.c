@@ -195,8 +195,8 @@ int main(int argc, char **argv) {
     plan(planner, "plan cleared", &query, budget, SR_STATUS_OK);
 
     /* The start in latitude and longitude and back, then planned from the converted pose. */
-    sr_pose unloaded_pose;
-    expect("geo before load", sr_geo_to_local(NULL, 0.0, 0.0, 0.0, &unloaded_pose),
+    sr_pose null_planner_pose;
+    expect("geo null planner", sr_geo_to_local(NULL, 0.0, 0.0, 0.0, &null_planner_pose),
            SR_STATUS_NULL_POINTER);
     sr_geo_pose geo;
     memset(&geo, 0, sizeof geo);

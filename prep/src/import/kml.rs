@@ -75,8 +75,11 @@ fn polygon(g: roxmltree::Node, file: &str, name: &str) -> Result<Vec<Vec<(f64, f
             format!("{file}: placemark {name:?}: a <Polygon> without outerBoundaryIs")
         })?;
     let mut rings = vec![ring_of(outer)?];
+    // An innerBoundaryIs holds one LinearRing by the schema; Google Earth accepts several.
     for inner in g.children().filter(|c| c.has_tag_name("innerBoundaryIs")) {
-        rings.push(ring_of(inner)?);
+        for ring in inner.children().filter(|c| c.has_tag_name("LinearRing")) {
+            rings.push(ring_of(ring)?);
+        }
     }
     Ok(rings)
 }
@@ -107,7 +110,8 @@ mod tests {
 <Placemark><name>Airfield</name><Polygon><outerBoundaryIs><LinearRing><coordinates>
 11.0,48.0,0 11.1,48.0,0 11.1,48.1,0 11.0,48.1,0 11.0,48.0,0
 </coordinates></LinearRing></outerBoundaryIs><innerBoundaryIs><LinearRing><coordinates>
-11.02,48.02 11.04,48.02 11.04,48.04 11.02,48.02</coordinates></LinearRing></innerBoundaryIs>
+11.02,48.02 11.04,48.02 11.04,48.04 11.02,48.02</coordinates></LinearRing><LinearRing><coordinates>
+11.06,48.06 11.08,48.06 11.08,48.08 11.06,48.06</coordinates></LinearRing></innerBoundaryIs>
 </Polygon></Placemark>
 <Placemark><Point><coordinates>11.5,48.5</coordinates></Point></Placemark>
 <Placemark><name>Range</name><MultiGeometry>
@@ -122,7 +126,11 @@ mod tests {
         assert_eq!(got.zones.len(), 2);
         assert_eq!(got.zones[0].name, "Airfield");
         assert_eq!(got.zones[0].polygons.len(), 1);
-        assert_eq!(got.zones[0].polygons[0].len(), 2, "exterior and one hole");
+        assert_eq!(
+            got.zones[0].polygons[0].len(),
+            3,
+            "exterior and two holes in one boundary"
+        );
         assert_eq!(got.zones[0].polygons[0][1][1], (11.04, 48.02));
         assert_eq!(got.zones[1].polygons.len(), 2);
         assert_eq!(got.skipped, ["point \"placemark 2\""]);

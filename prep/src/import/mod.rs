@@ -260,10 +260,10 @@ fn add_features(doc: &mut Value, got: Imported, input: &Path) -> Result<(), Stri
         let mut props = Map::new();
         props.insert("kind".into(), json!(kind));
         props.insert("name".into(), json!(unique(name)));
-        if k == 0 {
+        if let (0, Some((_, next))) = (k, got.route.get(1)) {
             props.extend(start_extra.clone());
             // The start needs a heading: towards the next position.
-            let h = qgc_plan::bearing_deg(*p, got.route[1].1);
+            let h = qgc_plan::bearing_deg(*p, *next);
             props.insert("heading_deg".into(), json!((h * 1e6).round() / 1e6));
         }
         features.push(json!({

@@ -70,7 +70,7 @@ pub mod limits {
     pub const MAX_SCENARIO_BYTES: u64 = 16 << 20;
     /// The most vertices in one no-fly ring.
     pub const MAX_RING_VERTICES: usize = 100_000;
-    /// The most holes in one no-fly polygon (each hole adds about two pieces to the obstacles
+    /// The most holes in one no-fly polygon (each hole adds at least one piece to the obstacles
     /// the core checks, see `zone_pieces`).
     pub const MAX_HOLES: usize = 1_000;
     /// The most waypoints in a scenario: each free-heading waypoint costs `plan` about a

@@ -542,7 +542,7 @@ fn run(args: Args) -> Result<(), String> {
         );
     }
 
-    let q = query_rs(&source, &network, (v_cap, e_cap), &chosen);
+    let q = query_rs(&source, &network, (v_cap, e_cap), &chosen)?;
 
     write_fixture(&args.out_dir, Some(&bytes), &q)
 }
@@ -554,7 +554,7 @@ fn query_rs(
     network: &Network<'_>,
     (v_cap, e_cap): (usize, usize),
     chosen: &Chosen,
-) -> String {
+) -> Result<String, String> {
     let (nv, ne) = (network.vertex_count(), network.edge_count());
     let &Chosen {
         start,
@@ -635,21 +635,20 @@ fn query_rs(
         "/// Work budget: the network's worst case (`Planner::worst_case_work`)."
     );
     let _ = writeln!(w, "pub const BUDGET: u64 = {budget};");
-    geo_rs(w, network, &start);
+    geo_rs(w, network, &start)?;
 
-    q
+    Ok(q)
 }
 
 /// The start as an autopilot gives it (longitude, latitude, compass heading, through the
 /// network's frame) and the pose the host converts it back to: the firmware converts
 /// `START_GEO` itself and must get `START_FROM_GEO` bit for bit.
-fn geo_rs(w: &mut String, network: &Network<'_>, start: &skyroute::Pose) {
+fn geo_rs(w: &mut String, network: &Network<'_>, start: &skyroute::Pose) -> Result<(), String> {
     let frame = network.local_frame();
-    let ((lon, lat), compass) = match (frame.lon_lat(start.position), frame.compass_deg(start)) {
-        (Ok(p), Ok(c)) => (p, c),
-        _ => ((0.0, 0.0), 0.0),
-    };
-    let back = frame.pose(lon, lat, compass).unwrap_or(*start);
+    let refused = |e: skyroute::GeoError| format!("the start {start:?} through lon/lat: {e}");
+    let (lon, lat) = frame.lon_lat(start.position).map_err(refused)?;
+    let compass = frame.compass_deg(start).map_err(refused)?;
+    let back = frame.pose(lon, lat, compass).map_err(refused)?;
     let _ = writeln!(
         w,
         "/// The start as the autopilot gives it: longitude, latitude (degrees), compass heading\n\
@@ -670,6 +669,7 @@ fn geo_rs(w: &mut String, network: &Network<'_>, start: &skyroute::Pose) {
         lit(back.position.y),
         lit(back.heading)
     );
+    Ok(())
 }
 
 /// Writes the fixture into `out`: `network.bin` (when the firmware embeds a network) and
