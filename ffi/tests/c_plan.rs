@@ -32,29 +32,7 @@ const POPUP_RADIUS: f32 = 100.0;
 /// `v` as C's `printf("%a", (double)v)` writes it with glibc: `0x1.8p+1`, `-0x1p-3`,
 /// `0x0p+0` (an `f32` is a normal `f64`, so the leading digit is 1 unless `v` is zero).
 fn hex_float(v: f32) -> String {
-    let d = v as f64;
-    let sign = if d.is_sign_negative() { "-" } else { "" };
-    if d.is_nan() {
-        return format!("{sign}nan");
-    }
-    if d.is_infinite() {
-        return format!("{sign}inf");
-    }
-    if d == 0.0 {
-        return format!("{sign}0x0p+0");
-    }
-    let bits = d.to_bits();
-    let exponent = ((bits >> 52) & 0x7ff) as i64 - 1023;
-    let mut digits = format!("{:013x}", bits & ((1u64 << 52) - 1));
-    while digits.ends_with('0') {
-        digits.pop();
-    }
-    let fraction = if digits.is_empty() {
-        String::new()
-    } else {
-        format!(".{digits}")
-    };
-    format!("{sign}0x1{fraction}p{exponent:+}")
+    hex_f64(v as f64)
 }
 
 fn status_line(out: &mut String, label: &str, status: SrStatus) {
@@ -347,12 +325,19 @@ fn geo_lines(out: &mut String, p: &mut CorePlanner, query: &Query, budget: u64) 
     status_line(out, "geo null out", SrStatus::NullPointer);
 }
 
-/// `d` as C's `printf("%a", d)` writes it with glibc (normal and zero values).
+/// `d` as C's `printf("%a", d)` writes it with glibc: `0x1.8p+1`, `-0x1p-3`, `0x0p+0`, `nan`,
+/// `inf` (normal values; every `f32` is a normal `f64`).
 fn hex_f64(d: f64) -> String {
-    if d == 0.0 {
-        return format!("{}0x0p+0", if d.is_sign_negative() { "-" } else { "" });
-    }
     let sign = if d.is_sign_negative() { "-" } else { "" };
+    if d.is_nan() {
+        return format!("{sign}nan");
+    }
+    if d.is_infinite() {
+        return format!("{sign}inf");
+    }
+    if d == 0.0 {
+        return format!("{sign}0x0p+0");
+    }
     let bits = d.to_bits();
     let exponent = ((bits >> 52) & 0x7ff) as i64 - 1023;
     let mut digits = format!("{:013x}", bits & ((1u64 << 52) - 1));

@@ -6,18 +6,28 @@
 mod common;
 use common::{ok, skyroute, stdout, TempDir};
 
+/// The `skyroute init` template of `mode` in `dir`, with `edit.0` replaced by `edit.1`, and
+/// its network built: their paths.
+fn template_network(dir: &TempDir, mode: &str, edit: (&str, &str)) -> (String, String) {
+    let sc = dir.file("s.geojson");
+    ok(skyroute(&["init", &sc, "--mode", mode]), "init");
+    if !edit.0.is_empty() {
+        let text = std::fs::read_to_string(&sc)
+            .unwrap()
+            .replace(edit.0, edit.1);
+        std::fs::write(&sc, text).unwrap();
+    }
+    let net = dir.file("n.bin");
+    ok(skyroute(&["build", &sc, "-o", &net]), "build");
+    (sc, net)
+}
+
 #[test]
 fn the_papers_rule_turns_a_waypoint_beside_a_zone_away_from_it() {
     let dir = TempDir::new("free-headings");
-    let sc = dir.file("s.geojson");
-    ok(skyroute(&["init", &sc]), "init");
     // The template's waypoint W1 moves next to the west side (lon 11.612) of zone Z1.
-    let text = std::fs::read_to_string(&sc)
-        .unwrap()
-        .replace("[11.630, 48.112]", "[11.6115, 48.100]");
-    std::fs::write(&sc, text).unwrap();
-    let (net, route) = (dir.file("n.bin"), dir.file("r.json"));
-    ok(skyroute(&["build", &sc, "-o", &net]), "build");
+    let (sc, net) = template_network(&dir, "roadmap", ("[11.630, 48.112]", "[11.6115, 48.100]"));
+    let route = dir.file("r.json");
     let o = ok(
         skyroute(&[
             "plan",
@@ -65,10 +75,7 @@ fn the_papers_rule_turns_a_waypoint_beside_a_zone_away_from_it() {
 #[test]
 fn the_papers_rule_is_refused_where_there_is_no_roadmap() {
     let dir = TempDir::new("free-headings-voronoi");
-    let sc = dir.file("v.geojson");
-    ok(skyroute(&["init", &sc, "--mode", "voronoi"]), "init");
-    let net = dir.file("v.bin");
-    ok(skyroute(&["build", &sc, "-o", &net]), "build");
+    let (sc, net) = template_network(&dir, "voronoi", ("", ""));
     let e = common::one_line_error(&skyroute(&[
         "plan",
         &net,

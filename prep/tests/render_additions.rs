@@ -87,14 +87,14 @@ fn path_points(d: &str) -> Vec<(f64, f64)> {
     nums.chunks(2).map(|c| (c[0], c[1])).collect()
 }
 
-#[test]
-fn a_landmark_network_shows_named_landmarks_its_chains_and_a_graticule() {
-    let dir = TempDir::new("render-landmarks");
-    let sc = scenario("landmark-figure4.geojson");
-    let (net, route, svg) = (dir.file("f4.bin"), dir.file("r.json"), dir.file("f4.svg"));
-    ok(skyroute(&["build", &sc, "-o", &net]), "build");
+/// Builds `sc` into `dir`, plans it and renders the route to SVG; returns the network's and the
+/// route file's paths and the SVG's text.
+fn build_plan_render(dir: &TempDir, sc: &str, stem: &str) -> (String, String, String) {
+    let net = dir.file(&format!("{stem}.bin"));
+    let (route, svg) = (dir.file("r.json"), dir.file(&format!("{stem}.svg")));
+    ok(skyroute(&["build", sc, "-o", &net]), "build");
     ok(
-        skyroute(&["plan", &net, "--scenario", &sc, "-o", &route]),
+        skyroute(&["plan", &net, "--scenario", sc, "-o", &route]),
         "plan",
     );
     ok(
@@ -104,13 +104,21 @@ fn a_landmark_network_shows_named_landmarks_its_chains_and_a_graticule() {
             "--route",
             &route,
             "--scenario",
-            &sc,
+            sc,
             "-o",
             &svg,
         ]),
         "render",
     );
     let text = std::fs::read_to_string(&svg).unwrap();
+    (net, route, text)
+}
+
+#[test]
+fn a_landmark_network_shows_named_landmarks_its_chains_and_a_graticule() {
+    let dir = TempDir::new("render-landmarks");
+    let sc = scenario("landmark-figure4.geojson");
+    let (net, _, text) = build_plan_render(&dir, &sc, "f4");
     let doc = roxmltree::Document::parse(&text).unwrap();
     let all = texts(&doc);
     let names = landmark_names(&sc);
@@ -235,26 +243,7 @@ fn distance_to_route(prims: &[skyroute::Primitive], p: Vec2) -> f32 {
 fn a_terrain_route_has_a_profile_of_the_network_elevations_under_it() {
     let dir = TempDir::new("render-profile");
     let sc = scenario("medeiros-jacksboro.geojson");
-    let (net, route, svg) = (dir.file("jb.bin"), dir.file("r.json"), dir.file("jb.svg"));
-    ok(skyroute(&["build", &sc, "-o", &net]), "build");
-    ok(
-        skyroute(&["plan", &net, "--scenario", &sc, "-o", &route]),
-        "plan",
-    );
-    ok(
-        skyroute(&[
-            "render",
-            &net,
-            "--route",
-            &route,
-            "--scenario",
-            &sc,
-            "-o",
-            &svg,
-        ]),
-        "render",
-    );
-    let text = std::fs::read_to_string(&svg).unwrap();
+    let (net, route, text) = build_plan_render(&dir, &sc, "jb");
     let doc = roxmltree::Document::parse(&text).unwrap();
     let all = texts(&doc);
     for entry in [
