@@ -108,7 +108,8 @@ fn strip_across(hole: &LineString<f64>, others: &[LineString<f64>]) -> Option<(f
             (c, gap) = (0.5 * (w[0] + w[1]), w[1] - w[0]);
         }
     }
-    if !(gap >= MIN_HOLE_WIDTH_M) {
+    // `gap` is finite: the parser refuses non-finite coordinates.
+    if gap < MIN_HOLE_WIDTH_M {
         return None;
     }
     let mut eps = 0.25 * gap;
