@@ -55,8 +55,9 @@
 #define SR_EXIT_POPUP 2
 
 // What a call did: `SR_STATUS_OK` (0), a misuse of the API (1–99), or why the core refused:
-// loading 100–199, planning 200–299, pop-ups 300–399, latitude and longitude 400–499. The numbers are fixed; the numbers
-// the core's errors carry (counts, indices) are not reported through the C API.
+// loading 100–199, planning 200–299, pop-ups 300–399, latitude and longitude 400–499. The
+// numbers are fixed; the numbers the core's errors carry (counts, indices) are not reported
+// through the C API.
 enum sr_status
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : int32_t
