@@ -166,8 +166,9 @@ mod app {
         reference: Reference,
     }
 
-    /// Loads the network, adds the pop-up, plans once in one call (the reference), then starts
-    /// the monotonic and both tasks.
+    /// Loads the network, converts the start from latitude and longitude (checked against the
+    /// host's pose), adds the pop-up, plans once in one call (the reference), then starts the
+    /// monotonic and both tasks.
     #[init]
     fn init(cx: init::Context) -> (Shared, Local) {
         let planner = PLANNER.take();
@@ -176,6 +177,25 @@ mod app {
             exit(false);
         }
         planner.set_config(CONFIG);
+        // The start as the autopilot gives it, in the network's frame as on the host.
+        let (lon, lat, compass) = START_GEO;
+        match planner.network().local_frame().pose(lon, lat, compass) {
+            Ok(p)
+                if p.position.x.to_bits() == START_FROM_GEO.position.x.to_bits()
+                    && p.position.y.to_bits() == START_FROM_GEO.position.y.to_bits()
+                    && p.heading.to_bits() == START_FROM_GEO.heading.to_bits() =>
+            {
+                defmt::info!("start from lon/lat: {}, the host's bit for bit", p)
+            }
+            other => {
+                defmt::error!(
+                    "start from lon/lat: {}, host {}",
+                    other.ok(),
+                    START_FROM_GEO
+                );
+                exit(false);
+            }
+        }
         let (x, y, radius) = POPUP;
         if let Err(e) = planner.add_popup(Popup::Circle {
             centre: Vec2::new(x, y),
