@@ -10,7 +10,8 @@
 #   stored bypass alternatives, binary `ruz`: decide a sequence of announcements, fly the
 #   choices and re-plan, and a worst-case decision, as the host does) and for planning in
 #   slices (the roadmap fixture, binary `slices` with the feature `slices`: RTIC 2, a task
-#   ticking while the query is planned a slice at a time) → a short run of every fuzz target
+#   ticking while the query is planned a slice at a time) → no recursion, no panic path (the
+#   disassembly, and a link with an undefined panic handler), stack bound → a short run of every fuzz target
 #   (scripts/fuzz-smoke.sh; skipped, with a message, where no nightly toolchain is installed).
 # Runnable from any directory. Stops at the first failing step; KEEP_GOING=1 runs every step
 # and fails at the end instead.
@@ -389,6 +390,8 @@ step "slices firmware under QEMU (netduinoplus2)" firmware_run "$firmware_releas
 step "slices firmware size" firmware_size "$firmware_release/slices"
 step "no recursion in the core (the five firmware binaries' call graphs)" scripts/no-recursion.sh
 step "no panic path in the core (the five firmware binaries' disassembly)" scripts/prove-no-panic.sh
+step "no panic path at all (the five firmware binaries linked with an undefined panic handler)" \
+    scripts/prove-no-panic-link.sh
 step "stack bound (static, from the five firmware binaries' disassembly)" stack_bound
 
 step "fuzz smoke run (each cargo-fuzz target for FUZZ_SECONDS, default 20 s)" \

@@ -33,6 +33,7 @@
 pub mod autopilot;
 pub mod clock;
 pub mod landmark;
+mod log_transport;
 pub mod popup_mission;
 pub mod ruz;
 pub mod stack;
@@ -42,7 +43,6 @@ use clock::Clock;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use cortex_m_rt::{exception, ExceptionFrame};
 use cortex_m_semihosting::debug::{self, ExitStatus};
-use defmt_semihosting as _; // the defmt transport: semihosting writes to QEMU's stdout
 use skyroute::planner::PlannerConfig;
 use skyroute::Planner;
 

@@ -28,7 +28,7 @@ use skyroute::planner::{PlanError, PlannerConfig};
 use skyroute::{Planner, Query};
 
 /// What the host decided: the choice and its figures.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, defmt::Format)]
 pub struct Expected {
     /// The alternative chosen for each pop-up.
     pub choice: &'static [u8],
@@ -238,11 +238,7 @@ fn check_decision(
     }
     let ok = same(got, expected);
     if !ok {
-        defmt::error!(
-            "{=str}: the host decided {}",
-            what,
-            defmt::Debug2Format(expected)
-        );
+        defmt::error!("{=str}: the host decided {}", what, expected);
     }
     ok && got.as_ref().map_or(true, |d| d.work <= bound)
 }

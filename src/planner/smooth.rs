@@ -61,7 +61,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     if let Some(slot) = self.paths.get_mut(i - 1) {
                         *slot = joined;
                     }
-                    self.paths.remove(i);
+                    // `get(i)` above found path i; the test lets the compiler see it.
+                    if i < self.paths.len() {
+                        self.paths.remove(i);
+                    }
                     count = count + pieces(&joined) - pieces(&a) - pieces(&b);
                     changes += 1;
                 }

@@ -25,11 +25,14 @@ use core::task::{Context, Poll};
 use cortex_m::peripheral::SYST;
 use cortex_m_rt::{exception, ExceptionFrame};
 use cortex_m_semihosting::debug;
-use defmt_semihosting as _; // the defmt transport: semihosting writes to QEMU's stdout
 use rtic_monotonics::systick::prelude::*;
 use skyroute::planner::PlanStep;
 use skyroute::{Planner, Popup, Query, RouteSummary, Search, Vec2};
 use static_cell::ConstStaticCell;
+
+/// The defmt transport the library's binaries use (semihosting, no panic path).
+#[path = "../log_transport.rs"]
+mod log_transport;
 
 mod fixture {
     include!(concat!(env!("ROADMAP_FIXTURE"), "/query.rs"));
@@ -128,10 +131,23 @@ fn exit(ok: bool) -> ! {
     }
 }
 
+#[cfg(not(feature = "prove-no-panic"))]
 #[panic_handler]
 fn panic(info: &core::panic::PanicInfo) -> ! {
     defmt::error!("panic: {}", defmt::Display2Format(info));
     exit(false)
+}
+
+/// With the `prove-no-panic` feature the link fails unless no panic path survives, as in the
+/// library's binaries.
+#[cfg(feature = "prove-no-panic")]
+#[panic_handler]
+fn panic(_: &core::panic::PanicInfo) -> ! {
+    extern "C" {
+        fn skyroute_firmware_can_panic() -> !;
+    }
+    // SAFETY: never linked; a build whose panics all optimise away has no call to it.
+    unsafe { skyroute_firmware_can_panic() }
 }
 
 #[exception]
@@ -171,7 +187,10 @@ mod app {
     /// monotonic and both tasks.
     #[init]
     fn init(cx: init::Context) -> (Shared, Local) {
-        let planner = PLANNER.take();
+        let Some(planner) = PLANNER.try_take() else {
+            defmt::error!("the planner was taken before init");
+            exit(false);
+        };
         if let Err(e) = planner.load(NETWORK) {
             defmt::error!("load failed: {}", e);
             exit(false);
