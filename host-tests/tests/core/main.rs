@@ -7,6 +7,8 @@
 /// header claiming four billion vertices, positions beyond the limit, a zero budget, mode-only
 /// calls on a roadmap, bad pop-ups, a pop-up over the start, a full pop-up table, unknown ids.
 mod bad_input;
+/// The image checksum (CRC-32) against `crc32fast`.
+mod checksum;
 /// Format v4's compact records: damaged cell lists and Dubins words each refused by name; the
 /// in-flight checksum pass.
 mod compact_records;
