@@ -3,7 +3,7 @@
 
 use crate::build_limits::{check_area, check_grid, check_sampling, encode_checked, landmark_box};
 use crate::frame::LocalFrame;
-use crate::landmark::{build_landmark_network, LandmarkNetwork};
+use crate::landmark::{build_landmark_network_with, LandmarkNetwork, RangeRule};
 use crate::roadmap::{
     build_roadmap, CollisionCheck, Roadmap, RoadmapInput, RoadmapParams, Sagitta,
 };
@@ -40,6 +40,9 @@ pub struct BuildOptions {
     /// Terrain mode: further altitudes whose terrain also gets nodes (see
     /// [`TerrainParams::extra_altitudes_m`]).
     pub extra_altitudes_m: Vec<f64>,
+    /// Landmark mode: which chains are stored ([`RangeRule`]; default: those a straight leg
+    /// and the chain's own length allow in the best weather).
+    pub landmark_ranges: RangeRule,
 }
 
 /// Terrain mode's default node margin, metres. A larger margin leaves room for sharper turns
@@ -417,7 +420,8 @@ fn build_landmark(
     // The grid covers about the landmarks and endpoints grown by a cell, and more: refused
     // here before the build, what fits is checked exactly by the writer.
     check_grid(&file, grid_field, cell, (lo, hi), cell)?;
-    let net = build_landmark_network(s, progress).map_err(BuildError::Landmark)?;
+    let net = build_landmark_network_with(s, options.landmark_ranges, progress)
+        .map_err(BuildError::Landmark)?;
     let frame = net.frame.unwrap_or_else(|| s.local_frame());
     let mut spec = landmark_spec(&net, cell, &frame)
         .map_err(|field| BuildError::Missing(file.clone(), field))?;

@@ -83,6 +83,16 @@ pub fn parse_sagitta(s: &str) -> Result<Sagitta, String> {
     }
 }
 
+/// The landmark range rule by name: ground (chains out of range dropped when built) or
+/// onboard (every chain stored, navigability pruned onboard: Babel's reading).
+pub fn parse_landmark_ranges(s: &str) -> Result<crate::landmark::RangeRule, String> {
+    match s {
+        "ground" => Ok(crate::landmark::RangeRule::PathLength),
+        "onboard" => Ok(crate::landmark::RangeRule::Onboard),
+        _ => Err(format!("expected ground or onboard, got {s:?}")),
+    }
+}
+
 /// The terrain turn rule by name: paper or shared-equally.
 pub fn parse_turn_rule(s: &str) -> Result<skyroute::TurnRule, String> {
     match s.trim() {

@@ -222,6 +222,13 @@ enum Command {
         /// level allowed as for terrain.altitude_m).
         #[arg(long, value_delimiter = ',', value_parser = parse_finite, allow_hyphen_values = true)]
         altitude_levels: Vec<f64>,
+        /// Landmark mode: which chains are stored. `ground` (the default): a direction is
+        /// searched only if a straight leg is within its best-weather range, and a chain longer
+        /// than that range is dropped. `onboard` (Babel's reading): every direction of every
+        /// pair is searched and every chain found stored, for the planner's navigability
+        /// pruning to remove in flight (a larger image, the same routes).
+        #[arg(long, value_parser = parse_landmark_ranges)]
+        landmark_ranges: Option<skyroute_prep::landmark::RangeRule>,
         /// Replace a self-intersecting no-fly polygon by its convex hull (which forbids all it
         /// did, and possibly more) instead of refusing the scenario; a warning names it.
         #[arg(long)]
@@ -576,6 +583,7 @@ fn run(cli: Cli) -> CliResult {
             max_edge,
             node_margin,
             altitude_levels,
+            landmark_ranges,
             hull_repair,
             mode,
         } => {
@@ -588,6 +596,7 @@ fn run(cli: Cli) -> CliResult {
                 max_edge_m: max_edge,
                 node_margin_m: node_margin,
                 extra_altitudes_m: altitude_levels,
+                landmark_ranges: landmark_ranges.unwrap_or_default(),
             };
             build_command(&path, &output, &options, hull_repair, mode)
         }

@@ -428,6 +428,60 @@ fn same_network_on_any_number_of_threads() {
     assert_ne!(reseeded.edges, one.edges);
 }
 
+/// Babel's reading (`--landmark-ranges onboard`): every direction searched, every chain kept.
+/// The ground rule's edges come back unchanged, and each further edge is one the ground rule
+/// refuses by its own definition: its source direction's best-weather range is below the
+/// landmarks' distance, or its chain is longer than that range.
+#[test]
+fn onboard_rule_stores_every_chain_the_ground_rule_refuses() {
+    if !full_tier_only(
+        "landmark_build::onboard_rule_stores_every_chain_the_ground_rule_refuses",
+        "two babel-II-N builds",
+    ) {
+        return;
+    }
+    // babel-II-N: its rosettes leave some directions out of range (babel-I's are all 1).
+    let s = load("babel-II-N.geojson");
+    let mut params = LandmarkParams::from_scenario(&s);
+    params.line_elements_per_pair = 100;
+    let ground = build(&s, &params);
+    params.range_rule = RangeRule::Onboard;
+    let onboard = build(&s, &params);
+    assert!(ground.stats.directions_out_of_range > 0);
+    assert_eq!(onboard.stats.directions_out_of_range, 0);
+    assert_eq!(onboard.stats.edges_over_range, 0);
+    let input = LandmarkInput::from_scenario(&s, &params).unwrap();
+    let n = params.directions;
+    let kept: HashSet<(u32, u32)> = ground.edges.iter().map(|e| (e.source, e.target)).collect();
+    let mut extra = 0;
+    for e in &onboard.edges {
+        if kept.contains(&(e.source, e.target)) {
+            let g = ground
+                .edges
+                .iter()
+                .find(|g| (g.source, g.target) == (e.source, e.target))
+                .unwrap();
+            assert_eq!(g, e, "a chain both rules keep is the same chain");
+            continue;
+        }
+        extra += 1;
+        let (a, ka) = (e.source as usize / n, e.source as usize % n);
+        let b = e.target as usize / n;
+        let lm = &input.landmarks;
+        let d = lm[a].position.distance(lm[b].position);
+        let range = lm[a].range_m(ka);
+        assert!(
+            range < d || e.chain.cost > range,
+            "edge {} -> {}: range {range} m, distance {d} m, chain {} m: the ground rule keeps it",
+            e.source,
+            e.target,
+            e.chain.cost
+        );
+    }
+    assert_eq!(onboard.edges.len(), ground.edges.len() + extra);
+    assert!(extra > 0);
+}
+
 #[test]
 fn pair_distance_rule_keeps_the_longer_chains() {
     let s = load("babel-I.geojson");

@@ -50,7 +50,19 @@ pub fn build_landmark_network(
     s: &Scenario,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<LandmarkNetwork, LandmarkError> {
-    let params = LandmarkParams::from_scenario(s);
+    build_landmark_network_with(s, RangeRule::default(), progress)
+}
+
+/// [`build_landmark_network`] with the range rule given (`skyroute build --landmark-ranges`).
+pub fn build_landmark_network_with(
+    s: &Scenario,
+    range_rule: RangeRule,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<LandmarkNetwork, LandmarkError> {
+    let params = LandmarkParams {
+        range_rule,
+        ..LandmarkParams::from_scenario(s)
+    };
     let input = LandmarkInput::from_scenario(s, &params)?;
     Ok(build_from_input(&input, &params, progress))
 }
@@ -115,7 +127,7 @@ pub fn build_from_input(
     let mut start_edges = Vec::new();
     let mut goal_edges = Vec::new();
     for (kind, r) in kinds.iter().zip(&results) {
-        stats.directions_out_of_range += directions_out_of_range(input, n, kind);
+        stats.directions_out_of_range += directions_out_of_range(input, params, kind);
         add_job_stats(&mut stats, r);
         match *kind {
             JobKind::Pair(a, b) => pair_edges(input, params, (a, b), r, &mut stats, &mut edges),
@@ -245,8 +257,11 @@ fn make_job(
             // Forward: A directions whose range reaches B. Reverse: B→A edges (B β → A α)
             // come from G paths A (α+180°) → B (β+180°), needed when some B direction
             // reaches A.
-            let forward_sources = (0..n).filter(|&k| lm[a].range_m(k) >= d).collect();
-            let reverse_sources = if (0..n).any(|k| lm[b].range_m(k) >= d) {
+            let rule = params.range_rule;
+            let forward_sources = (0..n)
+                .filter(|&k| rule.searches(lm[a].range_m(k), d))
+                .collect();
+            let reverse_sources = if (0..n).any(|k| rule.searches(lm[b].range_m(k), d)) {
                 (0..n).map(|k| opp_a[k]).collect()
             } else {
                 Vec::new()
@@ -292,7 +307,9 @@ fn make_job(
                 focus_b: gp,
                 major_axis: lm[l].max_range_m(),
                 seed: job_seed(params.seed, 3, l as u64, 0),
-                forward_sources: (0..n).filter(|&k| lm[l].range_m(k) >= d).collect(),
+                forward_sources: (0..n)
+                    .filter(|&k| params.range_rule.searches(lm[l].range_m(k), d))
+                    .collect(),
                 reverse_sources: Vec::new(),
             }
         }
@@ -301,7 +318,15 @@ fn make_job(
 
 /// How many source directions of `kind` cannot reach the other site at all (their range is
 /// shorter than the straight distance), so were not searched from.
-fn directions_out_of_range(input: &LandmarkInput, n: usize, kind: &JobKind) -> usize {
+fn directions_out_of_range(
+    input: &LandmarkInput,
+    params: &LandmarkParams,
+    kind: &JobKind,
+) -> usize {
+    if params.range_rule == RangeRule::Onboard {
+        return 0;
+    }
+    let n = params.directions;
     let lm = &input.landmarks;
     match *kind {
         JobKind::Pair(a, b) => {
@@ -397,7 +422,7 @@ fn pair_edges(
         };
         for (kb, &tb) in opp_b.iter().enumerate() {
             let range = lm[b].range_m(kb);
-            if range < d {
+            if !params.range_rule.searches(range, d) {
                 continue;
             }
             match paths.to_b.get(tb).and_then(|p| p.as_ref()) {

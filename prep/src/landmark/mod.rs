@@ -24,7 +24,9 @@
 //! **longer than** `r_A(α)` is dropped too: the navigation error grows with the distance flown,
 //! so no weather can fly it (counted in [`LandmarkStats::edges_over_range`]);
 //! [`RangeRule::PairDistance`] keeps it and leaves the test to the planner (every edge carries
-//! its length). The range of a direction is the
+//! its length), and [`RangeRule::Onboard`] (Babel's reading, `build --landmark-ranges onboard`)
+//! also searches the directions whose straight leg is out of range, storing every chain for
+//! the onboard pruning. The range of a direction is the
 //! rosette's value at that heading, linearly interpolated around the 12 given headings when
 //! `directions` is not 12.
 //!
@@ -131,7 +133,7 @@ mod network;
 mod params;
 mod sampling;
 
-pub use build::{build_from_input, build_landmark_network};
+pub use build::{build_from_input, build_landmark_network, build_landmark_network_with};
 pub use input::{rosette_quality, EndpointSite, LandmarkInput, LandmarkSite, Rosette};
 pub use network::{
     EndpointEdge, EndpointLinks, HermiteChain, LandmarkEdge, LandmarkNetwork, LandmarkStats,

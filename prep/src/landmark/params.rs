@@ -48,6 +48,18 @@ pub enum RangeRule {
     /// Only the straight distance between the two sites: every chain found is kept, and its
     /// `cost` lets the planner apply its own rule.
     PairDistance,
+    /// Babel's reading of the network: every direction of every pair is searched, whatever
+    /// its range, and every chain found is stored; navigability is left entirely to the
+    /// planner's pruning onboard (`skyroute build --landmark-ranges onboard`).
+    Onboard,
+}
+
+impl RangeRule {
+    /// Whether a source direction of range `range` gets a search towards a site `d` metres
+    /// away: under [`RangeRule::Onboard`] always, otherwise only if a straight leg reaches.
+    pub fn searches(self, range: f32, d: f32) -> bool {
+        self == RangeRule::Onboard || range >= d
+    }
 }
 
 impl LandmarkParams {
