@@ -155,6 +155,10 @@ fn bad_imports_are_refused_by_name_and_write_nothing() {
     std::fs::write(&bad, inside).unwrap();
     let e = one_line_error(&skyroute(&["import", &bad, "-o", &sc]));
     assert!(e.contains("nothing was written"), "{e}");
+    assert!(
+        e.contains("assembled from") && e.contains("inside.plan"),
+        "{e}"
+    );
     assert!(e.contains("waypoint lies inside no-fly"), "{e}");
     assert!(!std::path::Path::new(&sc).exists());
     // An existing output is kept without --force.

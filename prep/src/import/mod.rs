@@ -99,7 +99,12 @@ pub fn import_command(a: &ImportArgs) -> Result<String, String> {
     }
     let text = serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())? + "\n";
     crate::scenario::parse(&text, out).map_err(|e| {
-        format!("the scenario assembled from the inputs is not valid, nothing was written: {e}")
+        let names: Vec<String> = inputs.iter().map(|p| p.display().to_string()).collect();
+        format!(
+            "the scenario assembled from {} is not valid, nothing was written: {e} (each \
+             feature's `comment` names the input it came from)",
+            names.join(", ")
+        )
     })?;
     crate::output::write_atomically(out, text.as_bytes())?;
     Ok(format!("{} -> {}", summary.join("; "), out.display()))
