@@ -86,8 +86,16 @@ struct Extent {
 }
 
 impl Extent {
+    /// The network's map: its pop-up grid index, and for a terrain network also its elevation
+    /// grid (where few cells are blocked, as high above the terrain, the nodes and so the index
+    /// cover much less than the DEM, and the start and goal connect through the elevations).
     fn of(net: &Network, frame: &LocalFrame) -> Self {
-        let (lo, hi) = net.extent();
+        let (mut lo, mut hi) = net.extent();
+        if let Some(g) = net.terrain_grid() {
+            let far = g.origin + Vec2::new(g.cols as f32 * g.cell, g.rows as f32 * g.cell);
+            lo = Vec2::new(lo.x.min(g.origin.x), lo.y.min(g.origin.y));
+            hi = Vec2::new(hi.x.max(far.x), hi.y.max(far.y));
+        }
         let corners = [(lo.x, lo.y), (hi.x, lo.y), (lo.x, hi.y), (hi.x, hi.y)]
             .map(|(x, y)| frame.to_geo(x as f64, y as f64));
         let lons = corners.map(|c| c.0);

@@ -369,6 +369,50 @@ fn anything_off_the_map_is_refused_by_name() {
     );
 }
 
+/// A terrain network's map is its elevation grid: flown at 1 000 m over Jacksboro, few cells
+/// are blocked, so the nodes (and the pop-up index built round them) cover a corner of the DEM
+/// that leaves Q 2.7 km outside, yet the goal lies on the DEM and the core connects to it.
+#[test]
+fn a_terrain_goal_on_the_dem_but_far_from_every_node_is_planned() {
+    let dir = TempDir::new("terrain-high");
+    let dem = dir.file("dem.asc");
+    std::fs::copy(scenario("jacksboro-dem.asc"), &dem).unwrap();
+    let mut s = read_json(&scenario("medeiros-jacksboro.geojson"));
+    s["terrain"]["dem"] = json!(dem);
+    s["terrain"]["altitude_m"] = json!(1000.0);
+    let sc = dir.file("high.geojson");
+    write_json(&sc, &s);
+    let net = dir.file("high.bin");
+    ok(
+        skyroute(&["build", &sc, "-o", &net]),
+        "build terrain at 1000 m",
+    );
+    let out = dir.file("route.json");
+    ok(
+        skyroute(&["plan", &net, "--scenario", &sc, "-o", &out]),
+        "plan terrain at 1000 m",
+    );
+    let route = read_json(&out);
+    let length = route["length_m"].as_f64().unwrap();
+    // P and Q are about 21 km apart (great circle): nearly straight at this altitude.
+    assert!((20_000.0..30_000.0).contains(&length), "{length}");
+    std::fs::remove_file(&out).unwrap();
+    // A goal off the DEM is still refused by name.
+    for f in s["features"].as_array_mut().unwrap() {
+        if f["properties"]["kind"] == "goal" {
+            f["geometry"]["coordinates"][0] = json!(-83.0);
+        }
+    }
+    let far = dir.file("far.geojson");
+    write_json(&far, &s);
+    refused(
+        &["plan", &net, "--scenario", &far, "-o", &out],
+        &out,
+        1,
+        &["goal \"Q\"", "outside the network's extent"],
+    );
+}
+
 #[test]
 fn ruz_popups_plans_and_a_fixed_radius_says_why_it_cannot() {
     let dir = TempDir::new("ruz");
