@@ -455,6 +455,60 @@ fn babel_i_and_iii_and_their_reachable_variants() {
     }
 }
 
+/// Babel's scenario I as the paper tells it, on the repo's `babel-I-detour` (its `description`
+/// gives the layout): in nominal weather the route follows the line L1 … L6; with L2 and L3
+/// halved to 3.5 km (`degraded`), no landmark is within their reach, so the route goes round
+/// them over the parallel line and is longer. Every route is checked in f64 by
+/// `plan_all_weathers` (range, speed, accelerations, clearance, joints).
+#[test]
+fn babel_i_detour_goes_round_the_two_degraded_landmarks() {
+    if !full_tier_only(
+        "landmark_plan::babel_i_detour_goes_round_the_two_degraded_landmarks",
+        "builds babel-I-detour",
+    ) {
+        return;
+    }
+    let (s, built) = build_scenario("babel-I-detour");
+    let outcomes = plan_all_weathers("babel-I-detour", s, built);
+    let length = |w: usize| outcomes[w].as_ref().expect("a route in every weather").0;
+    assert!(
+        length(1) > length(0) + 1000.0,
+        "{} vs {}",
+        length(1),
+        length(0)
+    );
+    let net = Network::from_bytes(&built.bytes).unwrap();
+    let l = *net.landmark().unwrap();
+    let mut planner: Box<Lp> = Box::new(Planner::new());
+    planner.load(&built.bytes).unwrap();
+    let index = |name: &str| s.landmarks.iter().position(|m| m.name == name).unwrap() as u32;
+    let (l2, l3) = (index("L2"), index("L3"));
+    for (w, over_l2_and_l3) in [(0, true), (1, false)] {
+        planner.set_weather(w).unwrap();
+        planner
+            .plan(&query(&net), planner.worst_case_work())
+            .unwrap();
+        let overflown: Vec<u32> = planner
+            .route_edges()
+            .iter()
+            .map(|&e| net.edge_link(e).unwrap().source)
+            .filter(|&v| v < l.landmark_count * l.directions)
+            .map(|v| v / l.directions)
+            .collect();
+        assert_eq!(
+            overflown.contains(&l2) && overflown.contains(&l3),
+            over_l2_and_l3,
+            "weather {w}: overflown {overflown:?}"
+        );
+        if !over_l2_and_l3 {
+            assert!(
+                !overflown.contains(&l2) && !overflown.contains(&l3),
+                "{overflown:?}"
+            );
+        }
+    }
+}
+
 /// Smallest f64 distance from any piece of edge `e` (sampled densely) to `centre`.
 fn edge_min_distance(net: &Network, e: u32, centre: P) -> f64 {
     let mut best = f64::INFINITY;
