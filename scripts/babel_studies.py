@@ -50,8 +50,10 @@ def build(skyroute, scenario, out, *extra):
                        capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"build {scenario}: {r.stderr.strip()}")
-    edges = int(re.search(r"(\d+) edges between them", r.stdout).group(1))
-    return edges, time.monotonic() - t
+    m = re.search(r"(\d+) edges between them", r.stdout)
+    if not m:
+        sys.exit(f"build {scenario}: no edge count in its summary: {r.stdout.strip()}")
+    return int(m.group(1)), time.monotonic() - t
 
 
 def plan(skyroute, network, scenario, weather, out):
@@ -99,14 +101,18 @@ def study_pairs(skyroute, tmp):
     json.dump(s, open(path, "w"))
     net = os.path.join(tmp, "babel-I-pairs.bin")
     build(skyroute, path, net)
-    base, _ = plan(skyroute, net, path, "nominal", os.path.join(tmp, "I-nominal.json"))
+    base, why = plan(skyroute, net, path, "nominal", os.path.join(tmp, "I-nominal.json"))
+    if not base:
+        sys.exit(f"{SCENARIO_I} in nominal weather: {why}")
     routed, refused = [], 0
     for w in weathers[1:]:
-        got, _ = plan(skyroute, net, path, w, os.path.join(tmp, f"I-{w}.json"))
+        got, why = plan(skyroute, net, path, w, os.path.join(tmp, f"I-{w}.json"))
         if got:
             routed.append((w, got[0]))
-        else:
+        elif "no navigable route" in why or "none can exist" in why:
             refused += 1
+        else:
+            sys.exit(f"weather {w}: {why}")
     print("\n### Scenario I: two landmarks at half range\n")
     print(f"babel-I-bridged, nominal: {base[0]:.1f} km over {base[1]} overflights.\n")
     print("| pairs halved | routed | refused (no navigable route) | routed pairs: route (km) |")

@@ -51,6 +51,8 @@ def main():
                     print(f"| {r_c:.0f} m | {alt:.0f} m | not built: {line} | | |")
                     continue
                 graph = re.search(r"(\d+) nodes, (\d+) edges", line)
+                if not graph:
+                    raise SystemExit(f"build at r_c {r_c} m, {alt} m: no graph in {line!r}")
                 graph = f"{graph.group(1)} nodes, {graph.group(2)} edges"
                 code, line = run([sk, "plan", net, "--scenario", sc, "-o", out])
                 if code == 0:

@@ -196,7 +196,8 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
 
 /// With the `prove-no-panic` feature the panic handler calls a function that exists nowhere:
 /// the release build links only if the optimiser removed every path to a panic, and otherwise
-/// the linker names each function that still reaches one (`scripts/prove-no-panic.sh`).
+/// the linker names the handler (`scripts/prove-no-panic-link.sh`; `scripts/prove-no-panic.sh`
+/// then names the code that still reaches one).
 #[cfg(feature = "prove-no-panic")]
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {

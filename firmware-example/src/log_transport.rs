@@ -3,10 +3,13 @@
 //!
 //! It does what `defmt-semihosting` does (encode each frame inside a critical section and
 //! write the bytes with the semihosting `WRITE` call) except where that crate panics: a log
-//! call that begins while another is in progress (only possible from an exception that cannot
-//! be masked, such as a HardFault taken in the middle of a log call) is dropped instead, and the
-//! outer frame is finished as usual. With it, a firmware binary built with the `prove-no-panic`
-//! feature links only if nothing at all can panic (`scripts/prove-no-panic.sh`).
+//! call that begins while another is in progress is dropped instead. That happens when an
+//! exception that cannot be masked (a HardFault) logs in the middle of a log call, or when a
+//! log call runs inside another's formatting (a `Format` impl that logs, or a panic raised
+//! while formatting whose handler logs): the nested frame, such as that panic message, is lost,
+//! and the outer call goes on. With this transport a firmware binary built with the
+//! `prove-no-panic` feature links only if nothing at all can panic
+//! (`scripts/prove-no-panic-link.sh`).
 //!
 //! The `slices` binary, which does not use this library, includes this file as its own module.
 
@@ -49,7 +52,7 @@ impl Transport {
     /// Whether this call owns the frame being written (depth 1), rather than being a nested
     /// call whose frame is dropped or a call outside any frame.
     fn owns_frame(&self) -> bool {
-        self.depth.load(Ordering::Relaxed) == 1
+        self.depth.load(Ordering::Acquire) == 1
     }
 
     /// Writes `bytes` to the host; a refused write is ignored, as logging must not stop flight.
@@ -66,7 +69,7 @@ impl Transport {
     fn acquire(&self) {
         // SAFETY: paired with the `critical_section::release` below or in `release`.
         let restore = unsafe { critical_section::acquire() };
-        let depth = self.depth.load(Ordering::Relaxed);
+        let depth = self.depth.load(Ordering::Acquire);
         if depth != 0 {
             // A log call inside a log call: the outer one keeps the section and the frame.
             self.depth.store(depth.saturating_add(1), Ordering::Relaxed);
@@ -98,14 +101,15 @@ impl Transport {
     /// # Safety
     /// After `acquire`, as defmt guarantees.
     unsafe fn release(&self) {
-        match self.depth.load(Ordering::Relaxed) {
+        match self.depth.load(Ordering::Acquire) {
             0 => {}
             1 => {
                 // SAFETY: this call owns the frame and the critical section taken in `acquire`.
                 unsafe {
                     (*self.encoder.get()).end_frame(|b| self.emit(b));
                     let restore = self.restore.get().read();
-                    self.depth.store(0, Ordering::Relaxed);
+                    // Release: the encoder's writes above happen before the frame is given up.
+                    self.depth.store(0, Ordering::Release);
                     critical_section::release(restore);
                 }
             }

@@ -363,6 +363,14 @@ fn build_command(
 ) -> CliResult {
     let t0 = Instant::now();
     let s = load_scenario(path, hull_repair, mode)?;
+    if options.landmark_ranges != Default::default() && s.planner.mode != Mode::Landmark {
+        return Err(format!(
+            "{}: --landmark-ranges applies to landmark networks, and this is a {} scenario",
+            path.display(),
+            s.planner.mode.as_str()
+        )
+        .into());
+    }
     let mut inputs = vec![path];
     inputs.extend(skyroute_prep::provenance::dem_path(&s));
     refuse_overwriting_inputs(output, &inputs)?;

@@ -575,3 +575,41 @@ fn render_refuses_a_geojson_file_as_a_route_by_what_it_is() {
         ],
     );
 }
+
+#[test]
+fn a_landmark_only_build_option_on_another_mode_is_refused() {
+    let dir = TempDir::new("landmark-ranges");
+    let out = dir.file("n.bin");
+    refused(
+        &[
+            "build",
+            &niendorf(),
+            "--landmark-ranges",
+            "onboard",
+            "-o",
+            &out,
+        ],
+        &out,
+        1,
+        &[
+            "niendorf-urban.geojson",
+            "--landmark-ranges applies to landmark networks",
+            "roadmap",
+        ],
+    );
+    // A bad value is a usage error (exit code 2), naming the values it takes.
+    let o = skyroute(&[
+        "build",
+        &niendorf(),
+        "--landmark-ranges",
+        "everything",
+        "-o",
+        &out,
+    ]);
+    assert_eq!(code(&o), 2);
+    assert!(
+        stderr(&o).contains("expected ground or onboard"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -429,13 +429,15 @@ fn same_network_on_any_number_of_threads() {
 }
 
 /// Babel's reading (`--landmark-ranges onboard`): every direction searched, every chain kept.
-/// The ground rule's edges come back unchanged, and each further edge is one the ground rule
-/// refuses by its own definition: its source direction's best-weather range is below the
-/// landmarks' distance, or its chain is longer than that range.
+/// The ground rule's edges come back unchanged, each further edge is one the ground rule
+/// refuses by its own definition (its source direction's best-weather range is below the
+/// landmarks' distance, or its chain is longer than that range), and the chains refused for
+/// their length come back: as many as the ground build counted over range, less those of the
+/// start and goal links.
 #[test]
-fn onboard_rule_stores_every_chain_the_ground_rule_refuses() {
+fn onboard_rule_keeps_the_ground_rules_edges_and_adds_only_refused_ones() {
     if !full_tier_only(
-        "landmark_build::onboard_rule_stores_every_chain_the_ground_rule_refuses",
+        "landmark_build::onboard_rule_keeps_the_ground_rules_edges_and_adds_only_refused_ones",
         "two babel-II-N builds",
     ) {
         return;
@@ -453,7 +455,7 @@ fn onboard_rule_stores_every_chain_the_ground_rule_refuses() {
     let input = LandmarkInput::from_scenario(&s, &params).unwrap();
     let n = params.directions;
     let kept: HashSet<(u32, u32)> = ground.edges.iter().map(|e| (e.source, e.target)).collect();
-    let mut extra = 0;
+    let (mut extra, mut too_long) = (0, 0);
     for e in &onboard.edges {
         if kept.contains(&(e.source, e.target)) {
             let g = ground
@@ -470,6 +472,7 @@ fn onboard_rule_stores_every_chain_the_ground_rule_refuses() {
         let lm = &input.landmarks;
         let d = lm[a].position.distance(lm[b].position);
         let range = lm[a].range_m(ka);
+        too_long += usize::from(range >= d);
         assert!(
             range < d || e.chain.cost > range,
             "edge {} -> {}: range {range} m, distance {d} m, chain {} m: the ground rule keeps it",
@@ -480,6 +483,18 @@ fn onboard_rule_stores_every_chain_the_ground_rule_refuses() {
     }
     assert_eq!(onboard.edges.len(), ground.edges.len() + extra);
     assert!(extra > 0);
+    // The ground build's over-range count also holds its start and goal links dropped.
+    let endpoints = |n: &LandmarkNetwork| {
+        n.start.as_ref().map_or(0, |s| s.edges.len()) + n.goal.as_ref().map_or(0, |g| g.edges.len())
+    };
+    assert!(too_long > 0);
+    assert!(too_long <= ground.stats.edges_over_range, "{too_long}");
+    assert!(
+        too_long + (endpoints(&onboard) - endpoints(&ground)) >= ground.stats.edges_over_range,
+        "{too_long} pair chains and {} endpoint links back of {} dropped",
+        endpoints(&onboard) - endpoints(&ground),
+        ground.stats.edges_over_range
+    );
 }
 
 #[test]

@@ -36,9 +36,10 @@ pub struct LandmarkParams {
     pub chord_heading_share: f64,
 }
 
-/// What the best-weather range `d_max · max_ω q(α, ω)` of a source overflight limits. Either
-/// way a direction whose range is shorter than the straight distance to the target gets no
-/// edge there.
+/// What the best-weather range `d_max · max_ω q(α, ω)` of a source overflight limits. Under
+/// [`RangeRule::PathLength`] and [`RangeRule::PairDistance`] a direction whose range is shorter
+/// than the straight distance to the target gets no edge there; [`RangeRule::Onboard`] limits
+/// nothing on the ground.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum RangeRule {
     /// Also the length of the flown chain (Babel: the navigation error grows with the distance
