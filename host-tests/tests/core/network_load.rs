@@ -322,3 +322,33 @@ fn random_mutations_never_panic() {
     assert_eq!(accepted + rejected, n);
     println!("random mutations: {accepted} accepted, {rejected} rejected, no panic");
 }
+
+/// The header's mode byte as `docs/FORMAT.md` defines it (`0` roadmap, `1` landmark, `2`
+/// terrain, `3` Voronoi), and each mode's name as scenarios spell `planner.mode`: every code
+/// round-trips through `Mode`, the four known ones by their documented number and name, and
+/// `decode` refuses every other code by name.
+#[test]
+fn mode_codes_and_names_follow_the_format() {
+    use skyroute::network::Mode;
+    let known = [
+        (0u8, Mode::Roadmap, "roadmap"),
+        (1, Mode::Landmark, "landmark"),
+        (2, Mode::Terrain, "terrain"),
+        (3, Mode::Voronoi, "voronoi"),
+    ];
+    for (code, mode, name) in known {
+        assert_eq!(Mode::from(code), mode);
+        assert_eq!(mode.code(), code);
+        assert_eq!(mode.name(), name);
+        assert_eq!(Mode::decode(code), Ok(mode));
+    }
+    for code in 4..=255u8 {
+        assert_eq!(Mode::from(code), Mode::Unknown(code));
+        assert_eq!(Mode::Unknown(code).code(), code);
+        assert_eq!(Mode::Unknown(code).name(), "unknown");
+        assert_eq!(
+            Mode::decode(code),
+            Err(LoadError::UnknownMode { mode: code })
+        );
+    }
+}
