@@ -72,6 +72,11 @@ def plan(skyroute, network, scenario, weather, out):
             int(m.group(4))), out
 
 
+def pruned_share(pruned, leaving):
+    """The edges pruned onboard out of those leaving overflights, with their share."""
+    return f"{pruned} of {leaving} ({100 * pruned / leaving:.0f} %)"
+
+
 def heading_changes(route_file):
     """The overflight headings' mean absolute change between consecutive overflights, degrees:
     how much the route zig-zags."""
@@ -146,7 +151,7 @@ def study_degradation(skyroute, tmp):
         if got:
             km, over, pruned, leaving, _ = got
             print(f"| {l:.0%} | {12.5 * l:.2f} km | {km:.1f} | {over} | {heading_changes(why):.0f} | "
-                  f"{pruned} of {leaving} ({100 * pruned / leaving:.0f} %) |")
+                  f"{pruned_share(pruned, leaving)} |")
         else:
             print(f"| {l:.0%} | {12.5 * l:.2f} km | no route | | | {why[:140]} |")
 
@@ -173,7 +178,7 @@ def study_density(skyroute, tmp):
             if got:
                 km, over, pruned, leaving, _ = got
                 print(f"| {count} | {edges} | {secs:.0f} | {n} | {km:.1f} | {over} | "
-                      f"{pruned} of {leaving} ({100 * pruned / leaving:.0f} %) |")
+                      f"{pruned_share(pruned, leaving)} |")
             else:
                 print(f"| {count} | {edges} | {secs:.0f} | {n} | no route | | {why[:140]} |")
 
@@ -194,7 +199,7 @@ def study_readings(skyroute, tmp):
                 if got:
                     km, _, pruned, leaving, work = got
                     print(f"| {name} | {reading} | {edges} | {size} | {w} | {km:.1f} | "
-                          f"{pruned} of {leaving} ({100 * pruned / leaving:.0f} %) | {work} |")
+                          f"{pruned_share(pruned, leaving)} | {work} |")
                 else:
                     print(f"| {name} | {reading} | {edges} | {size} | {w} | no route | {why[:140]} | |")
 
