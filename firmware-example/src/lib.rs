@@ -194,19 +194,8 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
     exit(false)
 }
 
-/// With the `prove-no-panic` feature the panic handler calls a function that exists nowhere:
-/// the release build links only if the optimiser removed every path to a panic, and otherwise
-/// the linker names the handler (`scripts/prove-no-panic-link.sh`; `scripts/prove-no-panic.sh`
-/// then names the code that still reaches one).
 #[cfg(feature = "prove-no-panic")]
-#[panic_handler]
-fn panic(_: &core::panic::PanicInfo) -> ! {
-    extern "C" {
-        fn skyroute_firmware_can_panic() -> !;
-    }
-    // SAFETY: never linked; a build whose panics all optimise away has no call to it.
-    unsafe { skyroute_firmware_can_panic() }
-}
+mod panic_proof;
 
 #[exception]
 unsafe fn HardFault(frame: &ExceptionFrame) -> ! {

@@ -30,6 +30,16 @@ fn write_json(path: &str, v: &Value) {
 }
 
 /// A square no-fly zone or pop-up ring of half-side `d` degrees around `(lon, lat)`.
+/// medeiros-jacksboro's scenario with its DEM copied into `dir` (so a test may change either):
+/// the DEM's path and the scenario pointing at it.
+fn jacksboro_in(dir: &TempDir) -> (String, Value) {
+    let dem = dir.file("dem.asc");
+    std::fs::copy(scenario("jacksboro-dem.asc"), &dem).unwrap();
+    let mut s = read_json(&scenario("medeiros-jacksboro.geojson"));
+    s["terrain"]["dem"] = json!(dem);
+    (dem, s)
+}
+
 fn square(lon: f64, lat: f64, d: f64) -> Value {
     json!([[
         [lon - d, lat - d],
@@ -165,10 +175,7 @@ fn single_values_that_changed_are_named_and_reformatting_changes_nothing() {
 #[test]
 fn a_changed_dem_is_refused_and_a_terrain_scenario_with_zones_is_not_built() {
     let dir = TempDir::new("dem");
-    let dem = dir.file("dem.asc");
-    std::fs::copy(scenario("jacksboro-dem.asc"), &dem).unwrap();
-    let mut s = read_json(&scenario("medeiros-jacksboro.geojson"));
-    s["terrain"]["dem"] = json!(dem);
+    let (dem, mut s) = jacksboro_in(&dir);
     let sc = dir.file("terrain.geojson");
     write_json(&sc, &s);
     let net = dir.file("terrain.bin");
@@ -375,10 +382,7 @@ fn anything_off_the_map_is_refused_by_name() {
 #[test]
 fn a_terrain_goal_on_the_dem_but_far_from_every_node_is_planned() {
     let dir = TempDir::new("terrain-high");
-    let dem = dir.file("dem.asc");
-    std::fs::copy(scenario("jacksboro-dem.asc"), &dem).unwrap();
-    let mut s = read_json(&scenario("medeiros-jacksboro.geojson"));
-    s["terrain"]["dem"] = json!(dem);
+    let (_, mut s) = jacksboro_in(&dir);
     s["terrain"]["altitude_m"] = json!(1000.0);
     let sc = dir.file("high.geojson");
     write_json(&sc, &s);

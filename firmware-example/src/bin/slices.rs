@@ -141,14 +141,8 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
 /// With the `prove-no-panic` feature the link fails unless no panic path survives, as in the
 /// library's binaries.
 #[cfg(feature = "prove-no-panic")]
-#[panic_handler]
-fn panic(_: &core::panic::PanicInfo) -> ! {
-    extern "C" {
-        fn skyroute_firmware_can_panic() -> !;
-    }
-    // SAFETY: never linked; a build whose panics all optimise away has no call to it.
-    unsafe { skyroute_firmware_can_panic() }
-}
+#[path = "../panic_proof.rs"]
+mod panic_proof;
 
 #[exception]
 unsafe fn HardFault(frame: &ExceptionFrame) -> ! {

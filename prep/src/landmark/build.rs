@@ -316,31 +316,31 @@ fn make_job(
     }
 }
 
-/// How many source directions of `kind` cannot reach the other site at all (their range is
-/// shorter than the straight distance), so were not searched from.
+/// How many source directions of `kind` the range rule left unsearched (their range is shorter
+/// than the straight distance to the other site; none under [`RangeRule::Onboard`]).
 fn directions_out_of_range(
     input: &LandmarkInput,
     params: &LandmarkParams,
     kind: &JobKind,
 ) -> usize {
-    if params.range_rule == RangeRule::Onboard {
-        return 0;
-    }
     let n = params.directions;
     let lm = &input.landmarks;
+    let skipped = |l: usize, d: f32| {
+        (0..n)
+            .filter(|&k| !params.range_rule.searches(lm[l].range_m(k), d))
+            .count()
+    };
     match *kind {
         JobKind::Pair(a, b) => {
             let d = lm[a].position.distance(lm[b].position);
-            (0..n).filter(|&k| lm[a].range_m(k) < d).count()
-                + (0..n).filter(|&k| lm[b].range_m(k) < d).count()
+            skipped(a, d) + skipped(b, d)
         }
         JobKind::Goal(l) => {
             let gp = input
                 .goal
                 .as_ref()
                 .map_or(Vec2::default(), |g| g.pose.position);
-            let d = gp.distance(lm[l].position);
-            (0..n).filter(|&k| lm[l].range_m(k) < d).count()
+            skipped(l, gp.distance(lm[l].position))
         }
         JobKind::Start(_) => 0,
     }
