@@ -184,9 +184,6 @@ pub enum SrStatus {
     /// `PlanError::RosetteTableFull`: Landmark mode: all `MAX_ROSETTE_OVERRIDES` rosette overrides
     /// are in use (by other landmarks).
     PlanRosetteTableFull = 216,
-    /// `PlanError::StartNotInNetwork`: Landmark mode: the start pose is neither the network's start
-    /// nor a landmark overflight (position within 1 m, heading within 10⁻³ rad).
-    PlanStartNotInNetwork = 217,
     /// `PlanError::GoalNotInNetwork`: Landmark mode: the goal position is not the network's goal
     /// (within 1 m), or the network has no goal.
     PlanGoalNotInNetwork = 218,
@@ -199,6 +196,9 @@ pub enum SrStatus {
     PlanTooManySearchStates = 220,
     /// `PlanError::Internal`: An internal invariant failed (a bug; reported instead of panicking).
     PlanInternal = 221,
+    /// `PlanError::InvalidRange`: Landmark mode: `Planner::set_start_range` got a negative or
+    /// non-finite range.
+    PlanInvalidRange = 222,
     /// `PopupError::NoFreeSlot`: All `P` pop-up slots are in use.
     PopupNoFreeSlot = 300,
     /// `PopupError::NonFinite`: A coordinate or radius is NaN or infinite.
@@ -294,7 +294,7 @@ pub fn plan_status(e: &PlanError) -> SrStatus {
         PlanError::UnknownLandmark { .. } => SrStatus::PlanUnknownLandmark,
         PlanError::InvalidRosette { .. } => SrStatus::PlanInvalidRosette,
         PlanError::RosetteTableFull { .. } => SrStatus::PlanRosetteTableFull,
-        PlanError::StartNotInNetwork => SrStatus::PlanStartNotInNetwork,
+        PlanError::InvalidRange => SrStatus::PlanInvalidRange,
         PlanError::GoalNotInNetwork => SrStatus::PlanGoalNotInNetwork,
         PlanError::Smoothing { .. } => SrStatus::PlanSmoothing,
         PlanError::TooManySearchStates { .. } => SrStatus::PlanTooManySearchStates,
@@ -384,7 +384,7 @@ impl SrStatus {
             SrStatus::PlanUnknownLandmark => c"SR_STATUS_PLAN_UNKNOWN_LANDMARK",
             SrStatus::PlanInvalidRosette => c"SR_STATUS_PLAN_INVALID_ROSETTE",
             SrStatus::PlanRosetteTableFull => c"SR_STATUS_PLAN_ROSETTE_TABLE_FULL",
-            SrStatus::PlanStartNotInNetwork => c"SR_STATUS_PLAN_START_NOT_IN_NETWORK",
+            SrStatus::PlanInvalidRange => c"SR_STATUS_PLAN_INVALID_RANGE",
             SrStatus::PlanGoalNotInNetwork => c"SR_STATUS_PLAN_GOAL_NOT_IN_NETWORK",
             SrStatus::PlanSmoothing => c"SR_STATUS_PLAN_SMOOTHING",
             SrStatus::PlanTooManySearchStates => c"SR_STATUS_PLAN_TOO_MANY_SEARCH_STATES",
@@ -489,11 +489,11 @@ const ALL: [SrStatus; 82] = [
     SrStatus::PlanUnknownLandmark,
     SrStatus::PlanInvalidRosette,
     SrStatus::PlanRosetteTableFull,
-    SrStatus::PlanStartNotInNetwork,
     SrStatus::PlanGoalNotInNetwork,
     SrStatus::PlanSmoothing,
     SrStatus::PlanTooManySearchStates,
     SrStatus::PlanInternal,
+    SrStatus::PlanInvalidRange,
     SrStatus::PopupNoFreeSlot,
     SrStatus::PopupNonFinite,
     SrStatus::PopupNonPositiveRadius,

@@ -103,9 +103,9 @@ pub enum PlanError {
         /// The table's capacity.
         capacity: u32,
     },
-    /// Landmark mode: the start pose is neither the network's start nor a landmark overflight
-    /// (position within 1 m, heading within 10⁻³ rad).
-    StartNotInNetwork,
+    /// Landmark mode: [`Planner::set_start_range`](super::Planner::set_start_range) got a
+    /// negative or non-finite range.
+    InvalidRange,
     /// Landmark mode: the goal position is not the network's goal (within 1 m), or the network
     /// has no goal.
     GoalNotInNetwork,
@@ -173,10 +173,7 @@ impl fmt::Display for PlanError {
             RosetteTableFull { capacity } => {
                 write!(f, "all {capacity} rosette overrides are in use")
             }
-            StartNotInNetwork => write!(
-                f,
-                "start pose is neither the network's start nor a landmark overflight"
-            ),
+            InvalidRange => write!(f, "the range left must be finite and at least 0"),
             GoalNotInNetwork => write!(f, "goal is not the network's goal"),
             Smoothing { corner } => write!(
                 f,

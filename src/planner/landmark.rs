@@ -1,6 +1,7 @@
 //! Landmark mode onboard (Babel 2014): navigability pruning by weather and in-flight rosette
-//! updates, evaluated lazily in the search; queries from an overflight (or the stored start)
-//! to the stored goal; routes as network edges whose Hermite pieces the autopilot samples.
+//! updates, evaluated lazily in the search; queries from the stored start, an overflight or
+//! any other pose (joined online: `planner/landmark_connect.rs`) to the stored goal; routes
+//! as network edges whose Hermite pieces the autopilot samples.
 //!
 //! An edge leaving overflight `(L, α)` is navigable in weather `ω` iff its cost (its length)
 //! is at most `d_max(L)·q(α, ω)`; a start edge iff it is at most the start's range. The test
@@ -10,8 +11,10 @@
 
 use super::popup::{Popup, PopupSummary};
 use super::state::{LandmarkState, ModeState, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
+use super::search::Ends;
 use super::{Meter, PlanError, Planner, Query, RouteSummary, SummarySlot};
-use crate::geometry::{wrap_to_pi, Vec2};
+use crate::geometry::hermite::HermiteSegment;
+use crate::geometry::{wrap_to_pi, Pose, Vec2};
 use crate::network::format::LandmarkRecord;
 use heapless::Vec;
 
@@ -202,19 +205,20 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Landmark mode's [`Planner::plan`] up to its search, after the query's numbers were
-    /// checked: matches the start and the goal to network vertices. Returns the search's ends
-    /// (from the start vertex to the goal vertex); the search and
+    /// checked: matches the goal to the network's goal vertex, and the start to the stored
+    /// start or an overflight, or else joins it to the network online
+    /// (`planner/landmark_connect.rs`). Returns the search's ends; the search and
     /// [`Planner::write_landmark_route`] follow.
     #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
     pub(super) fn landmark_prepare(
         &mut self,
         query: &Query,
         meter: &mut Meter,
-    ) -> Result<(u32, u32), PlanError> {
+    ) -> Result<Ends, PlanError> {
         let l = self.landmark_record()?;
         self.start_links.clear();
         self.goal_links.clear();
-        let from = self.match_start(&l, query, meter)?;
+        self.landmark_state()?.start_links.clear();
         meter.work.vertex_scans += 1;
         let to = match self.network.vertex(l.goal_vertex) {
             Some(g) if g.position.distance(query.goal.position) <= MATCH_DISTANCE_M => {
@@ -222,17 +226,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
             _ => return Err(PlanError::GoalNotInNetwork),
         };
+        let ends = match self.match_start(&l, query, meter) {
+            Some(from) => Ends::Vertices { from, to },
+            None => self.connect_online_start(&l, query, to, meter)?,
+        };
         meter.check()?;
-        Ok((from, to))
+        Ok(ends)
     }
 
-    /// The stored start if the query starts there, else the overflight it starts at.
-    fn match_start(
-        &self,
-        l: &LandmarkRecord,
-        query: &Query,
-        meter: &mut Meter,
-    ) -> Result<u32, PlanError> {
+    /// The stored start if the query starts there, else the overflight it starts at, if any.
+    fn match_start(&self, l: &LandmarkRecord, query: &Query, meter: &mut Meter) -> Option<u32> {
         let at = |v: u32| {
             self.network.vertex(v).is_some_and(|p| {
                 p.position.distance(query.start.position) <= MATCH_DISTANCE_M
@@ -241,28 +244,27 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         };
         meter.work.vertex_scans += 1;
         if l.start_vertex != LandmarkRecord::ABSENT && at(l.start_vertex) {
-            return Ok(l.start_vertex);
+            return Some(l.start_vertex);
         }
         let overflights = l.landmark_count.saturating_mul(l.directions);
-        for v in 0..overflights {
+        (0..overflights).find(|&v| {
             meter.work.vertex_scans += 1;
-            if at(v) {
-                return Ok(v);
-            }
-        }
-        Err(PlanError::StartNotInNetwork)
+            at(v)
+        })
     }
 
+    /// Writes the route the search found to vertex `to`: its network edges, after the piece
+    /// from `online_start` when the search began from online links.
     #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
     pub(super) fn write_landmark_route(
         &mut self,
-        from: u32,
         to: u32,
+        online_start: Option<Pose>,
         meter: &mut Meter,
     ) -> Result<RouteSummary, PlanError> {
         let (mut length, mut pieces) = (0.0f32, 0u32);
         let net = self.network;
-        let (edges, _) = self.walk_vertices(to, meter, |e| {
+        let (edges, start) = self.walk_vertices(to, meter, |e| {
             length += net.edge_cost_target(e).map_or(0.0, |c| c.0);
             pieces = pieces.saturating_add(net.chain_piece_count(e));
             Ok(())
@@ -274,6 +276,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             });
         }
         meter.work.vertex_scans += edges as u64 + 1;
+        let start_piece = match (online_start, start) {
+            (None, _) => None,
+            (Some(pose), Some(k)) => {
+                let piece = self.rebuild_online_piece(&pose, k, meter)?;
+                length += piece.length();
+                pieces = pieces.saturating_add(1);
+                Some(piece)
+            }
+            (Some(_), None) => return Err(PlanError::Internal),
+        };
         meter.check()?;
         let mut route = core::mem::take(&mut self.landmark_state()?.route_edges);
         route.clear();
@@ -284,14 +296,15 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         });
         route.reverse();
         let complete = walked.is_ok() && route.len() == edges as usize;
-        self.landmark_state()?.route_edges = if complete { route } else { Vec::new() };
+        let state = self.landmark_state()?;
+        state.route_edges = if complete { route } else { Vec::new() };
+        state.start_piece = if complete { start_piece } else { None };
         self.paths.clear();
         self.route.clear();
         if !complete {
             self.summary = SummarySlot::Empty;
             return Err(PlanError::Internal);
         }
-        let _ = from;
         let arrival_heading = self.network.vertex(to).map_or(0.0, |p| p.heading);
         let summary = RouteSummary {
             length,
@@ -303,6 +316,22 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         };
         self.summary = SummarySlot::Full(summary);
         Ok(summary)
+    }
+
+    /// The piece of online start link `k`, built again from the query's start as when it was
+    /// found (the same inputs, so the same piece).
+    fn rebuild_online_piece(
+        &self,
+        start: &Pose,
+        k: usize,
+        meter: &mut Meter,
+    ) -> Result<HermiteSegment, PlanError> {
+        let l = self.landmark_record()?;
+        let link = *self.online_start_links().get(k).ok_or(PlanError::Internal)?;
+        let to = self.network.vertex(link.vertex).ok_or(PlanError::Internal)?;
+        let range = self.start_range().ok_or(PlanError::Internal)?;
+        self.online_piece(&l, start, &to, range, meter)
+            .ok_or(PlanError::Internal)
     }
 
     /// Landmark mode: whether any piece of chain edge `e` may come within `clearance` of

@@ -18,6 +18,7 @@ mod error;
 mod exit;
 pub mod heap;
 mod landmark;
+mod landmark_connect;
 mod popup;
 pub mod risk;
 mod search;
@@ -482,13 +483,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// The most work any query on the loaded network can count (with a free goal heading, the
     /// larger case): [`plan_work_bound`].
     pub fn worst_case_work(&self) -> u64 {
-        let h = self.network.header();
         match self.state {
             ModeState::Roadmap => plan_work_bound(&self.work_bound_inputs(false)),
             ModeState::Terrain(_) => terrain_plan_work_bound(&self.terrain_bound_inputs()),
-            ModeState::Landmark(_) => {
-                landmark_plan_work_bound(h.vertex_count as u64, h.edge_count as u64)
-            }
+            ModeState::Landmark(_) => landmark_plan_work_bound(&self.work_bound_inputs(true)),
             ModeState::Voronoi(_) => voronoi_plan_work_bound(&self.voronoi_bound_inputs()),
         }
     }

@@ -49,6 +49,22 @@ pub(super) enum Ends {
         /// The goal vertex.
         to: u32,
     } = 1,
+    /// From the online start links to a vertex (landmark mode, a start that is not a
+    /// network vertex: `planner/landmark_connect.rs`).
+    OnlineLinksTo {
+        /// The goal vertex.
+        to: u32,
+    } = 2,
+}
+
+impl Ends {
+    /// The vertex the search stops at, if it stops at one.
+    fn target(self) -> Option<u32> {
+        match self {
+            Ends::Links => None,
+            Ends::Vertices { to, .. } | Ends::OnlineLinksTo { to } => Some(to),
+        }
+    }
 }
 
 /// A* heuristic scale: the chord to the goal shrunk by 1e-4 so that f32 rounding of stored edge
@@ -155,8 +171,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// expands it. `best` is the cheapest route found so far (at first the direct start–goal
     /// path, if any, with its cost); a pending goal link it resolves reads the query's goal
     /// window first, if unread ([`Planner::resolve_goal_link`]). Returns whether the search is over: the heap is
-    /// empty, every remaining route costs at least `best`'s, or the target vertex of an
-    /// [`Ends::Vertices`] search is reached. Edges are relaxed only when
+    /// empty, every remaining route costs at least `best`'s, or the search's target vertex
+    /// ([`Ends::target`]) is reached. Edges are relaxed only when
     /// [`Planner::is_edge_usable`]; the expansion of a state is the space's
     /// ([`Planner::expand_vertex`], [`Planner::expand_edge_state`]).
     #[inline(always)] // its one caller's loop is the search's loop
@@ -271,28 +287,51 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let links = match ends {
             Ends::Links => self.start_links.len(),
             Ends::Vertices { .. } => 0,
+            Ends::OnlineLinksTo { .. } => self.online_start_links().len(),
         };
-        for (k, link) in self.start_links.iter().take(links).enumerate() {
-            let v = link.vertex as usize;
-            let cost = link.cost;
-            let (Some(d), Some(via)) = (self.dist.get_mut(v), self.via.get_mut(v)) else {
-                return Err(PlanError::Internal);
+        for k in 0..links {
+            let link = match ends {
+                Ends::OnlineLinksTo { .. } => self
+                    .online_start_links()
+                    .get(k)
+                    .map(|l| (l.vertex, l.length)),
+                Ends::Links | Ends::Vertices { .. } => {
+                    self.start_links.get(k).map(|l| (l.vertex, l.cost))
+                }
             };
-            if self.heap.state(link.vertex) == ItemState::Unseen || cost < *d {
-                *d = cost;
-                *via = FROM_START + k as u32;
-                let h = self
-                    .search_vertex_position(link.vertex)
-                    .map_or(0.0, |p| Self::heuristic(query, p));
-                meter.work.heap_steps += self.heap.push_or_decrease(link.vertex, cost + h) as u64;
-            }
+            let (vertex, cost) = link.ok_or(PlanError::Internal)?;
+            self.seed_link(query, k, vertex, cost, meter)?;
+        }
+        Ok(())
+    }
+
+    /// Queues `vertex` at `cost`, reached from start link `k`, unless it is queued cheaper.
+    fn seed_link(
+        &mut self,
+        query: &Query,
+        k: usize,
+        vertex: u32,
+        cost: f32,
+        meter: &mut Meter,
+    ) -> Result<(), PlanError> {
+        let v = vertex as usize;
+        let (Some(d), Some(via)) = (self.dist.get_mut(v), self.via.get_mut(v)) else {
+            return Err(PlanError::Internal);
+        };
+        if self.heap.state(vertex) == ItemState::Unseen || cost < *d {
+            *d = cost;
+            *via = FROM_START + k as u32;
+            let h = self
+                .search_vertex_position(vertex)
+                .map_or(0.0, |p| Self::heuristic(query, p));
+            meter.work.heap_steps += self.heap.push_or_decrease(vertex, cost + h) as u64;
         }
         Ok(())
     }
 
     /// Expands vertex `u`: offers the goal links that leave it to `best` (resolving a pending
     /// one first unless its lower bound shows it cannot improve `best`), relaxes its usable
-    /// edges. Returns whether `u` is the target of an [`Ends::Vertices`] search (popped with
+    /// edges. Returns whether `u` is the search's target vertex ([`Ends::target`]; popped with
     /// its final cost: no cheaper route remains, and `best` is set to it).
     fn expand_vertex(
         &mut self,
@@ -307,7 +346,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             .get(u as usize)
             .copied()
             .ok_or(PlanError::Internal)?;
-        if let Ends::Vertices { to, .. } = ends {
+        if let Some(to) = ends.target() {
             if u == to {
                 *best = Some((du, Arrival::AtVertex));
                 return Ok(true);

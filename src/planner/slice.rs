@@ -384,8 +384,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             ModeState::Terrain(_) => self.terrain_prepare(&q, meter, observe)?,
             ModeState::Voronoi(_) => self.voronoi_prepare(&q, meter)?,
             ModeState::Landmark(_) => {
-                let (from, to) = self.landmark_prepare(&q, meter)?;
-                self.flight.ends = Ends::Vertices { from, to };
+                self.flight.ends = self.landmark_prepare(&q, meter)?;
                 None
             }
         };
@@ -435,8 +434,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 self.write_voronoi_route(&query, arrival, meter)
             }
             ModeState::Landmark(_) => match (arrival, self.flight.ends) {
-                (Arrival::AtVertex, Ends::Vertices { from, to }) => {
-                    self.write_landmark_route(from, to, meter)
+                (Arrival::AtVertex, Ends::Vertices { to, .. }) => {
+                    self.write_landmark_route(to, None, meter)
+                }
+                (Arrival::AtVertex, Ends::OnlineLinksTo { to }) => {
+                    let start = self.flight.query.start;
+                    self.write_landmark_route(to, Some(start), meter)
                 }
                 _ => Err(PlanError::Internal),
             },

@@ -7,6 +7,8 @@
 //! [`Planner`]: super::Planner
 //! [`Planner::load`]: super::Planner::load
 
+use super::MAX_LINKS;
+use crate::geometry::hermite::HermiteSegment;
 use crate::network::Network;
 use heapless::Vec;
 
@@ -67,24 +69,46 @@ impl TerrainState {
     }
 }
 
-/// Landmark mode's state: the weather, the in-flight rosettes and the last route's edges.
+/// A landmark query's link from a start that is not a network vertex: one direct Hermite
+/// piece to `vertex` (an overflight or the goal), `length` metres long
+/// (`planner/landmark_connect.rs`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct OnlineLink {
+    /// The overflight (or goal) vertex the piece ends at.
+    pub(super) vertex: u32,
+    /// The piece's length, metres: what the link costs the search.
+    pub(super) length: f32,
+}
+
+/// Landmark mode's state: the weather, the in-flight rosettes, the range left at an online
+/// start, and the last route.
 #[derive(Clone, Debug)]
 pub(super) struct LandmarkState<const R: usize> {
     /// The weather in force (an index into the network's weathers).
     pub(super) weather: u32,
     /// In-flight rosettes replacing the stored ones, per landmark.
     pub(super) rosettes: Vec<(u32, [f32; MAX_ROSETTE_DIRECTIONS]), MAX_ROSETTE_OVERRIDES>,
+    /// The range left to a start that is not a network vertex, metres (`None`: the network's
+    /// start range).
+    pub(super) start_range_m: Option<f32>,
+    /// The query's links from such a start.
+    pub(super) start_links: Vec<OnlineLink, MAX_LINKS>,
     /// The last route's network edges, start to goal.
     pub(super) route_edges: Vec<u32, R>,
+    /// The last route's piece from a start that is not a network vertex to its first edge.
+    pub(super) start_piece: Option<HermiteSegment>,
 }
 
 impl<const R: usize> LandmarkState<R> {
-    /// Weather 0, no overrides, no route.
+    /// Weather 0, no overrides, the network's start range, no route.
     pub(super) const fn new() -> Self {
         LandmarkState {
             weather: 0,
             rosettes: Vec::new(),
+            start_range_m: None,
+            start_links: Vec::new(),
             route_edges: Vec::new(),
+            start_piece: None,
         }
     }
 }

@@ -17,6 +17,8 @@ mod landmark_figure4;
 mod landmark_load;
 /// Landmark mode end to end: plans in every weather, rosette updates, pop-ups.
 mod landmark_plan;
+/// Landmark mode's online start against a brute force, with the range left and pop-ups.
+mod landmark_online;
 /// Missions: inevitable-collision states by name.
 mod mission;
 /// Every scenario's network image against the recorded length and CRC-32.

@@ -1,0 +1,249 @@
+//! Landmark mode's online start (Babel 2014's Connect-Endpoints at query time): a query whose
+//! start is neither the network's stored start nor an overflight is joined to the
+//! overflights, and to the goal, that one direct quintic Hermite piece reaches within the
+//! range the aircraft has left.
+//!
+//! A piece from the start pose to vertex `v` (both line elements at the network's nominal
+//! speed, so that it meets `v`'s chains in a line element, as every chain piece does) is a
+//! link iff
+//! * its length is at most the range left ([`Planner::set_start_range`]; the network's start
+//!   range until one is set): the navigability of Babel's start edge;
+//! * it is flyable within the network's vehicle limits ([`HermiteSegment::check_flyable`]);
+//! * it keeps the network's clearance from every stored obstacle and every active pop-up
+//!   (conservative chord tests, [`POPUP_CHORDS_PER_PIECE`] chords, as pop-ups test chains).
+//!
+//! Only direct pieces are tried: the ground tool's start chains, which may wind round a zone
+//! through sampled line elements, are not searched onboard, so a start whose every overflight
+//! lies behind a zone is refused with [`PlanError::StartUnconnected`]. Of the links found, the
+//! [`MAX_LINKS`] with the smallest `length + |v − goal|` (a lower bound of any route through
+//! them) are kept, and the search is exact over those.
+
+use super::landmark::POPUP_CHORDS_PER_PIECE;
+use super::popup::Popup;
+use super::search::Ends;
+use super::state::{ModeState, OnlineLink};
+use super::{Meter, PlanError, Planner, Query, MAX_LINKS};
+use crate::geometry::hermite::{HermiteSegment, LineElement};
+use crate::geometry::predicates::PolygonView;
+use crate::geometry::{Pose, Vec2};
+use crate::network::format::LandmarkRecord;
+use crate::network::Obstacle;
+use heapless::Vec;
+
+impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
+    /// Landmark mode: sets the range the aircraft has left before it must overfly a landmark,
+    /// metres: its last overflight's `d_max·q` ([`Planner::overflight_range`]) less what it has
+    /// flown since. It bounds the piece that joins a start that is not a network vertex to the
+    /// network (module documentation); until set, the network's start range does.
+    pub fn set_start_range(&mut self, range_m: f32) -> Result<(), PlanError> {
+        self.cancel_plan();
+        if !range_m.is_finite() || range_m < 0.0 {
+            return Err(PlanError::InvalidRange);
+        }
+        match &mut self.state {
+            ModeState::Landmark(l) => {
+                l.start_range_m = Some(range_m);
+                Ok(())
+            }
+            _ => Err(PlanError::NotLandmarkNetwork),
+        }
+    }
+
+    /// Landmark mode: the range in force for a start that is not a network vertex, metres
+    /// ([`Planner::set_start_range`], or the network's start range).
+    pub fn start_range(&self) -> Option<f32> {
+        match (&self.state, self.network.landmark()) {
+            (ModeState::Landmark(state), Some(l)) => {
+                Some(state.start_range_m.unwrap_or(l.start_range_m))
+            }
+            _ => None,
+        }
+    }
+
+    /// Landmark mode: the range overflight vertex `vertex` (landmark `vertex / D` crossed in
+    /// direction `vertex % D`) allows in the weather and rosettes in force, `d_max·q`, metres.
+    pub fn overflight_range(&self, vertex: u32) -> Option<f32> {
+        let l = self.network.landmark()?;
+        let landmark = vertex.checked_div(l.directions)?;
+        let direction = vertex.checked_rem(l.directions)?;
+        let (_, d_max) = self.network.landmark_site_of(l, landmark)?;
+        Some(d_max * self.quality(landmark, direction)?)
+    }
+
+    /// Landmark mode: the last route's first piece when it started from a pose that is not a
+    /// network vertex: from that pose to the first edge's overflight (or to the goal).
+    /// [`Planner::route_edges`] follow it.
+    pub fn start_piece(&self) -> Option<HermiteSegment> {
+        match &self.state {
+            ModeState::Landmark(l) => l.start_piece,
+            _ => None,
+        }
+    }
+
+    /// The online links of the query in progress.
+    pub(super) fn online_start_links(&self) -> &[OnlineLink] {
+        match &self.state {
+            ModeState::Landmark(l) => &l.start_links,
+            _ => &[],
+        }
+    }
+
+    /// Joins `query.start` to the overflights and the goal vertex `goal` (module
+    /// documentation) and returns the search's ends. Counts per vertex one vertex scan; per
+    /// vertex within range one piece (a `dubins_solves` unit: its construction and
+    /// flyability check, bounded computations measured in `docs/BENCHMARKS.md`), a box test
+    /// per obstacle and pop-up, [`POPUP_CHORDS_PER_PIECE`] predicates per polygon edge, and
+    /// containment or circle where a box meets the piece's reach, and one relaxation.
+    pub(super) fn connect_online_start(
+        &mut self,
+        l: &LandmarkRecord,
+        query: &Query,
+        goal: u32,
+        meter: &mut Meter,
+    ) -> Result<Ends, PlanError> {
+        let range = self.start_range().ok_or(PlanError::NotLandmarkNetwork)?;
+        let goal_at = self
+            .network
+            .vertex(goal)
+            .ok_or(PlanError::GoalNotInNetwork)?
+            .position;
+        let mut kept: Vec<(f32, OnlineLink), MAX_LINKS> = Vec::new();
+        let overflights = l.landmark_count.saturating_mul(l.directions);
+        for v in (0..overflights).chain(core::iter::once(goal)) {
+            meter.work.vertex_scans += 1;
+            let Some(to) = self.network.vertex(v) else {
+                continue;
+            };
+            // A curve is at least as long as its chord.
+            if !(query.start.position.distance(to.position) <= range) {
+                continue;
+            }
+            let Some(piece) = self.online_piece(l, &query.start, &to, range, meter) else {
+                meter.check()?;
+                continue;
+            };
+            meter.work.relaxations += 1;
+            let link = OnlineLink {
+                vertex: v,
+                length: piece.length(),
+            };
+            keep_cheapest(&mut kept, link.length + to.position.distance(goal_at), link);
+            meter.check()?;
+        }
+        let ModeState::Landmark(state) = &mut self.state else {
+            return Err(PlanError::NotLandmarkNetwork);
+        };
+        state.start_links.clear();
+        for (_, link) in &kept {
+            let _ = state.start_links.push(*link);
+        }
+        if state.start_links.is_empty() {
+            return Err(PlanError::StartUnconnected);
+        }
+        Ok(Ends::OnlineLinksTo { to: goal })
+    }
+
+    /// The piece from `start` to vertex pose `to` if it is a link (module documentation):
+    /// within `range`, flyable, and clear.
+    pub(super) fn online_piece(
+        &self,
+        l: &LandmarkRecord,
+        start: &Pose,
+        to: &Pose,
+        range: f32,
+        meter: &mut Meter,
+    ) -> Option<HermiteSegment> {
+        meter.work.dubins_solves += 1;
+        let limits = self.network.fly_limits()?;
+        let piece = HermiteSegment::new(
+            &LineElement::from_pose(start, l.v_nominal),
+            &LineElement::from_pose(to, l.v_nominal),
+            l.v_nominal,
+        )
+        .ok()?;
+        if !(piece.length() <= range) || piece.check_flyable(&limits).is_err() {
+            return None;
+        }
+        let reach = self
+            .network
+            .edge_reach(start.position, to.position, piece.length());
+        (!self.piece_conflicts(&piece, reach, meter)).then_some(piece)
+    }
+
+    /// Whether `piece`, within the box `reach`, may come within the network's clearance of a
+    /// stored obstacle or an active pop-up (conservative; an unreadable obstacle conflicts).
+    fn piece_conflicts(&self, piece: &HermiteSegment, reach: (Vec2, Vec2), meter: &mut Meter) -> bool {
+        let clearance = self.network.clearance();
+        let chords = POPUP_CHORDS_PER_PIECE;
+        let w = Vec2::new(clearance, clearance);
+        let meets = |(lo, hi): (Vec2, Vec2)| {
+            let (lo, hi) = (lo - w, hi + w);
+            !(reach.1.x < lo.x || reach.1.y < lo.y || reach.0.x > hi.x || reach.0.y > hi.y)
+        };
+        for i in 0..self.network.obstacle_count() {
+            meter.work.collision_tests += 1;
+            let Some((obstacle, bbox)) = self.network.obstacle(i) else {
+                return true;
+            };
+            if !meets(bbox) {
+                continue;
+            }
+            let hit = match obstacle {
+                Obstacle::Polygon(polygon) => {
+                    meter.work.collision_tests += (chords * (polygon.vertex_count() + 1)) as u64;
+                    piece.conflicts_with_polygon(&polygon, clearance, chords)
+                }
+                Obstacle::Circle { centre, radius } => {
+                    meter.work.collision_tests += chords as u64;
+                    piece.conflicts_with_circle(centre, radius, clearance, chords)
+                }
+            };
+            if hit {
+                return true;
+            }
+        }
+        for (_, popup) in self.popups() {
+            meter.work.collision_tests += 1;
+            if !meets(popup.bounding_box()) {
+                continue;
+            }
+            let hit = match popup {
+                Popup::Circle { centre, radius } => {
+                    meter.work.collision_tests += chords as u64;
+                    piece.conflicts_with_circle(*centre, *radius, clearance, chords)
+                }
+                Popup::Polygon(points) => {
+                    meter.work.collision_tests += (chords * (points.len() + 1)) as u64;
+                    piece.conflicts_with_polygon(points.as_slice(), clearance, chords)
+                }
+            };
+            if hit {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// Keeps `link` in `kept` (sorted by key, at most [`MAX_LINKS`]) if its `key` is among the
+/// [`MAX_LINKS`] smallest offered; ties keep the earlier.
+fn keep_cheapest(kept: &mut Vec<(f32, OnlineLink), MAX_LINKS>, key: f32, link: OnlineLink) {
+    if kept.is_full() {
+        match kept.last() {
+            Some((worst, _)) if *worst > key => {
+                kept.pop();
+            }
+            _ => return,
+        }
+    }
+    let at = kept.iter().take_while(|(k, _)| *k <= key).count();
+    if kept.push((key, link)).is_err() {
+        return;
+    }
+    // The new entry is last: rotate it into place.
+    if let Some(tail) = kept.get_mut(at..) {
+        if !tail.is_empty() {
+            tail.rotate_right(1);
+        }
+    }
+}
