@@ -36,6 +36,16 @@ pub fn parse_start(s: &str) -> Result<(f64, f64, f64), String> {
     }
 }
 
+/// `NAME,HEADING_DEG` of `--last-overflight`: a landmark's name and a finite compass
+/// heading (the name is everything before the last comma).
+pub fn parse_last_overflight(s: &str) -> Result<(String, f64), String> {
+    let parsed = s.rsplit_once(',').and_then(|(name, h)| {
+        let h = h.trim().parse::<f64>().ok().filter(|h| h.is_finite())?;
+        (!name.trim().is_empty()).then(|| (name.trim().to_string(), h))
+    });
+    parsed.ok_or_else(|| format!("expected NAME,HEADING_DEG with a finite heading, got {s:?}"))
+}
+
 /// A planner mode by name: roadmap, landmark, terrain or voronoi.
 pub fn parse_mode(s: &str) -> Result<Mode, String> {
     match s.trim() {

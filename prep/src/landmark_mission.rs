@@ -1,15 +1,16 @@
 //! Planning on a landmark network with the onboard core, as the aircraft would, on the host:
-//! choose the weather, add pop-ups, plan the stored start to the stored goal, and describe the
-//! route (overflights with their heading and the range they allow, Hermite pieces) for the
-//! `skyroute plan` route file.
+//! choose the weather, add pop-ups, plan the stored start (or where the aircraft is, with the
+//! range it has left) to the stored goal, and describe the route (overflights with their
+//! heading and the range they allow, Hermite pieces) for the `skyroute plan` route file.
 
 use crate::frame::LocalFrame;
 use crate::mission::{CompactHostPlanner, LocalPopup};
 use crate::scenario::Scenario;
 use serde_json::{json, Value};
 use skyroute::geometry::compass_deg_from_heading;
+use skyroute::geometry::hermite::HermiteSegment;
 use skyroute::planner::{Goal, PlanError, Query, RouteSummary, Search};
-use skyroute::{LoadError, Network, Planner, PopupError};
+use skyroute::{LoadError, Network, Planner, PopupError, Pose};
 use std::fmt;
 
 /// An overflight on the route and the leg that leaves it.
@@ -27,6 +28,19 @@ pub struct Overflight {
     pub leg_m: f32,
 }
 
+/// A start that is not the network's (`skyroute plan --start`): where the aircraft is, and
+/// what fixes the range it has left.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OnlineStart {
+    /// The aircraft's pose, local frame.
+    pub pose: Pose,
+    /// Metres flown since the last overflight (`--flown-m`).
+    pub flown_m: f32,
+    /// The last overflight (`--last-overflight`): a landmark's name and the compass heading it
+    /// was crossed at. `None`: the range counts from the scenario's start (its `dist_m`).
+    pub last_overflight: Option<(String, f64)>,
+}
+
 /// A planned landmark route.
 #[derive(Clone, Debug)]
 pub struct LandmarkRoute {
@@ -40,6 +54,9 @@ pub struct LandmarkRoute {
     pub overflights: Vec<Overflight>,
     /// Edges removed by navigability pruning in this weather, and edges between overflights.
     pub pruned: (u32, u32),
+    /// From an [`OnlineStart`]: the range it had left, metres, and the piece that joins it to
+    /// the first overflight (or the goal).
+    pub online_start: Option<(f32, HermiteSegment)>,
 }
 
 /// Why a landmark route could not be planned.
@@ -55,6 +72,14 @@ pub enum LandmarkPlanError {
     Load(LoadError),
     /// A pop-up could not be added.
     Popup(String, PopupError),
+    /// `--last-overflight` names no landmark of the scenario.
+    UnknownLandmark(String),
+    /// The range flown since the last overflight exceeds the range it allowed (metres: flown,
+    /// allowed).
+    RangeSpent(f32, f32),
+    /// No overflight within the range left is reachable by one flyable piece clear of the
+    /// zones and pop-ups (the range left, metres).
+    OnlineStartUnconnected(f32),
     /// The core found no route.
     Plan(PlanError),
 }
@@ -71,6 +96,23 @@ impl fmt::Display for LandmarkPlanError {
             }
             Self::Load(e) => write!(f, "the network does not load: {e}"),
             Self::Popup(name, e) => write!(f, "pop-up {name}: {e}"),
+            Self::UnknownLandmark(name) => {
+                write!(
+                    f,
+                    "--last-overflight: {name:?} is not a landmark of the scenario"
+                )
+            }
+            Self::RangeSpent(flown, allowed) => write!(
+                f,
+                "--flown-m: {flown} m flown since the last overflight, which allows {allowed} m: \
+                 no landmark can be reached in range"
+            ),
+            Self::OnlineStartUnconnected(range) => write!(
+                f,
+                "--start: no overflight within the range left ({:.1} km) is reached by one \
+                 flyable Hermite piece clear of the no-fly zones and pop-ups",
+                range / 1000.0
+            ),
             Self::Plan(e) => write!(f, "no navigable route from the start to the goal: {e}"),
         }
     }
@@ -78,13 +120,14 @@ impl fmt::Display for LandmarkPlanError {
 
 impl std::error::Error for LandmarkPlanError {}
 
-/// Plans the network's start → goal in `weather` (a name of `s.weather`; `None`: the first) with
-/// `popups` added.
+/// Plans the network's start (or `online`) → goal in `weather` (a name of `s.weather`; `None`:
+/// the first) with `popups` added.
 pub fn plan_landmark(
     bytes: &[u8],
     s: &Scenario,
     weather: Option<&str>,
     popups: &[LocalPopup],
+    online: Option<&OnlineStart>,
 ) -> Result<LandmarkRoute, LandmarkPlanError> {
     let net = Network::from_bytes(bytes).map_err(LandmarkPlanError::Load)?;
     let l = *net.landmark().ok_or(LandmarkPlanError::NotLandmark)?;
@@ -123,9 +166,16 @@ pub fn plan_landmark(
         })
         .collect();
     let pruned = between.iter().filter(|&&e| !p.is_navigable(e)).count() as u32;
-    let start = net
-        .vertex(l.start_vertex)
-        .ok_or(LandmarkPlanError::NotLandmark)?;
+    let start = match online {
+        None => net
+            .vertex(l.start_vertex)
+            .ok_or(LandmarkPlanError::NotLandmark)?,
+        Some(o) => {
+            let range = range_left(&p, &net, s, o)?;
+            p.set_start_range(range).map_err(LandmarkPlanError::Plan)?;
+            o.pose
+        }
+    };
     let goal = net
         .vertex(l.goal_vertex)
         .ok_or(LandmarkPlanError::NotLandmark)?;
@@ -139,7 +189,20 @@ pub fn plan_landmark(
     };
     let summary = p
         .plan(&query, p.worst_case_work())
-        .map_err(LandmarkPlanError::Plan)?;
+        .map_err(|e| match (e, p.start_range()) {
+            (PlanError::StartUnconnected, Some(range)) if online.is_some() => {
+                LandmarkPlanError::OnlineStartUnconnected(range)
+            }
+            (e, _) => LandmarkPlanError::Plan(e),
+        })?;
+    let online_start = match online {
+        Some(_) => Some((
+            p.start_range().unwrap_or(0.0),
+            p.start_piece()
+                .ok_or(LandmarkPlanError::Plan(PlanError::Internal))?,
+        )),
+        None => None,
+    };
     let edges = p.route_edges().to_vec();
     let mut overflights = Vec::new();
     for &e in &edges {
@@ -167,13 +230,56 @@ pub fn plan_landmark(
         edges,
         overflights,
         pruned: (pruned, between.len() as u32),
+        online_start,
     })
+}
+
+/// The range `o` has left: its last overflight's `d_max·q` in the weather in force (the
+/// stored direction nearest its heading), or the network's start range, less what it flew.
+fn range_left(
+    p: &CompactHostPlanner,
+    net: &Network,
+    s: &Scenario,
+    o: &OnlineStart,
+) -> Result<f32, LandmarkPlanError> {
+    let l = net.landmark().ok_or(LandmarkPlanError::NotLandmark)?;
+    let allowed = match &o.last_overflight {
+        None => l.start_range_m,
+        Some((name, compass_deg)) => {
+            let index = s
+                .landmarks
+                .iter()
+                .position(|m| &m.name == name)
+                .ok_or_else(|| LandmarkPlanError::UnknownLandmark(name.clone()))?
+                as u32;
+            let off = |v: u32| {
+                let deg = net
+                    .vertex(v)
+                    .map_or(0.0, |x| compass_deg_from_heading(x.heading));
+                (deg as f64 - compass_deg)
+                    .rem_euclid(360.0)
+                    .min((compass_deg - deg as f64).rem_euclid(360.0))
+            };
+            let first = index * l.directions;
+            let nearest = (first..first + l.directions)
+                .min_by(|&a, &b| off(a).total_cmp(&off(b)))
+                .ok_or(LandmarkPlanError::NotLandmark)?;
+            p.overflight_range(nearest)
+                .ok_or(LandmarkPlanError::NotLandmark)?
+        }
+    };
+    let left = allowed - o.flown_m;
+    if !(left >= 0.0) {
+        return Err(LandmarkPlanError::RangeSpent(o.flown_m, allowed));
+    }
+    Ok(left)
 }
 
 /// The route file of a landmark route: overflights, and every Hermite piece as its two line
 /// elements (local metres and m/s) with the piece's parameter range, so an autopilot can
 /// rebuild and sample it ([`skyroute::geometry::hermite::HermiteSegment::new`]); `legs` holds
-/// each edge as a 50 m polyline for `skyroute render`, `geometry` the route for GIS tools.
+/// each leg (the online start's piece, then each edge) as a 50 m polyline for
+/// `skyroute render`, `geometry` the route for GIS tools.
 pub fn landmark_route_json(
     r: &LandmarkRoute,
     bytes: &[u8],
@@ -181,63 +287,54 @@ pub fn landmark_route_json(
     scenario_name: &str,
 ) -> Value {
     let net = Network::from_bytes(bytes).ok();
+    // The legs: (edge, its pieces), the online start's piece first with no edge.
+    let mut route_legs: Vec<(Option<u32>, Vec<HermiteSegment>)> = Vec::new();
+    if let Some((_, piece)) = &r.online_start {
+        route_legs.push((None, vec![*piece]));
+    }
+    if let Some(net) = &net {
+        for &e in &r.edges {
+            let pieces = (0..net.chain_piece_count(e))
+                .filter_map(|k| net.chain_piece(e, k))
+                .collect();
+            route_legs.push((Some(e), pieces));
+        }
+    }
+    // Leg names: the start, the overflown landmarks in order, the goal.
+    let mut names = vec!["start".to_string()];
+    names.extend(r.overflights.iter().map(|o| o.landmark.clone()));
+    names.push("goal".to_string());
     let mut pieces = Vec::new();
     let mut line = Vec::new();
     let mut legs = Vec::new();
-    if let Some(net) = &net {
-        // Leg names: the start, the overflown landmarks in order, the goal.
-        let mut names = vec!["start".to_string()];
-        names.extend(r.overflights.iter().map(|o| o.landmark.clone()));
-        names.push("goal".to_string());
-        for (i, &e) in r.edges.iter().enumerate() {
-            // For drawing (`skyroute render`): the pieces as a polyline through points 50 m
-            // apart along the parameter; the exact curves are in `pieces`.
-            let mut polyline: Vec<Value> = Vec::new();
-            let mut last: Option<skyroute::Vec2> = None;
-            for k in 0..net.chain_piece_count(e) {
-                let Some(seg) = net.chain_piece(e, k) else {
-                    continue;
-                };
-                let n = (seg.length() / 50.0).ceil().max(1.0) as usize;
-                for j in 0..=n {
-                    let Some(q) = seg.position(seg.t_max() * j as f32 / n as f32) else {
-                        continue;
-                    };
-                    if let Some(a) = last {
-                        if a.distance(q) > 0.0 {
-                            polyline.push(
-                                json!({"type": "line", "start": [a.x, a.y], "end": [q.x, q.y]}),
-                            );
-                        }
-                    }
-                    last = Some(q);
+    for (i, (edge, segs)) in route_legs.iter().enumerate() {
+        // For drawing (`skyroute render`): the pieces as a polyline through points 50 m
+        // apart along the parameter; the exact curves are in `pieces`.
+        let mut polyline: Vec<Value> = Vec::new();
+        let mut last: Option<skyroute::Vec2> = None;
+        for seg in segs {
+            for q in sample(seg, 50.0) {
+                if let Some(a) = last.filter(|a| a.distance(q) > 0.0) {
+                    polyline.push(json!({"type": "line", "start": [a.x, a.y], "end": [q.x, q.y]}));
                 }
+                last = Some(q);
             }
-            legs.push(json!({
-                "from": names.get(i).cloned().unwrap_or_default(),
-                "to": names.get(i + 1).cloned().unwrap_or_default(),
-                "length_m": net.edge_length(e).unwrap_or(0.0),
-                "primitives": polyline,
-            }));
-        }
-        for &e in &r.edges {
-            for k in 0..net.chain_piece_count(e) {
-                let Some(seg) = net.chain_piece(e, k) else {
-                    continue;
-                };
-                let mut piece = crate::route_json::hermite_piece_json(&seg);
-                piece["edge"] = json!(e);
-                pieces.push(piece);
-                let n = (seg.length() / 200.0).ceil().max(1.0) as usize;
-                for i in usize::from(!line.is_empty())..=n {
-                    let Some(q) = seg.position(seg.t_max() * i as f32 / n as f32) else {
-                        continue;
-                    };
-                    let (lon, lat) = frame.to_geo(q.x as f64, q.y as f64);
-                    line.push([lon, lat]);
-                }
+            let mut piece = crate::route_json::hermite_piece_json(seg);
+            piece["edge"] = json!(edge);
+            pieces.push(piece);
+            for q in sample(seg, 200.0).skip(usize::from(!line.is_empty())) {
+                let (lon, lat) = frame.to_geo(q.x as f64, q.y as f64);
+                line.push([lon, lat]);
             }
         }
+        legs.push(json!({
+            "from": names.get(i).cloned().unwrap_or_default(),
+            "to": names.get(i + 1).cloned().unwrap_or_default(),
+            "length_m": edge
+                .and_then(|e| net.as_ref()?.edge_length(e))
+                .unwrap_or_else(|| segs.iter().map(|s| s.length()).sum::<f32>()),
+            "primitives": polyline,
+        }));
     }
     let (lat0, lon0) = frame.origin();
     json!({
@@ -250,6 +347,10 @@ pub fn landmark_route_json(
         "pieces_count": r.summary.primitives,
         "work": crate::route_json::work_json(&r.summary.work),
         "navigability_pruned": {"edges": r.pruned.0, "of": r.pruned.1},
+        "online_start": r.online_start.as_ref().map(|(range, piece)| json!({
+            "range_left_m": range,
+            "piece_length_m": piece.length(),
+        })),
         "overflights": r.overflights.iter().map(|o| json!({
             "landmark": o.landmark,
             "heading_deg": o.heading_deg,
@@ -261,4 +362,10 @@ pub fn landmark_route_json(
         "legs": legs,
         "geometry": {"type": "LineString", "coordinates": line},
     })
+}
+
+/// Points of `seg` about `step` metres apart along its parameter, both ends included.
+fn sample(seg: &HermiteSegment, step: f32) -> impl Iterator<Item = skyroute::Vec2> + '_ {
+    let n = (seg.length() / step).ceil().max(1.0) as usize;
+    (0..=n).filter_map(move |j| seg.position(seg.t_max() * j as f32 / n as f32))
 }

@@ -58,10 +58,21 @@ struct PlanArgs {
     #[arg(long, value_parser = parse_popup)]
     popup: Vec<(f64, f64, f64)>,
     /// Plan from `LON,LAT,HEADING_DEG` (compass heading) instead of the scenario's start:
-    /// re-planning from where the aircraft is. Roadmap, terrain and Voronoi networks (a
-    /// landmark network has its start built in).
+    /// re-planning from where the aircraft is. On a landmark network the core joins it to
+    /// the overflights one flyable Hermite piece reaches within the range left
+    /// (--flown-m, --last-overflight).
     #[arg(long, value_parser = parse_start, allow_hyphen_values = true)]
     start: Option<(f64, f64, f64)>,
+    /// Landmark networks, with --start: metres flown since the last overflight (default 0).
+    /// The range left is the last overflight's d_max x q less this.
+    #[arg(long, value_parser = parse_non_negative)]
+    flown_m: Option<f64>,
+    /// Landmark networks, with --start: `NAME,HEADING_DEG`, the landmark overflown last and
+    /// the compass heading it was crossed at (its range: the stored direction nearest that
+    /// heading, in the weather planned). Default: the scenario's start, whose `dist_m` is
+    /// the range.
+    #[arg(long, value_parser = parse_last_overflight)]
+    last_overflight: Option<(String, f64)>,
     /// Leave the scenario's `popup` features out (plan the nominal route); the route file
     /// says so.
     #[arg(long)]
@@ -494,6 +505,8 @@ fn demo_command(dir: &Path) -> CliResult {
         scenario: &scenario_path,
         popups: &[],
         start: None,
+        flown_m: None,
+        last_overflight: None,
         scenario_popups: true,
         connect_radius_m: None,
         turn_rule: None,
@@ -536,6 +549,8 @@ fn plan(a: PlanArgs) -> CliResult {
         scenario: scenario_path,
         popup,
         start,
+        flown_m,
+        last_overflight,
         no_scenario_popups,
         connect_radius,
         turn_rule,
@@ -557,6 +572,8 @@ fn plan(a: PlanArgs) -> CliResult {
         scenario: &scenario_path,
         popups: &popup,
         start,
+        flown_m,
+        last_overflight,
         scenario_popups: !no_scenario_popups,
         connect_radius_m: connect_radius,
         turn_rule,

@@ -2,7 +2,7 @@
 //! `crate::plan_checks`), apply the pop-ups, plan with the onboard core (missions, or the
 //! landmark route), and write the route file in the format its extension names.
 
-use crate::landmark_mission::{landmark_route_json, plan_landmark, LandmarkPlanError};
+use crate::landmark_mission::{landmark_route_json, plan_landmark, LandmarkPlanError, OnlineStart};
 use crate::landmark_reach::no_route_proof;
 use crate::local::local;
 use crate::mission::{plan_mission_with, LocalPopup, MissionOptions};
@@ -39,6 +39,11 @@ pub struct PlanRequest<'a> {
     pub popups: &'a [(f64, f64, f64)],
     /// `--start`: `(lon, lat, compass heading)` replacing the scenario's start.
     pub start: Option<(f64, f64, f64)>,
+    /// `--flown-m`: landmark networks, metres flown since the last overflight.
+    pub flown_m: Option<f64>,
+    /// `--last-overflight`: landmark networks, the landmark overflown last and the compass
+    /// heading it was crossed at.
+    pub last_overflight: Option<(String, f64)>,
     pub scenario_popups: bool,
     pub connect_radius_m: Option<f32>,
     /// `--turn-rule`: terrain networks' turn rule (`None`: the paper's).
@@ -135,7 +140,7 @@ pub fn plan_command(req: &PlanRequest) -> CliResult {
     }
     let on = || format!("{} on {}", req.scenario.display(), req.network.display());
     check_binding(&s, &net).map_err(|e| format!("{}: {e}", on()))?;
-    let s = with_start(s, req.start, &net, req.network)?;
+    let s = with_start(s, req, &net)?;
     let frame = crate::export::network_frame(&net);
     let popups = gather_popups(&s, req.popups, req.scenario_popups);
     check_query(&s, &net, &frame, &popups).map_err(|e| format!("{}: {e}", on()))?;
@@ -217,14 +222,25 @@ fn plan_landmark_route(
     t0: Instant,
 ) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
     let on = format!("{} on {}", req.scenario.display(), req.network.display());
-    let r = match plan_landmark(bytes, s, req.weather, popups) {
+    let online = req.start.map(|(lon, lat, heading_deg)| OnlineStart {
+        pose: crate::local::local_pose(frame, lon, lat, Some(heading_deg)),
+        flown_m: req.flown_m.unwrap_or(0.0) as f32,
+        last_overflight: req.last_overflight.clone(),
+    });
+    let r = match plan_landmark(bytes, s, req.weather, popups, online.as_ref()) {
         Ok(r) => r,
         Err(LandmarkPlanError::Plan(e)) => {
             let w = req
                 .weather
                 .and_then(|name| s.weather.iter().position(|x| x == name))
                 .unwrap_or(0);
-            let why = match no_route_proof(s, w, frame) {
+            // The proof bounds the first leg by the start's `dist_m`, which bounds the range
+            // left from the start fix but not from another overflight.
+            let proof = match req.last_overflight {
+                None => no_route_proof(s, w, frame),
+                Some(_) => None,
+            };
+            let why = match proof {
                 Some(proof) => format!("no route can exist: {proof}"),
                 None => format!(
                     "straight legs within range could connect the start to the goal, but no \
@@ -236,8 +252,21 @@ fn plan_landmark_route(
                 "{on}: no navigable route from the start to the goal in weather {weather}: {why}"
             ))));
         }
+        Err(
+            e @ (LandmarkPlanError::RangeSpent(..) | LandmarkPlanError::OnlineStartUnconnected(_)),
+        ) => return Err(Box::new(NoRoute(format!("{on}: {e}")))),
         Err(e) => return Err(format!("{on}: {e}").into()),
     };
+    if let Some((range, piece)) = &r.online_start {
+        println!(
+            "  from --start with {:.1} km of range left: a {:.1} km piece to {}",
+            range / 1000.0,
+            piece.length() / 1000.0,
+            r.overflights
+                .first()
+                .map_or("the goal", |o| o.landmark.as_str())
+        );
+    }
     for o in &r.overflights {
         println!(
             "  over {} heading {:5.1}°: q {:.2}, range {:.1} km, next leg {:.1} km",
@@ -432,47 +461,55 @@ fn plan_voronoi_route(
     Ok(voronoi_route_json(&m, frame, &s.name))
 }
 
-/// Reads a scenario, repairing self-intersecting no-fly polygons by their hulls when asked (and
-/// saying so), and taking it as `mode` instead of its `planner.mode` when given (`--mode`).
 /// The scenario with its start replaced by `--start` (after the network's binding to the
-/// scenario was checked, so that the new start is checked like any query's). Refused for a
-/// landmark network, whose start and its range to the first landmark are built into it.
+/// scenario was checked, so that the new start is checked like any query's). A landmark
+/// start keeps the scenario start's `dist_m`: the range at the mission's start fix.
+/// `--flown-m` and `--last-overflight` need `--start` and a landmark network.
 fn with_start(
     mut s: scenario::Scenario,
-    start: Option<(f64, f64, f64)>,
+    req: &PlanRequest,
     net: &skyroute::Network,
-    network: &Path,
 ) -> Result<scenario::Scenario, String> {
-    let Some((lon, lat, heading_deg)) = start else {
+    let landmark = net.mode() == skyroute::network::Mode::Landmark;
+    let landmark_option = match (req.flown_m.is_some(), req.last_overflight.is_some()) {
+        (true, _) => Some("--flown-m"),
+        (false, true) => Some("--last-overflight"),
+        (false, false) => None,
+    };
+    if let Some(option) = landmark_option {
+        if !landmark {
+            return Err(format!(
+                "{option} applies to landmark networks (the range flown since the last \
+                 overflight); {} is a {} network",
+                req.network.display(),
+                net.mode().name()
+            ));
+        }
+        if req.start.is_none() {
+            return Err(format!(
+                "{option} needs --start: it gives the range left where the aircraft is"
+            ));
+        }
+    }
+    let Some((lon, lat, heading_deg)) = req.start else {
         return Ok(s);
     };
-    match net.mode() {
-        skyroute::network::Mode::Landmark => {
-            return Err(format!(
-                "--start: {} is a landmark network, whose start (and its range to the first \
-                 landmark) is built into it: rebuild it from a scenario with that start",
-                network.display()
-            ))
-        }
-        skyroute::network::Mode::Roadmap
-        | skyroute::network::Mode::Terrain
-        | skyroute::network::Mode::Voronoi
-        | skyroute::network::Mode::Unknown(_) => {}
-    }
-    let name = s
-        .start
-        .as_ref()
-        .map_or_else(|| "start".to_string(), |e| e.name.clone());
+    let (name, dist_m) = s.start.as_ref().map_or_else(
+        || ("start".to_string(), None),
+        |e| (e.name.clone(), e.dist_m),
+    );
     s.start = Some(scenario::Endpoint {
         name,
         lon,
         lat,
         heading_deg: Some(heading_deg),
-        dist_m: None,
+        dist_m: dist_m.filter(|_| landmark),
     });
     Ok(s)
 }
 
+/// Reads a scenario, repairing self-intersecting no-fly polygons by their hulls when asked (and
+/// saying so), and taking it as `mode` instead of its `planner.mode` when given (`--mode`).
 pub fn load_scenario(
     path: &Path,
     hull_repair: bool,

@@ -1,8 +1,8 @@
 //! `skyroute plan --start LON,LAT,HEADING_DEG`: re-planning from where the aircraft is. The
 //! first leg starts at the given pose (checked against a closed form: a straight leg to a
 //! free-heading waypoint), the new start is checked like the scenario's (inside a building:
-//! the leg leaves it by an exit, named), and a landmark network, whose start is built in,
-//! refuses the option.
+//! the leg leaves it by an exit, named); on a landmark network the start is joined online
+//! with the range left (`--flown-m`, `--last-overflight`).
 
 mod common;
 
@@ -86,39 +86,101 @@ fn a_start_300_m_north_of_a_free_heading_waypoint_flies_300_m_straight_to_it() {
     );
 }
 
+/// A pose on babel-I-detour's stored route, about 3.6 km east of its start (lon, lat, compass
+/// heading).
+const ON_THE_ROUTE: &str = "11.6528,48.1071,100";
+
 #[test]
-fn a_landmark_network_refuses_a_start_and_a_bad_start_is_a_usage_error() {
+fn a_landmark_start_is_joined_online_with_the_range_left() {
     let dir = TempDir::new("start-option-landmark");
     let net = dir.file("babel.bin");
-    let sc = scenario("babel-II-N.geojson");
+    let sc = scenario("babel-I-detour.geojson");
     ok(skyroute(&["build", &sc, "-o", &net]), "build");
+    let out = dir.file("route.json");
+    let plan = |extra: &[&str]| {
+        let mut args = vec!["plan", net.as_str(), "--scenario", sc.as_str(), "-o", &out];
+        args.extend_from_slice(extra);
+        skyroute(&args)
+    };
+    ok(
+        plan(&["--start", ON_THE_ROUTE, "--flown-m", "1500"]),
+        "plan --start",
+    );
+    let route: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    // The scenario start's dist_m is 7000 m: 5500 m are left.
+    let online = &route["online_start"];
+    assert_eq!(online["range_left_m"].as_f64(), Some(5500.0), "{online}");
+    let first = &route["pieces"][0];
+    assert!(first["edge"].is_null(), "{first}");
+    assert!(first["length"].as_f64().unwrap() <= 5500.0);
+    let bytes = std::fs::read(&net).unwrap();
+    let frame = skyroute::Network::from_bytes(&bytes).unwrap().local_frame();
+    let at = frame.position(11.6528, 48.1071).unwrap();
+    let from = &first["from"]["position"];
+    let gap =
+        (from[0].as_f64().unwrap() - at.x as f64).hypot(from[1].as_f64().unwrap() - at.y as f64);
+    assert!(gap < 0.01, "the first piece starts {gap} m from --start");
+    assert_eq!(route["legs"][0]["from"], "start");
+    assert_eq!(route["legs"][1]["from"], route["legs"][0]["to"]);
+    std::fs::remove_file(&out).unwrap();
+
+    // Flown beyond the range the start fix allows: no route can exist (exit 3).
+    let o = plan(&["--start", ON_THE_ROUTE, "--flown-m", "9000"]);
+    assert_eq!(code(&o), 3);
+    assert!(
+        one_line_error(&o).contains("9000 m flown"),
+        "{}",
+        one_line_error(&o)
+    );
+    // A start inside no-fly zone Z1: no piece leaves it (exit 3).
+    let o = plan(&["--start", "11.72,48.137,90"]);
+    assert_eq!(code(&o), 3);
+    assert!(
+        one_line_error(&o).contains("--start: no overflight"),
+        "{}",
+        one_line_error(&o)
+    );
+    // Bad input (exit 1): an unknown landmark, --flown-m without --start.
+    let o = plan(&["--start", ON_THE_ROUTE, "--last-overflight", "Nope,90"]);
+    assert_eq!(code(&o), 1);
+    assert!(one_line_error(&o).contains("\"Nope\" is not a landmark"));
+    let o = plan(&["--flown-m", "10"]);
+    assert_eq!(code(&o), 1);
+    assert!(one_line_error(&o).contains("needs --start"));
+    // Malformed values are usage errors (exit 2).
+    for bad in [
+        &["--start", "11.6,48.0,nan"][..],
+        &["--start", ON_THE_ROUTE, "--flown-m", "-1"],
+        &["--start", ON_THE_ROUTE, "--last-overflight", "L1"],
+    ] {
+        assert_eq!(code(&plan(bad)), 2, "{bad:?}");
+    }
+    assert!(!std::path::Path::new(&out).exists());
+}
+
+#[test]
+fn flown_m_on_a_roadmap_network_is_refused_by_name() {
+    let dir = TempDir::new("start-option-flown-roadmap");
+    let net = dir.file("niendorf.bin");
+    ok(skyroute(&["build", &niendorf(), "-o", &net]), "build");
     let out = dir.file("route.json");
     let o = skyroute(&[
         "plan",
         &net,
         "--scenario",
-        &sc,
+        &niendorf(),
         "--start",
-        "11.6,48.0,10",
+        "11.6478,48.0919,0",
+        "--flown-m",
+        "10",
         "-o",
         &out,
     ]);
     assert_eq!(code(&o), 1);
     assert!(
-        one_line_error(&o).contains("is a landmark network"),
+        one_line_error(&o).contains("--flown-m applies to landmark networks"),
         "{}",
         one_line_error(&o)
     );
-    assert!(!std::path::Path::new(&out).exists());
-    let o = skyroute(&[
-        "plan",
-        &net,
-        "--scenario",
-        &sc,
-        "--start",
-        "11.6,48.0,nan",
-        "-o",
-        &out,
-    ]);
-    assert_eq!(code(&o), 2);
 }

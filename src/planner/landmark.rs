@@ -10,8 +10,8 @@
 //! edges costs nothing until a search reads them.
 
 use super::popup::{Popup, PopupSummary};
-use super::state::{LandmarkState, ModeState, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
 use super::search::Ends;
+use super::state::{LandmarkState, ModeState, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
 use super::{Meter, PlanError, Planner, Query, RouteSummary, SummarySlot};
 use crate::geometry::hermite::HermiteSegment;
 use crate::geometry::{wrap_to_pi, Pose, Vec2};
@@ -327,8 +327,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         meter: &mut Meter,
     ) -> Result<HermiteSegment, PlanError> {
         let l = self.landmark_record()?;
-        let link = *self.online_start_links().get(k).ok_or(PlanError::Internal)?;
-        let to = self.network.vertex(link.vertex).ok_or(PlanError::Internal)?;
+        let link = *self
+            .online_start_links()
+            .get(k)
+            .ok_or(PlanError::Internal)?;
+        let to = self
+            .network
+            .vertex(link.vertex)
+            .ok_or(PlanError::Internal)?;
         let range = self.start_range().ok_or(PlanError::Internal)?;
         self.online_piece(&l, start, &to, range, meter)
             .ok_or(PlanError::Internal)

@@ -172,7 +172,12 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Whether `piece`, within the box `reach`, may come within the network's clearance of a
     /// stored obstacle or an active pop-up (conservative; an unreadable obstacle conflicts).
-    fn piece_conflicts(&self, piece: &HermiteSegment, reach: (Vec2, Vec2), meter: &mut Meter) -> bool {
+    fn piece_conflicts(
+        &self,
+        piece: &HermiteSegment,
+        reach: (Vec2, Vec2),
+        meter: &mut Meter,
+    ) -> bool {
         let clearance = self.network.clearance();
         let chords = POPUP_CHORDS_PER_PIECE;
         let w = Vec2::new(clearance, clearance);

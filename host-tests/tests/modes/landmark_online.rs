@@ -173,7 +173,10 @@ fn an_online_start_is_planned_as_the_best_overflight_of_a_brute_force() {
     let l = *net.landmark().unwrap();
     let mut p: Box<Lp> = Box::new(Planner::new());
     p.load(&built.bytes).unwrap();
-    let stored = p.plan(&query_from(&net, net.vertex(l.start_vertex).unwrap()), u64::MAX);
+    let stored = p.plan(
+        &query_from(&net, net.vertex(l.start_vertex).unwrap()),
+        u64::MAX,
+    );
     let stored = stored.expect("the stored start plans");
     let edges = p.route_edges().to_vec();
     // Poses on the stored route (part way along the start edge, and along the second leg),
@@ -225,7 +228,10 @@ fn an_online_start_is_planned_as_the_best_overflight_of_a_brute_force() {
     // The stored start still plans as before, without a start piece.
     p.set_weather(0).unwrap();
     let again = p
-        .plan(&query_from(&net, net.vertex(l.start_vertex).unwrap()), u64::MAX)
+        .plan(
+            &query_from(&net, net.vertex(l.start_vertex).unwrap()),
+            u64::MAX,
+        )
         .unwrap();
     assert_eq!(again.length, stored.length);
     assert!(p.start_piece().is_none());
@@ -245,8 +251,11 @@ fn the_range_left_pop_ups_and_the_budget_bound_the_online_start() {
     let mut p: Box<Lp> = Box::new(Planner::new());
     p.load(&built.bytes).unwrap();
     assert_eq!(p.start_range(), Some(l.start_range_m));
-    p.plan(&query_from(&net, net.vertex(l.start_vertex).unwrap()), u64::MAX)
-        .unwrap();
+    p.plan(
+        &query_from(&net, net.vertex(l.start_vertex).unwrap()),
+        u64::MAX,
+    )
+    .unwrap();
     let first = p.route_edges()[0];
     let start = pose_on(&net, first, net.chain_piece_count(first) / 2, 0.5);
     let q = query_from(&net, start);
@@ -263,7 +272,11 @@ fn the_range_left_pop_ups_and_the_budget_bound_the_online_start() {
 
     // A budget one short of the count is refused; the route stays.
     let work = r.work.total();
-    assert!(work <= p.worst_case_work(), "{work} > {}", p.worst_case_work());
+    assert!(
+        work <= p.worst_case_work(),
+        "{work} > {}",
+        p.worst_case_work()
+    );
     assert!(matches!(
         p.plan(&q, work - 1),
         Err(PlanError::BudgetExhausted { .. })
@@ -278,7 +291,10 @@ fn the_range_left_pop_ups_and_the_budget_bound_the_online_start() {
     p.set_start_range(piece.length() - 1.0).unwrap();
     match p.plan(&q, u64::MAX) {
         Ok(_) => assert!(p.start_piece().unwrap().length() <= piece.length() - 1.0),
-        Err(e) => assert!(matches!(e, PlanError::StartUnconnected | PlanError::NoRoute)),
+        Err(e) => assert!(matches!(
+            e,
+            PlanError::StartUnconnected | PlanError::NoRoute
+        )),
     }
 
     // A pop-up on the chosen piece: the new piece keeps the clearance from it.

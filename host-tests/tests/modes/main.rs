@@ -15,10 +15,10 @@ mod landmark_build;
 mod landmark_figure4;
 /// Landmark images as bad input, and bad onboard landmark calls.
 mod landmark_load;
-/// Landmark mode end to end: plans in every weather, rosette updates, pop-ups.
-mod landmark_plan;
 /// Landmark mode's online start against a brute force, with the range left and pop-ups.
 mod landmark_online;
+/// Landmark mode end to end: plans in every weather, rosette updates, pop-ups.
+mod landmark_plan;
 /// Missions: inevitable-collision states by name.
 mod mission;
 /// Every scenario's network image against the recorded length and CRC-32.
