@@ -27,7 +27,7 @@
 
 // Bytes that suffice for a planner on every target this library builds for (at least
 // `sr_planner_size()`; checked at compile time).
-#define SR_PLANNER_STORAGE_SIZE 85320
+#define SR_PLANNER_STORAGE_SIZE 85752
 
 // An alignment that suffices for a planner on every target this library builds for (a
 // multiple of `sr_planner_align()`; checked at compile time).
@@ -202,9 +202,11 @@ enum sr_status
   // `PlanError::InsidePopup`: The start or goal lies inside an active pop-up.
   SR_STATUS_PLAN_INSIDE_POPUP = 203,
   // `PlanError::StartUnconnected`: No collision-free connection from the start to a nearby
-  // vertex (or to the goal).
+  // vertex (or to the goal); in landmark mode, no flyable clear piece within the range left to
+  // an overflight.
   SR_STATUS_PLAN_START_UNCONNECTED = 204,
-  // `PlanError::GoalUnconnected`: No collision-free connection from a nearby vertex to the goal.
+  // `PlanError::GoalUnconnected`: No collision-free connection from a nearby vertex to the goal;
+  // in landmark mode, no flyable clear piece from an overflight within its range.
   SR_STATUS_PLAN_GOAL_UNCONNECTED = 205,
   // `PlanError::NoRoute`: The search exhausted the reachable network without reaching the goal.
   SR_STATUS_PLAN_NO_ROUTE = 206,
@@ -234,12 +236,6 @@ enum sr_status
   // `PlanError::RosetteTableFull`: Landmark mode: all `MAX_ROSETTE_OVERRIDES` rosette overrides
   // are in use (by other landmarks).
   SR_STATUS_PLAN_ROSETTE_TABLE_FULL = 216,
-  // `PlanError::StartNotInNetwork`: Landmark mode: the start pose is neither the network's start
-  // nor a landmark overflight (position within 1 m, heading within 10⁻³ rad).
-  SR_STATUS_PLAN_START_NOT_IN_NETWORK = 217,
-  // `PlanError::GoalNotInNetwork`: Landmark mode: the goal position is not the network's goal
-  // (within 1 m), or the network has no goal.
-  SR_STATUS_PLAN_GOAL_NOT_IN_NETWORK = 218,
   // `PlanError::Smoothing`: Voronoi mode: the coarse route found cannot be smoothed within the
   // curvature limit while staying clear of no-fly zones and pop-ups, at this corner of the
   // coarse route (1 the first vertex after the start; 0 the start's lead-in).
@@ -249,6 +245,9 @@ enum sr_status
   SR_STATUS_PLAN_TOO_MANY_SEARCH_STATES = 220,
   // `PlanError::Internal`: An internal invariant failed (a bug; reported instead of panicking).
   SR_STATUS_PLAN_INTERNAL = 221,
+  // `PlanError::InvalidRange`: Landmark mode: `Planner::set_start_range` got a negative or
+  // non-finite range.
+  SR_STATUS_PLAN_INVALID_RANGE = 222,
   // `PopupError::NoFreeSlot`: All `P` pop-up slots are in use.
   SR_STATUS_POPUP_NO_FREE_SLOT = 300,
   // `PopupError::NonFinite`: A coordinate or radius is NaN or infinite.

@@ -152,9 +152,11 @@ pub enum SrStatus {
     /// `PlanError::InsidePopup`: The start or goal lies inside an active pop-up.
     PlanInsidePopup = 203,
     /// `PlanError::StartUnconnected`: No collision-free connection from the start to a nearby
-    /// vertex (or to the goal).
+    /// vertex (or to the goal); in landmark mode, no flyable clear piece within the range left to
+    /// an overflight.
     PlanStartUnconnected = 204,
-    /// `PlanError::GoalUnconnected`: No collision-free connection from a nearby vertex to the goal.
+    /// `PlanError::GoalUnconnected`: No collision-free connection from a nearby vertex to the goal;
+    /// in landmark mode, no flyable clear piece from an overflight within its range.
     PlanGoalUnconnected = 205,
     /// `PlanError::NoRoute`: The search exhausted the reachable network without reaching the goal.
     PlanNoRoute = 206,
@@ -184,9 +186,6 @@ pub enum SrStatus {
     /// `PlanError::RosetteTableFull`: Landmark mode: all `MAX_ROSETTE_OVERRIDES` rosette overrides
     /// are in use (by other landmarks).
     PlanRosetteTableFull = 216,
-    /// `PlanError::GoalNotInNetwork`: Landmark mode: the goal position is not the network's goal
-    /// (within 1 m), or the network has no goal.
-    PlanGoalNotInNetwork = 218,
     /// `PlanError::Smoothing`: Voronoi mode: the coarse route found cannot be smoothed within the
     /// curvature limit while staying clear of no-fly zones and pop-ups, at this corner of the
     /// coarse route (1 the first vertex after the start; 0 the start's lead-in).
@@ -295,7 +294,6 @@ pub fn plan_status(e: &PlanError) -> SrStatus {
         PlanError::InvalidRosette { .. } => SrStatus::PlanInvalidRosette,
         PlanError::RosetteTableFull { .. } => SrStatus::PlanRosetteTableFull,
         PlanError::InvalidRange => SrStatus::PlanInvalidRange,
-        PlanError::GoalNotInNetwork => SrStatus::PlanGoalNotInNetwork,
         PlanError::Smoothing { .. } => SrStatus::PlanSmoothing,
         PlanError::TooManySearchStates { .. } => SrStatus::PlanTooManySearchStates,
         PlanError::Internal => SrStatus::PlanInternal,
@@ -385,7 +383,6 @@ impl SrStatus {
             SrStatus::PlanInvalidRosette => c"SR_STATUS_PLAN_INVALID_ROSETTE",
             SrStatus::PlanRosetteTableFull => c"SR_STATUS_PLAN_ROSETTE_TABLE_FULL",
             SrStatus::PlanInvalidRange => c"SR_STATUS_PLAN_INVALID_RANGE",
-            SrStatus::PlanGoalNotInNetwork => c"SR_STATUS_PLAN_GOAL_NOT_IN_NETWORK",
             SrStatus::PlanSmoothing => c"SR_STATUS_PLAN_SMOOTHING",
             SrStatus::PlanTooManySearchStates => c"SR_STATUS_PLAN_TOO_MANY_SEARCH_STATES",
             SrStatus::PlanInternal => c"SR_STATUS_PLAN_INTERNAL",
@@ -422,7 +419,7 @@ impl SrStatus {
 }
 
 /// Every status, in the order of their numbers.
-const ALL: [SrStatus; 82] = [
+const ALL: [SrStatus; 81] = [
     SrStatus::Ok,
     SrStatus::NullPointer,
     SrStatus::MemoryMisaligned,
@@ -489,7 +486,6 @@ const ALL: [SrStatus; 82] = [
     SrStatus::PlanUnknownLandmark,
     SrStatus::PlanInvalidRosette,
     SrStatus::PlanRosetteTableFull,
-    SrStatus::PlanGoalNotInNetwork,
     SrStatus::PlanSmoothing,
     SrStatus::PlanTooManySearchStates,
     SrStatus::PlanInternal,

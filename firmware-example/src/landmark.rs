@@ -9,15 +9,18 @@
 //! 2. `update_rosette(lost_landmark, &[0.0; D])` — the fixture's landmark (the first one the
 //!    route overflies) is lost — through [`RouteTask::planner`] between cycles, as a navigation
 //!    monitor would, then one more cycle re-plans;
-//! 3. the verdict: both answers equal the host's exactly ([`LandmarkFixture`]: length,
-//!    edges, pieces, work; or the re-plan fails on both), and the new route avoids the lost
+//! 3. a start that is no network vertex (halfway along the first route's first edge), with
+//!    the range left set by `set_start_range`: the core joins it to the overflights online
+//!    and plans again, the landmark still lost;
+//! 4. the verdict: the three answers equal the host's exactly ([`LandmarkFixture`]: length,
+//!    edges, pieces, work; or a plan fails on both), and the later routes avoid the lost
 //!    landmark.
 
 use crate::autopilot::RouteTask;
 use crate::clock::{self, Clock};
 use crate::{log_stack, PERIOD_MS};
 use skyroute::planner::{RouteSummary, MAX_ROSETTE_DIRECTIONS};
-use skyroute::{Goal, Network, PlanError, Planner, Query, Search};
+use skyroute::{Goal, Network, PlanError, Planner, Pose, Query, Search};
 
 /// What the landmark binary's `query.rs` holds for this mission: the weather, the landmark to
 /// lose, and both answers of the host.
@@ -40,6 +43,12 @@ pub struct LandmarkFixture {
     /// The host's re-plan after losing it: `Some((length m, network edges, work))`, or `None`
     /// when its `plan` failed.
     pub expected_replan: Option<(f32, u32, u64)>,
+    /// A start that is no network vertex, `(x, y, heading)`.
+    pub online_start: (f32, f32, f32),
+    /// The range left there, metres.
+    pub online_range: f32,
+    /// The host's plan from it, the landmark still lost (as `expected_replan`).
+    pub expected_online: Option<(f32, u32, u64)>,
 }
 
 /// The task type: the planner, SysTick as delay and clock.
@@ -155,15 +164,44 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
     // 3. The re-plan.
     let (second, replan_ticks) = task.plan_once(query);
     let route = task.planner().route_edges();
-    verdict &= check_replan(&net, second, replan_ticks, route, fixture);
+    verdict &= check_replan(
+        &net,
+        "re-plan",
+        (second, replan_ticks),
+        route,
+        fixture.expected_replan,
+        lost_landmark,
+    );
+
+    // 4. From where the aircraft is, joined online.
+    if let Err(e) = task.planner().set_start_range(fixture.online_range) {
+        defmt::error!("set_start_range({=f32}) failed: {}", fixture.online_range, e);
+        return false;
+    }
+    let (x, y, heading) = fixture.online_start;
+    let online_query = Query {
+        start: Pose::new(x, y, heading),
+        ..query
+    };
+    let (third, online_ticks) = task.plan_once(online_query);
+    let route = task.planner().route_edges();
+    verdict &= check_replan(
+        &net,
+        "online start",
+        (third, online_ticks),
+        route,
+        fixture.expected_online,
+        lost_landmark,
+    );
 
     log_stack();
     if verdict {
         defmt::info!(
-            "PASS: route {=f32} m and, landmark {=u32} lost, {=f32} m: equal to the host's",
+            "PASS: route {=f32} m and, landmark {=u32} lost, {=f32} m, and {=f32} m from the online start: equal to the host's",
             fixture.expected_length,
             lost_landmark,
-            fixture.expected_replan.map_or(f32::NAN, |r| r.0)
+            fixture.expected_replan.map_or(f32::NAN, |r| r.0),
+            fixture.expected_online.map_or(f32::NAN, |r| r.0)
         );
     }
     verdict
@@ -206,22 +244,23 @@ fn check_plan(
     same
 }
 
-/// The re-plan's verdict: true if it equals the host's (length, edges, work) and the new route
-/// (`edges`) avoids the lost landmark, or if it failed as the host's did.
+/// A plan after the landmark was lost (`what`): true if it equals the host's `expected`
+/// (length, edges, work) and its route (`edges`) avoids `lost_landmark`, or if it failed as
+/// the host's did.
 fn check_replan(
     net: &Network<'_>,
-    outcome: Result<RouteSummary, PlanError>,
-    ticks: u64,
+    what: &str,
+    (outcome, ticks): (Result<RouteSummary, PlanError>, u64),
     edges: &[u32],
-    fixture: &LandmarkFixture,
+    expected: Option<(f32, u32, u64)>,
+    lost_landmark: u32,
 ) -> bool {
     let Some(l) = net.landmark() else {
         return false;
     };
-    let lost_landmark = fixture.lost_landmark;
-    match (outcome, fixture.expected_replan) {
+    match (outcome, expected) {
         (Ok(s), Some((length, route_edges, work))) => {
-            log_route(net, "re-plan", &s, ticks, edges);
+            log_route(net, what, &s, ticks, edges);
             let avoids = edges.iter().all(|&e| {
                 net.edge_link(e).is_some_and(|r| {
                     r.source >= l.landmark_count * l.directions
@@ -238,7 +277,8 @@ fn check_replan(
                 s.length == length && s.network_edges == route_edges && s.work.total() == work;
             if !same {
                 defmt::error!(
-                    "re-plan {=f32} m, {=u32} edges, work {=u64}; host: {=f32} m, {=u32} edges, work {=u64}",
+                    "{=str}: {=f32} m, {=u32} edges, work {=u64}; host: {=f32} m, {=u32} edges, work {=u64}",
+                    what,
                     s.length,
                     s.network_edges,
                     s.work.total(),
@@ -251,18 +291,19 @@ fn check_replan(
         }
         (Err(e), None) => {
             defmt::info!(
-                "re-plan: no route ({}) in {=u64} ticks, as on the host; the previous route is kept",
+                "{=str}: no route ({}) in {=u64} ticks, as on the host; the previous route is kept",
+                what,
                 e,
                 ticks
             );
             true
         }
         (Ok(s), None) => {
-            defmt::error!("re-plan found {=f32} m; the host found no route", s.length);
+            defmt::error!("{=str} found {=f32} m; the host found no route", what, s.length);
             false
         }
         (Err(e), Some((length, _, _))) => {
-            defmt::error!("re-plan failed ({}); the host found {=f32} m", e, length);
+            defmt::error!("{=str} failed ({}); the host found {=f32} m", what, e, length);
             false
         }
     }

@@ -1,8 +1,8 @@
 //! Host timings of the onboard core: Dubins paths, the exact predicates, pop-up pruning and a
 //! planning query on the `niendorf-urban` roadmap; the terrain query P → Q on the
 //! `medeiros-jacksboro` network, the network load (validation), and an arc check against the
-//! elevation grid; the landmark query on `babel-II-N`, with an in-flight rosette update, and its
-//! load; the Voronoi query P → Q on `ruz-popups` (as the `voronoi` firmware plans it), its load,
+//! elevation grid; the landmark query on `babel-II-N`, with an in-flight rosette update, from an
+//! online start, and its load; the Voronoi query P → Q on `ruz-popups` (as the `voronoi` firmware plans it), its load,
 //! a radar popping up (`add_threat`) and the re-plan. Run: `cargo bench -p host-tests --bench core`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
@@ -276,6 +276,30 @@ fn babel(c: &mut Criterion) {
             planner.clear_rosette(lost);
             r
         })
+    });
+    // From a pose that is no network vertex, halfway along the route's first edge, joined
+    // online (direct Hermite pieces to the overflights within the start's range).
+    let first = planner.route_edges()[0];
+    let piece = net
+        .chain_piece(first, net.chain_piece_count(first) / 2)
+        .expect("piece");
+    let (at, v) = (
+        piece.position(piece.t_max() * 0.5).expect("position"),
+        piece.velocity(piece.t_max() * 0.5).expect("velocity"),
+    );
+    let online = Query {
+        start: Pose::new(at.x, at.y, v.y.atan2(v.x)),
+        ..query
+    };
+    let s = planner.plan(&online, u64::MAX).expect("online route");
+    eprintln!(
+        "babel-II-N online start: {:.1} m, work {} (bound {})",
+        s.length,
+        s.work.total(),
+        planner.worst_case_work()
+    );
+    c.bench_function("plan_babel_ii_n_online_start", |b| {
+        b.iter(|| black_box(planner.plan(&online, u64::MAX)))
     });
     c.bench_function("load_babel_ii_n_network", |b| {
         b.iter(|| black_box(skyroute::Network::from_bytes(black_box(bytes)).is_ok()))

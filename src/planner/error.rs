@@ -41,9 +41,11 @@ pub enum PlanError {
         /// The pop-up's id.
         popup: u8,
     },
-    /// No collision-free connection from the start to a nearby vertex (or to the goal).
+    /// No collision-free connection from the start to a nearby vertex (or to the goal); in
+    /// landmark mode, no flyable clear piece within the range left to an overflight.
     StartUnconnected,
-    /// No collision-free connection from a nearby vertex to the goal.
+    /// No collision-free connection from a nearby vertex to the goal; in landmark mode, no
+    /// flyable clear piece from an overflight within its range.
     GoalUnconnected,
     /// The search exhausted the reachable network without reaching the goal.
     NoRoute,
@@ -106,9 +108,6 @@ pub enum PlanError {
     /// Landmark mode: [`Planner::set_start_range`](super::Planner::set_start_range) got a
     /// negative or non-finite range.
     InvalidRange,
-    /// Landmark mode: the goal position is not the network's goal (within 1 m), or the network
-    /// has no goal.
-    GoalNotInNetwork,
     /// Voronoi mode: the coarse route found cannot be smoothed within the curvature limit
     /// while staying clear of no-fly zones and pop-ups, at this corner of the coarse route
     /// (1 the first vertex after the start; 0 the start's lead-in).
@@ -174,7 +173,6 @@ impl fmt::Display for PlanError {
                 write!(f, "all {capacity} rosette overrides are in use")
             }
             InvalidRange => write!(f, "the range left must be finite and at least 0"),
-            GoalNotInNetwork => write!(f, "goal is not the network's goal"),
             Smoothing { corner } => write!(
                 f,
                 "the route cannot be smoothed within the curvature limit clear of zones at \

@@ -1,7 +1,8 @@
 //! Landmark mode onboard (Babel 2014): navigability pruning by weather and in-flight rosette
 //! updates, evaluated lazily in the search; queries from the stored start, an overflight or
-//! any other pose (joined online: `planner/landmark_connect.rs`) to the stored goal; routes
-//! as network edges whose Hermite pieces the autopilot samples.
+//! any other pose to the stored goal or any other point (either end joined online:
+//! `planner/landmark_connect.rs`); routes as network edges whose Hermite pieces the
+//! autopilot samples.
 //!
 //! An edge leaving overflight `(L, α)` is navigable in weather `ω` iff its cost (its length)
 //! is at most `d_max(L)·q(α, ω)`; a start edge iff it is at most the start's range. The test
@@ -9,12 +10,12 @@
 //! [`Planner::set_weather`] and [`Planner::update_rosette`] are O(1): re-pruning a landmark's
 //! edges costs nothing until a search reads them.
 
+use super::landmark_connect::LinkSide;
 use super::popup::{Popup, PopupSummary};
-use super::search::Ends;
+use super::search::{Ends, LandmarkEnd};
 use super::state::{LandmarkState, ModeState, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
 use super::{Meter, PlanError, Planner, Query, RouteSummary, SummarySlot};
-use crate::geometry::hermite::HermiteSegment;
-use crate::geometry::{wrap_to_pi, Pose, Vec2};
+use crate::geometry::{wrap_to_pi, Vec2};
 use crate::network::format::LandmarkRecord;
 use heapless::Vec;
 
@@ -205,8 +206,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Landmark mode's [`Planner::plan`] up to its search, after the query's numbers were
-    /// checked: matches the goal to the network's goal vertex, and the start to the stored
-    /// start or an overflight, or else joins it to the network online
+    /// checked: matches the start to the stored start or an overflight and the goal to the
+    /// stored goal, and joins either end that matches none to the network online
     /// (`planner/landmark_connect.rs`). Returns the search's ends; the search and
     /// [`Planner::write_landmark_route`] follow.
     #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
@@ -218,20 +219,28 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let l = self.landmark_record()?;
         self.start_links.clear();
         self.goal_links.clear();
-        self.landmark_state()?.start_links.clear();
+        let state = self.landmark_state()?;
+        state.start_links.clear();
+        state.goal_links.clear();
         meter.work.vertex_scans += 1;
         let to = match self.network.vertex(l.goal_vertex) {
             Some(g) if g.position.distance(query.goal.position) <= MATCH_DISTANCE_M => {
-                l.goal_vertex
+                LandmarkEnd::Vertex(l.goal_vertex)
             }
-            _ => return Err(PlanError::GoalNotInNetwork),
+            _ => LandmarkEnd::Online,
         };
-        let ends = match self.match_start(&l, query, meter) {
-            Some(from) => Ends::Vertices { from, to },
-            None => self.connect_online_start(&l, query, to, meter)?,
+        let from = match self.match_start(&l, query, meter) {
+            Some(v) => LandmarkEnd::Vertex(v),
+            None => LandmarkEnd::Online,
         };
+        if from == LandmarkEnd::Online {
+            self.connect_online_start(&l, query, to, meter)?;
+        }
+        if to == LandmarkEnd::Online {
+            self.connect_online_goal(&l, query, from, meter)?;
+        }
         meter.check()?;
-        Ok(ends)
+        Ok(Ends::Landmark { from, to })
     }
 
     /// The stored start if the query starts there, else the overflight it starts at, if any.
@@ -253,18 +262,19 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         })
     }
 
-    /// Writes the route the search found to vertex `to`: its network edges, after the piece
-    /// from `online_start` when the search began from online links.
+    /// Writes the route the search found, ending at vertex `last` (then by online goal link
+    /// `goal_link`, if any): the online start's piece when the search began from online
+    /// links (`from`), the network edges, the online goal's piece.
     #[inline(never)] // once per query; inlined, its frame would add to the step's (slice.rs)
     pub(super) fn write_landmark_route(
         &mut self,
-        to: u32,
-        online_start: Option<Pose>,
+        query: &Query,
+        (from, last, goal_link): (LandmarkEnd, u32, Option<usize>),
         meter: &mut Meter,
     ) -> Result<RouteSummary, PlanError> {
         let (mut length, mut pieces) = (0.0f32, 0u32);
         let net = self.network;
-        let (edges, start) = self.walk_vertices(to, meter, |e| {
+        let (edges, start) = self.walk_vertices(last, meter, |e| {
             length += net.edge_cost_target(e).map_or(0.0, |c| c.0);
             pieces = pieces.saturating_add(net.chain_piece_count(e));
             Ok(())
@@ -276,21 +286,26 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             });
         }
         meter.work.vertex_scans += edges as u64 + 1;
-        let start_piece = match (online_start, start) {
-            (None, _) => None,
-            (Some(pose), Some(k)) => {
-                let piece = self.rebuild_online_piece(&pose, k, meter)?;
-                length += piece.length();
-                pieces = pieces.saturating_add(1);
-                Some(piece)
+        let start_piece = match (from, start) {
+            (LandmarkEnd::Vertex(_), _) => None,
+            (LandmarkEnd::Online, Some(k)) => {
+                Some(self.rebuild_online_piece(query, LinkSide::Start, k, meter)?)
             }
-            (Some(_), None) => return Err(PlanError::Internal),
+            (LandmarkEnd::Online, None) => return Err(PlanError::Internal),
         };
+        let goal_piece = match goal_link {
+            Some(k) => Some(self.rebuild_online_piece(query, LinkSide::Goal, k, meter)?),
+            None => None,
+        };
+        for piece in start_piece.iter().chain(goal_piece.iter()) {
+            length += piece.length();
+            pieces = pieces.saturating_add(1);
+        }
         meter.check()?;
         let mut route = core::mem::take(&mut self.landmark_state()?.route_edges);
         route.clear();
         let mut replay = Meter::new(u64::MAX);
-        let walked = self.walk_vertices(to, &mut replay, |e| {
+        let walked = self.walk_vertices(last, &mut replay, |e| {
             let _ = route.push(e);
             Ok(())
         });
@@ -298,14 +313,21 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let complete = walked.is_ok() && route.len() == edges as usize;
         let state = self.landmark_state()?;
         state.route_edges = if complete { route } else { Vec::new() };
-        state.start_piece = if complete { start_piece } else { None };
+        state.start_piece = start_piece.filter(|_| complete);
+        state.goal_piece = goal_piece.filter(|_| complete);
         self.paths.clear();
         self.route.clear();
         if !complete {
             self.summary = SummarySlot::Empty;
             return Err(PlanError::Internal);
         }
-        let arrival_heading = self.network.vertex(to).map_or(0.0, |p| p.heading);
+        let arrival_heading = match goal_piece {
+            Some(piece) => {
+                let v = piece.end().velocity;
+                libm::atan2f(v.y, v.x)
+            }
+            None => self.network.vertex(last).map_or(0.0, |p| p.heading),
+        };
         let summary = RouteSummary {
             length,
             primitives: pieces,
@@ -316,28 +338,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         };
         self.summary = SummarySlot::Full(summary);
         Ok(summary)
-    }
-
-    /// The piece of online start link `k`, built again from the query's start as when it was
-    /// found (the same inputs, so the same piece).
-    fn rebuild_online_piece(
-        &self,
-        start: &Pose,
-        k: usize,
-        meter: &mut Meter,
-    ) -> Result<HermiteSegment, PlanError> {
-        let l = self.landmark_record()?;
-        let link = *self
-            .online_start_links()
-            .get(k)
-            .ok_or(PlanError::Internal)?;
-        let to = self
-            .network
-            .vertex(link.vertex)
-            .ok_or(PlanError::Internal)?;
-        let range = self.start_range().ok_or(PlanError::Internal)?;
-        self.online_piece(&l, start, &to, range, meter)
-            .ok_or(PlanError::Internal)
     }
 
     /// Landmark mode: whether any piece of chain edge `e` may come within `clearance` of

@@ -1,26 +1,31 @@
-//! Landmark mode's online start (Babel 2014's Connect-Endpoints at query time): a query whose
+//! Landmark mode's online ends (Babel 2014's Connect-Endpoints at query time): a query whose
 //! start is neither the network's stored start nor an overflight is joined to the
-//! overflights, and to the goal, that one direct quintic Hermite piece reaches within the
-//! range the aircraft has left.
+//! overflights (and the stored goal) that one direct quintic Hermite piece reaches within the
+//! range the aircraft has left; a goal that is not the stored goal is joined from the
+//! overflights (and the stored start) whose range reaches it.
 //!
-//! A piece from the start pose to vertex `v` (both line elements at the network's nominal
-//! speed, so that it meets `v`'s chains in a line element, as every chain piece does) is a
-//! link iff
-//! * its length is at most the range left ([`Planner::set_start_range`]; the network's start
-//!   range until one is set): the navigability of Babel's start edge;
+//! A piece between a pose and vertex `v` (both line elements at the network's nominal speed,
+//! so that it meets `v`'s chains in a line element, as every chain piece does) is a link iff
+//! * its length is at most the range: for a start link the range left
+//!   ([`Planner::set_start_range`]; the network's start range until one is set), for a goal
+//!   link the range `v` allows in the weather and rosettes in force
+//!   ([`Planner::overflight_range`]; from the stored start, the start range): Babel's
+//!   navigability of the edge;
 //! * it is flyable within the network's vehicle limits ([`HermiteSegment::check_flyable`]);
 //! * it keeps the network's clearance from every stored obstacle and every active pop-up
 //!   (conservative chord tests, [`POPUP_CHORDS_PER_PIECE`] chords, as pop-ups test chains).
 //!
-//! Only direct pieces are tried: the ground tool's start chains, which may wind round a zone
-//! through sampled line elements, are not searched onboard, so a start whose every overflight
-//! lies behind a zone is refused with [`PlanError::StartUnconnected`]. Of the links found, the
-//! [`MAX_LINKS`] with the smallest `length + |v − goal|` (a lower bound of any route through
-//! them) are kept, and the search is exact over those.
+//! A goal without a heading is reached along the chord from `v`. Only direct pieces are
+//! tried: the ground tool's endpoint chains, which may wind round a zone through sampled line
+//! elements, are not searched onboard, so an end whose every overflight lies behind a zone is
+//! refused ([`PlanError::StartUnconnected`], [`PlanError::GoalUnconnected`]), and a query with
+//! both ends online overflies at least one landmark. Of the links found on each side, the
+//! [`MAX_LINKS`] with the smallest lower bound of a route through them (the piece plus the
+//! chord to the other end) are kept, and the search is exact over those.
 
 use super::landmark::POPUP_CHORDS_PER_PIECE;
 use super::popup::Popup;
-use super::search::Ends;
+use super::search::{Arrival, LandmarkEnd};
 use super::state::{ModeState, OnlineLink};
 use super::{Meter, PlanError, Planner, Query, MAX_LINKS};
 use crate::geometry::hermite::{HermiteSegment, LineElement};
@@ -80,36 +85,45 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// The online links of the query in progress.
-    pub(super) fn online_start_links(&self) -> &[OnlineLink] {
+    /// Landmark mode: the last route's last piece when it ended at a goal that is not the
+    /// network's: from its last overflight (or the stored start) to that goal.
+    pub fn goal_piece(&self) -> Option<HermiteSegment> {
         match &self.state {
-            ModeState::Landmark(l) => &l.start_links,
+            ModeState::Landmark(l) => l.goal_piece,
+            _ => None,
+        }
+    }
+
+    /// The online links of the query in progress, on one side.
+    pub(super) fn online_links(&self, side: LinkSide) -> &[OnlineLink] {
+        match (&self.state, side) {
+            (ModeState::Landmark(l), LinkSide::Start) => &l.start_links,
+            (ModeState::Landmark(l), LinkSide::Goal) => &l.goal_links,
             _ => &[],
         }
     }
 
-    /// Joins `query.start` to the overflights and the goal vertex `goal` (module
-    /// documentation) and returns the search's ends. Counts per vertex one vertex scan; per
-    /// vertex within range one piece (a `dubins_solves` unit: its construction and
-    /// flyability check, bounded computations measured in `docs/BENCHMARKS.md`), a box test
-    /// per obstacle and pop-up, [`POPUP_CHORDS_PER_PIECE`] predicates per polygon edge, and
-    /// containment or circle where a box meets the piece's reach, and one relaxation.
+    /// Joins `query.start` to the overflights and, when the goal is a vertex, to it (module
+    /// documentation). Counts per vertex one vertex scan; per vertex within range one piece
+    /// (a `dubins_solves` unit: its construction and flyability check, bounded computations
+    /// measured in `docs/BENCHMARKS.md`), a box test per obstacle and pop-up,
+    /// [`POPUP_CHORDS_PER_PIECE`] predicates per polygon edge, and containment or circle where
+    /// a box meets the piece's reach, and one relaxation.
     pub(super) fn connect_online_start(
         &mut self,
         l: &LandmarkRecord,
         query: &Query,
-        goal: u32,
+        goal: LandmarkEnd,
         meter: &mut Meter,
-    ) -> Result<Ends, PlanError> {
+    ) -> Result<(), PlanError> {
         let range = self.start_range().ok_or(PlanError::NotLandmarkNetwork)?;
-        let goal_at = self
-            .network
-            .vertex(goal)
-            .ok_or(PlanError::GoalNotInNetwork)?
-            .position;
+        let goal_vertex = match goal {
+            LandmarkEnd::Vertex(g) => Some(g),
+            LandmarkEnd::Online => None,
+        };
         let mut kept: Vec<(f32, OnlineLink), MAX_LINKS> = Vec::new();
         let overflights = l.landmark_count.saturating_mul(l.directions);
-        for v in (0..overflights).chain(core::iter::once(goal)) {
+        for v in (0..overflights).chain(goal_vertex) {
             meter.work.vertex_scans += 1;
             let Some(to) = self.network.vertex(v) else {
                 continue;
@@ -118,34 +132,130 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             if !(query.start.position.distance(to.position) <= range) {
                 continue;
             }
-            let Some(piece) = self.online_piece(l, &query.start, &to, range, meter) else {
-                meter.check()?;
-                continue;
-            };
-            meter.work.relaxations += 1;
-            let link = OnlineLink {
-                vertex: v,
-                length: piece.length(),
-            };
-            keep_cheapest(&mut kept, link.length + to.position.distance(goal_at), link);
+            if let Some(piece) = self.online_piece(l, &query.start, &to, range, meter) {
+                meter.work.relaxations += 1;
+                let bound = piece.length() + to.position.distance(query.goal.position);
+                keep_cheapest(&mut kept, bound, link(v, &piece));
+            }
             meter.check()?;
         }
+        self.store_links(LinkSide::Start, &kept)
+    }
+
+    /// Joins the overflights (and the stored start, when the search starts there) to
+    /// `query.goal` (module documentation); counts as [`Planner::connect_online_start`].
+    pub(super) fn connect_online_goal(
+        &mut self,
+        l: &LandmarkRecord,
+        query: &Query,
+        from: LandmarkEnd,
+        meter: &mut Meter,
+    ) -> Result<(), PlanError> {
+        let from_start = match from {
+            LandmarkEnd::Vertex(v) if v == l.start_vertex => Some(v),
+            _ => None,
+        };
+        let mut kept: Vec<(f32, OnlineLink), MAX_LINKS> = Vec::new();
+        let overflights = l.landmark_count.saturating_mul(l.directions);
+        for v in (0..overflights).chain(from_start) {
+            meter.work.vertex_scans += 1;
+            let (Some(at), Some(range)) = (self.network.vertex(v), self.link_range(l, v)) else {
+                continue;
+            };
+            if !(at.position.distance(query.goal.position) <= range) {
+                continue;
+            }
+            let goal = goal_pose(query, &at);
+            if let Some(piece) = self.online_piece(l, &at, &goal, range, meter) {
+                meter.work.relaxations += 1;
+                let bound = query.start.position.distance(at.position) + piece.length();
+                keep_cheapest(&mut kept, bound, link(v, &piece));
+            }
+            meter.check()?;
+        }
+        self.store_links(LinkSide::Goal, &kept)
+    }
+
+    /// The range a goal link from vertex `v` may use: the start range from the stored start,
+    /// else `v`'s overflight range.
+    fn link_range(&self, l: &LandmarkRecord, v: u32) -> Option<f32> {
+        match v == l.start_vertex {
+            true => Some(l.start_range_m),
+            false => self.overflight_range(v),
+        }
+    }
+
+    /// Replaces one side's online links by `kept`; an empty side leaves its end unconnected.
+    fn store_links(&mut self, side: LinkSide, kept: &[(f32, OnlineLink)]) -> Result<(), PlanError> {
         let ModeState::Landmark(state) = &mut self.state else {
             return Err(PlanError::NotLandmarkNetwork);
         };
-        state.start_links.clear();
-        for (_, link) in &kept {
-            let _ = state.start_links.push(*link);
+        let (links, unconnected) = match side {
+            LinkSide::Start => (&mut state.start_links, PlanError::StartUnconnected),
+            LinkSide::Goal => (&mut state.goal_links, PlanError::GoalUnconnected),
+        };
+        links.clear();
+        for (_, link) in kept {
+            let _ = links.push(*link);
         }
-        if state.start_links.is_empty() {
-            return Err(PlanError::StartUnconnected);
+        match links.is_empty() {
+            true => Err(unconnected),
+            false => Ok(()),
         }
-        Ok(Ends::OnlineLinksTo { to: goal })
     }
 
-    /// The piece from `start` to vertex pose `to` if it is a link (module documentation):
+    /// Offers the online goal links that leave vertex `u`, reached at cost `du`, to `best`.
+    pub(super) fn offer_online_goal_links(
+        &self,
+        u: u32,
+        du: f32,
+        best: &mut Option<(f32, Arrival)>,
+        meter: &mut Meter,
+    ) -> Result<(), PlanError> {
+        let links = self.online_links(LinkSide::Goal);
+        meter.work.relaxations += links.len() as u64;
+        for (k, link) in links.iter().enumerate() {
+            let total = du + link.length;
+            if link.vertex == u && best.is_none_or(|(b, _)| total < b) {
+                *best = Some((total, Arrival::FromState { state: u, link: k }));
+            }
+        }
+        Ok(())
+    }
+
+    /// The piece of online link `k` on `side`, built again from `query` as when it was found
+    /// (the same inputs, so the same piece).
+    pub(super) fn rebuild_online_piece(
+        &self,
+        query: &Query,
+        side: LinkSide,
+        k: usize,
+        meter: &mut Meter,
+    ) -> Result<HermiteSegment, PlanError> {
+        let l = *self.network.landmark().ok_or(PlanError::Internal)?;
+        let link = *self.online_links(side).get(k).ok_or(PlanError::Internal)?;
+        let at = self
+            .network
+            .vertex(link.vertex)
+            .ok_or(PlanError::Internal)?;
+        let piece = match side {
+            LinkSide::Start => {
+                let range = self.start_range().ok_or(PlanError::Internal)?;
+                self.online_piece(&l, &query.start, &at, range, meter)
+            }
+            LinkSide::Goal => {
+                let range = self
+                    .link_range(&l, link.vertex)
+                    .ok_or(PlanError::Internal)?;
+                self.online_piece(&l, &at, &goal_pose(query, &at), range, meter)
+            }
+        };
+        piece.ok_or(PlanError::Internal)
+    }
+
+    /// The piece from pose `start` to pose `to` if it is a link (module documentation):
     /// within `range`, flyable, and clear.
-    pub(super) fn online_piece(
+    fn online_piece(
         &self,
         l: &LandmarkRecord,
         start: &Pose,
@@ -251,4 +361,32 @@ fn keep_cheapest(kept: &mut Vec<(f32, OnlineLink), MAX_LINKS>, key: f32, link: O
             tail.rotate_right(1);
         }
     }
+}
+
+/// Which end of a landmark query an online link joins.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum LinkSide {
+    /// From the query's start to a vertex.
+    Start,
+    /// From a vertex to the query's goal.
+    Goal,
+}
+
+/// The link to (or from) vertex `v` by `piece`.
+fn link(v: u32, piece: &HermiteSegment) -> OnlineLink {
+    OnlineLink {
+        vertex: v,
+        length: piece.length(),
+    }
+}
+
+/// The pose a goal link from `from` ends at: the query's goal with its heading, or along the
+/// chord from `from` when it has none.
+fn goal_pose(query: &Query, from: &Pose) -> Pose {
+    let p = query.goal.position;
+    let heading = query.goal.heading.unwrap_or_else(|| {
+        let d = p - from.position;
+        libm::atan2f(d.y, d.x)
+    });
+    Pose::new(p.x, p.y, heading)
 }

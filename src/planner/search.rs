@@ -1,6 +1,7 @@
 //! The query: validate, connect, search (Dijkstra or A*), and write the route.
 
 use super::heap::ItemState;
+use super::landmark_connect::LinkSide;
 use super::state::ModeState;
 use super::{
     Link, Meter, Phase, PlanError, PlanStep, Planner, Query, QueryField, RouteSummary, Search,
@@ -42,27 +43,39 @@ pub(super) enum StateSpace {
 pub(super) enum Ends {
     /// From the start links to the goal links (roadmap mode).
     Links = 0,
-    /// From one vertex (cost 0) to another (landmark mode).
-    Vertices {
-        /// The start vertex.
-        from: u32,
-        /// The goal vertex.
-        to: u32,
+    /// Landmark mode: from a vertex (cost 0) or the online start links, to a vertex or the
+    /// online goal links (`planner/landmark_connect.rs`).
+    Landmark {
+        /// Where the search starts.
+        from: LandmarkEnd,
+        /// What it looks for.
+        to: LandmarkEnd,
     } = 1,
-    /// From the online start links to a vertex (landmark mode, a start that is not a
-    /// network vertex: `planner/landmark_connect.rs`).
-    OnlineLinksTo {
-        /// The goal vertex.
-        to: u32,
-    } = 2,
+}
+
+/// One end of a landmark search.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub(super) enum LandmarkEnd {
+    /// A network vertex: the stored start, an overflight, or the stored goal.
+    Vertex(u32) = 0,
+    /// The query's pose, joined to the network by online links.
+    Online = 1,
 }
 
 impl Ends {
     /// The vertex the search stops at, if it stops at one.
     fn target(self) -> Option<u32> {
         match self {
-            Ends::Links => None,
-            Ends::Vertices { to, .. } | Ends::OnlineLinksTo { to } => Some(to),
+            Ends::Landmark {
+                to: LandmarkEnd::Vertex(to),
+                ..
+            } => Some(to),
+            Ends::Links
+            | Ends::Landmark {
+                to: LandmarkEnd::Online,
+                ..
+            } => None,
         }
     }
 }
@@ -273,7 +286,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         ends: Ends,
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
-        if let Ends::Vertices { from, .. } = ends {
+        if let Ends::Landmark {
+            from: LandmarkEnd::Vertex(from),
+            ..
+        } = ends
+        {
             let (Some(d), Some(via)) = (
                 self.dist.get_mut(from as usize),
                 self.via.get_mut(from as usize),
@@ -284,20 +301,25 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             *via = FROM_START;
             meter.work.heap_steps += self.heap.push_or_decrease(from, 0.0) as u64;
         }
+        let online = matches!(
+            ends,
+            Ends::Landmark {
+                from: LandmarkEnd::Online,
+                ..
+            }
+        );
         let links = match ends {
             Ends::Links => self.start_links.len(),
-            Ends::Vertices { .. } => 0,
-            Ends::OnlineLinksTo { .. } => self.online_start_links().len(),
+            Ends::Landmark { .. } if online => self.online_links(LinkSide::Start).len(),
+            Ends::Landmark { .. } => 0,
         };
         for k in 0..links {
-            let link = match ends {
-                Ends::OnlineLinksTo { .. } => self
-                    .online_start_links()
+            let link = if online {
+                self.online_links(LinkSide::Start)
                     .get(k)
-                    .map(|l| (l.vertex, l.length)),
-                Ends::Links | Ends::Vertices { .. } => {
-                    self.start_links.get(k).map(|l| (l.vertex, l.cost))
-                }
+                    .map(|l| (l.vertex, l.length))
+            } else {
+                self.start_links.get(k).map(|l| (l.vertex, l.cost))
             };
             let (vertex, cost) = link.ok_or(PlanError::Internal)?;
             self.seed_link(query, k, vertex, cost, meter)?;
@@ -351,6 +373,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 *best = Some((du, Arrival::AtVertex));
                 return Ok(true);
             }
+        }
+        if let Ends::Landmark {
+            to: LandmarkEnd::Online,
+            ..
+        } = ends
+        {
+            self.offer_online_goal_links(u, du, best, meter)?;
         }
         meter.work.relaxations += self.goal_links.len() as u64;
         for k in 0..self.goal_links.len() {

@@ -10,7 +10,7 @@
 //! [`roadmap_step_unit_bound`]: super::roadmap_step_unit_bound
 
 use super::connect::Candidates;
-use super::search::{Arrival, Ends};
+use super::search::{Arrival, Ends, LandmarkEnd};
 use super::state::ModeState;
 use super::window::{LazyWindow, ObstacleWindow};
 use super::{
@@ -433,16 +433,27 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 let query = self.flight.query;
                 self.write_voronoi_route(&query, arrival, meter)
             }
-            ModeState::Landmark(_) => match (arrival, self.flight.ends) {
-                (Arrival::AtVertex, Ends::Vertices { to, .. }) => {
-                    self.write_landmark_route(to, None, meter)
-                }
-                (Arrival::AtVertex, Ends::OnlineLinksTo { to }) => {
-                    let start = self.flight.query.start;
-                    self.write_landmark_route(to, Some(start), meter)
-                }
-                _ => Err(PlanError::Internal),
-            },
+            ModeState::Landmark(_) => {
+                let query = self.flight.query;
+                let ends = match (arrival, self.flight.ends) {
+                    (
+                        Arrival::AtVertex,
+                        Ends::Landmark {
+                            from,
+                            to: LandmarkEnd::Vertex(to),
+                        },
+                    ) => (from, to, None),
+                    (
+                        Arrival::FromState { state, link },
+                        Ends::Landmark {
+                            from,
+                            to: LandmarkEnd::Online,
+                        },
+                    ) => (from, state, Some(link)),
+                    _ => return Err(PlanError::Internal),
+                };
+                self.write_landmark_route(&query, ends, meter)
+            }
         }
     }
 }

@@ -69,12 +69,11 @@ impl TerrainState {
     }
 }
 
-/// A landmark query's link from a start that is not a network vertex: one direct Hermite
-/// piece to `vertex` (an overflight or the goal), `length` metres long
-/// (`planner/landmark_connect.rs`).
+/// A landmark query's online link: one direct Hermite piece between the query's start or goal
+/// and `vertex`, `length` metres long (`planner/landmark_connect.rs`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct OnlineLink {
-    /// The overflight (or goal) vertex the piece ends at.
+    /// The network vertex the piece joins.
     pub(super) vertex: u32,
     /// The piece's length, metres: what the link costs the search.
     pub(super) length: f32,
@@ -93,10 +92,14 @@ pub(super) struct LandmarkState<const R: usize> {
     pub(super) start_range_m: Option<f32>,
     /// The query's links from such a start.
     pub(super) start_links: Vec<OnlineLink, MAX_LINKS>,
+    /// The query's links to a goal that is not the network's.
+    pub(super) goal_links: Vec<OnlineLink, MAX_LINKS>,
     /// The last route's network edges, start to goal.
     pub(super) route_edges: Vec<u32, R>,
     /// The last route's piece from a start that is not a network vertex to its first edge.
     pub(super) start_piece: Option<HermiteSegment>,
+    /// The last route's piece from its last edge to a goal that is not the network's.
+    pub(super) goal_piece: Option<HermiteSegment>,
 }
 
 impl<const R: usize> LandmarkState<R> {
@@ -107,8 +110,10 @@ impl<const R: usize> LandmarkState<R> {
             rosettes: Vec::new(),
             start_range_m: None,
             start_links: Vec::new(),
+            goal_links: Vec::new(),
             route_edges: Vec::new(),
             start_piece: None,
+            goal_piece: None,
         }
     }
 }

@@ -393,33 +393,35 @@ pub fn voronoi_plan_work_bound(n: &VoronoiBoundInputs) -> u64 {
 /// (of its counts, `n`, only the vertices, edges, obstacles, their points, the pop-ups and
 /// their vertices are read):
 ///
-/// * matching the goal and the start against the stored start and every overflight:
-///   |V| + 1 vertex scans;
+/// * matching the goal and the start against the stored goal, the stored start and every
+///   overflight: |V| + 1 vertex scans;
 /// * joining a start that is not a vertex online (`planner/landmark_connect.rs`): |V| + 1
 ///   vertex scans, and for each of those vertices one piece (a `dubins_solves` unit), one
 ///   relaxation, a box test per obstacle and pop-up, and [`POPUP_CHORDS_PER_PIECE`] chords
 ///   each tested against every polygon edge and containment or circle:
-///   `w = 1 + 1 + O + P + c·(points + O + P·(popup_vertices + 1))`;
+///   `w = 1 + 1 + O + P + c·(points + O + P·(popup_vertices + 1))`; a goal that is not the
+///   stored goal likewise;
 /// * the search: |V| heap resets, ≤ |V| pops and ≤ [`MAX_LINKS`] + |E| pushes or decreases
 ///   of ≤ L = ⌊log2|V|⌋ + 1 levels, ≤ |E| relaxations (each also reads the weather's quality
-///   or an override: O(1));
-/// * the route: ≤ 2(|V| + 1) vertex scans for the two walks back, and the online piece built
-///   again, `w`.
+///   or an override: O(1)), and ≤ [`MAX_LINKS`] online goal links examined per pop;
+/// * the route: ≤ 2(|V| + 1) vertex scans for the two walks back, and the two online pieces
+///   built again, `2w`.
 ///
 /// [`POPUP_CHORDS_PER_PIECE`]: super::POPUP_CHORDS_PER_PIECE
 /// [`MAX_LINKS`]: super::MAX_LINKS
 pub fn landmark_plan_work_bound(n: &WorkBoundInputs) -> u64 {
     let v = n.vertices;
     let levels = heap_levels(v);
+    let links = super::MAX_LINKS as u64;
     let chords = super::POPUP_CHORDS_PER_PIECE as u64;
     let piece = 2
         + n.obstacles
         + n.popups
         + chords * (n.obstacle_points + n.obstacles + n.popups * (n.popup_vertices + 1));
     let matching = v + 1;
-    let online = (v + 1) * (1 + piece);
-    let search = v + (v + super::MAX_LINKS as u64 + n.edges) * levels + n.edges;
-    let route = 2 * (v + 1) + piece;
+    let online = 2 * (v + 1) * (1 + piece);
+    let search = v + (v + links + n.edges) * levels + n.edges + v * links;
+    let route = 2 * (v + 1) + 2 * piece;
     matching + online + search + route
 }
 

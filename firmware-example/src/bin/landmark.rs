@@ -1,6 +1,7 @@
 //! The landmark firmware: embeds `fixture-landmark/` (a landmark network: babel-II-N), plans
-//! from the stored start to the stored goal, loses a landmark in flight and plans again
-//! ([`landmark::run`]); exits 0 only if both answers equal the host's.
+//! from the stored start to the stored goal, loses a landmark in flight and plans again, then
+//! plans from a pose that is no network vertex ([`landmark::run`]); exits 0 only if the three
+//! answers equal the host's.
 #![no_std]
 #![no_main]
 
@@ -24,7 +25,7 @@ use fixture::*;
 static PLANNER: ConstStaticCell<Planner<'static, V_CAP, E_CAP, P_CAP, R_CAP>> =
     ConstStaticCell::new(Planner::new());
 
-/// The fixture's weather, the landmark to lose and both answers of the host.
+/// The fixture's weather, the landmark to lose, the online start and the host's answers.
 const FIXTURE: LandmarkFixture = LandmarkFixture {
     weather: WEATHER,
     expected_length: EXPECTED_LENGTH,
@@ -34,6 +35,9 @@ const FIXTURE: LandmarkFixture = LandmarkFixture {
     budget: BUDGET,
     lost_landmark: LOST_LANDMARK,
     expected_replan: EXPECTED_REPLAN,
+    online_start: ONLINE_START,
+    online_range: ONLINE_RANGE,
+    expected_online: EXPECTED_ONLINE,
 };
 
 #[entry]

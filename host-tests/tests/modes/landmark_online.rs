@@ -327,3 +327,155 @@ fn the_range_left_pop_ups_and_the_budget_bound_the_online_start() {
         (online, reference) => panic!("online {online:?}, brute force {reference:?}"),
     }
 }
+
+/// Shortest navigable distance from `from` to every vertex, by a Dijkstra of the test's own
+/// over the network's edges (usable iff the core calls them navigable in its weather).
+fn distances_from(net: &Network, p: &Lp, from: u32) -> Vec<f64> {
+    use std::cmp::Reverse;
+    use std::collections::BinaryHeap;
+    let n = net.vertex_count() as usize;
+    let mut dist = vec![f64::INFINITY; n];
+    let mut heap = BinaryHeap::new();
+    dist[from as usize] = 0.0;
+    heap.push((Reverse(0u64), from));
+    while let Some((Reverse(key), u)) = heap.pop() {
+        let du = f64::from_bits(key);
+        if du > dist[u as usize] {
+            continue;
+        }
+        for e in net.out_edges(u) {
+            let (cost, to) = net.edge_cost_target(e).unwrap();
+            let d = du + cost as f64;
+            if p.is_navigable(e) && d < dist[to as usize] {
+                dist[to as usize] = d;
+                heap.push((Reverse(d.to_bits()), to));
+            }
+        }
+    }
+    dist
+}
+
+#[test]
+fn an_online_goal_is_planned_as_the_best_overflight_of_a_brute_force() {
+    if !full_tier_only(
+        "landmark_online::an_online_goal_is_planned_as_the_best_overflight_of_a_brute_force",
+        "builds babel-I-detour",
+    ) {
+        return;
+    }
+    let (s, built) = (scenarios::scenario(SCENARIO), scenarios::built(SCENARIO));
+    let net = Network::from_bytes(&built.bytes).unwrap();
+    let l = *net.landmark().unwrap();
+    let limits = net.fly_limits().unwrap();
+    let mut p: Box<Lp> = Box::new(Planner::new());
+    p.load(&built.bytes).unwrap();
+    let start = net.vertex(l.start_vertex).unwrap();
+    p.plan(&query_from(&net, start), u64::MAX).unwrap();
+    let edges = p.route_edges().to_vec();
+    // Goals on the stored route (on its last and second-to-last legs) without a heading, and
+    // 500 m to the side with one.
+    let mut goals = Vec::new();
+    for e in [edges[edges.len() - 1], edges[edges.len() - 2]] {
+        let on = pose_on(&net, e, net.chain_piece_count(e) / 2, 0.5);
+        goals.push(Goal {
+            position: on.position,
+            heading: None,
+        });
+        let side = Vec2::new(-on.heading.sin(), on.heading.cos()) * 500.0;
+        goals.push(Goal {
+            position: on.position + side,
+            heading: Some(on.heading - 0.4),
+        });
+    }
+    let mut planned = 0;
+    for weather in 0..l.weather_count {
+        p.set_weather(weather).unwrap();
+        let dist = distances_from(&net, &p, l.start_vertex);
+        for (i, goal) in goals.iter().enumerate() {
+            let q = Query {
+                start,
+                goal: *goal,
+                search: Search::Dijkstra,
+            };
+            let online = p.plan(&q, u64::MAX);
+            // The brute force: every overflight reached, and the piece from it to the goal
+            // within its range, flyable and clear (the core's conservative chord test).
+            let mut best: Option<f64> = None;
+            for v in 0..l.landmark_count * l.directions {
+                let (Some(range), true) = (p.overflight_range(v), dist[v as usize].is_finite())
+                else {
+                    continue;
+                };
+                let at = net.vertex(v).unwrap();
+                let d = goal.position - at.position;
+                let heading = goal.heading.unwrap_or(d.y.atan2(d.x));
+                let to = Pose::new(goal.position.x, goal.position.y, heading);
+                let Ok(piece) = HermiteSegment::new(
+                    &LineElement::from_pose(&at, l.v_nominal),
+                    &LineElement::from_pose(&to, l.v_nominal),
+                    l.v_nominal,
+                ) else {
+                    continue;
+                };
+                let clear =
+                    (0..net.obstacle_count()).all(|k| match net.obstacle(k).unwrap().0 {
+                        skyroute::network::Obstacle::Polygon(poly) => !piece
+                            .conflicts_with_polygon(&poly, net.clearance(), POPUP_CHORDS_PER_PIECE),
+                        skyroute::network::Obstacle::Circle { .. } => false,
+                    });
+                if piece.length() <= range && piece.check_flyable(&limits).is_ok() && clear {
+                    let total = dist[v as usize] + piece.length() as f64;
+                    best = Some(best.map_or(total, |b: f64| b.min(total)));
+                }
+            }
+            println!(
+                "goal {i} weather {weather}: online {:?} m, brute force {best:?} m",
+                online.as_ref().map(|r| r.length)
+            );
+            match (online, best) {
+                (Ok(r), Some(b)) => {
+                    assert!(
+                        (r.length as f64 - b).abs() <= 1e-4 * b,
+                        "online {} vs brute force {b}",
+                        r.length
+                    );
+                    let piece = p.goal_piece().expect("an online goal has a goal piece");
+                    let last = net.edge_link(*p.route_edges().last().unwrap()).unwrap();
+                    let from = net.vertex(last.target).unwrap();
+                    let end_heading = goal.heading.unwrap_or_else(|| {
+                        let d = goal.position - from.position;
+                        d.y.atan2(d.x)
+                    });
+                    let to = Pose::new(goal.position.x, goal.position.y, end_heading);
+                    check_piece(s, built, &piece, &from, &to);
+                    assert!(p.start_piece().is_none());
+                    assert!(r.work.total() <= p.worst_case_work());
+                    planned += 1;
+                }
+                (Err(PlanError::GoalUnconnected | PlanError::NoRoute), None) => {}
+                (online, reference) => panic!("online {online:?}, brute force {reference:?}"),
+            }
+        }
+    }
+    assert!(planned >= 4, "only {planned} online goals planned");
+
+    // Both ends online: a start on the first leg to the first goal; each piece checked.
+    p.set_weather(0).unwrap();
+    let first = edges[0];
+    let from = pose_on(&net, first, net.chain_piece_count(first) / 2, 0.5);
+    let q = Query {
+        start: from,
+        goal: goals[0],
+        search: Search::Dijkstra,
+    };
+    let r = p.plan(&q, u64::MAX).expect("both ends online");
+    let (a, b) = (p.start_piece().unwrap(), p.goal_piece().unwrap());
+    let route = p.route_edges();
+    let pieces: u32 = route.iter().map(|&e| net.chain_piece_count(e)).sum();
+    assert_eq!(r.primitives, pieces + 2);
+    let edge_length: f32 = route.iter().map(|&e| net.edge_length(e).unwrap()).sum();
+    assert!((r.length - (a.length() + edge_length + b.length())).abs() < 0.01);
+    let first_vertex = net.vertex(net.edge_source(route[0]).unwrap()).unwrap();
+    check_piece(s, built, &a, &from, &first_vertex);
+    assert!(r.work.total() <= p.worst_case_work());
+}

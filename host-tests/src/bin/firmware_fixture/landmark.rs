@@ -1,7 +1,9 @@
 //! Landmark networks (Babel): the host plans from the network's stored start to its stored
 //! goal in weather 0, loses the first landmark the route overflies (`update_rosette` with
-//! all-zero qualities) and plans again, as the `landmark` firmware will; `query.rs` records
-//! both answers.
+//! all-zero qualities) and plans again, then plans from a pose that is no network vertex
+//! (halfway along the first route's first edge, joined online with
+//! [`ONLINE_RANGE_SHARE`] of the start's range left), as the `landmark` firmware will;
+//! `query.rs` records the three answers.
 
 use super::{
     capacity, lit, planner_bytes, write_fixture, Args, HostPlanner, FLASH_BYTES, HOST_E, HOST_V,
@@ -22,7 +24,14 @@ struct LandmarkPlan {
     /// The plan after losing it.
     replan: Result<RouteSummary, PlanError>,
     replan_edges: Vec<u32>,
+    /// The online start `(x, y, heading)` and its range left, metres.
+    online_start: ((f32, f32, f32), f32),
+    /// The plan from it, the landmark still lost.
+    online: Result<RouteSummary, PlanError>,
 }
+
+/// The share of the stored start's range left at the online start.
+const ONLINE_RANGE_SHARE: f32 = 0.8;
 
 /// The weather the landmark firmware plans in.
 const LANDMARK_WEATHER: u32 = 0;
@@ -79,6 +88,25 @@ fn plan_landmark(bytes: &[u8]) -> Result<LandmarkPlan, String> {
         Ok(_) => planner.route_edges().to_vec(),
         Err(_) => Vec::new(),
     };
+    let first_edge = *first_edges.first().ok_or("the route has no edge")?;
+    let piece = network
+        .chain_piece(first_edge, network.chain_piece_count(first_edge) / 2)
+        .ok_or("the first edge's middle piece does not rebuild")?;
+    let t = piece.t_max() * 0.5;
+    let (at, v) = piece
+        .position(t)
+        .zip(piece.velocity(t))
+        .ok_or("the middle piece does not evaluate")?;
+    let pose = (at.x, at.y, v.y.atan2(v.x));
+    let range = l.start_range_m * ONLINE_RANGE_SHARE;
+    planner
+        .set_start_range(range)
+        .map_err(|e| format!("set_start_range({range}): {e}"))?;
+    let online_query = Query {
+        start: skyroute::Pose::new(pose.0, pose.1, pose.2),
+        ..query
+    };
+    let online = planner.plan(&online_query, budget);
     Ok(LandmarkPlan {
         budget,
         first,
@@ -86,6 +114,8 @@ fn plan_landmark(bytes: &[u8]) -> Result<LandmarkPlan, String> {
         lost,
         replan,
         replan_edges,
+        online_start: (pose, range),
+        online,
     })
 }
 
@@ -161,6 +191,8 @@ pub(super) fn run_landmark(
         lost,
         replan,
         replan_edges,
+        online_start,
+        online,
     } = plan;
     if first_edges.len() > R_CAP {
         return Err(format!(
@@ -199,6 +231,17 @@ pub(super) fn run_landmark(
         ),
         Err(e) => eprintln!("firmware_fixture: landmark {lost} lost: no route: {e}"),
     }
+    match &online {
+        Ok(s) => eprintln!(
+            "firmware_fixture: online start {:?} with {} m left: route {} m, {} edges, work {}",
+            online_start.0,
+            online_start.1,
+            s.length,
+            s.network_edges,
+            s.work.total()
+        ),
+        Err(e) => eprintln!("firmware_fixture: online start {online_start:?}: no route: {e}"),
+    }
     eprintln!("firmware_fixture: capacities V={v_cap} E={e_cap} P={P_CAP} R={R_CAP}: planner ≈ {ram} B of RAM");
     if ram > RAM_BYTES * 3 / 4 {
         eprintln!("firmware_fixture: warning: the planner needs ≈{ram} B, most of the 128 KiB RAM");
@@ -218,13 +261,18 @@ pub(super) fn run_landmark(
         &first,
         lost,
         &replan,
+        (online_start, &online),
     );
 
     write_fixture(&args.out_dir, Some(bytes), &q)
 }
 
+/// The online start and the host's plan from it.
+type OnlinePlan<'a> = (((f32, f32, f32), f32), &'a Result<RouteSummary, PlanError>);
+
 /// `query.rs` of a landmark network: capacities, weather, the host's answer, the budget, the
-/// landmark lost and the re-plan.
+/// landmark lost, the re-plan, and the online start with its plan.
+#[allow(clippy::too_many_arguments)]
 fn query_rs(
     source: &str,
     (nv, ne): (u32, u32),
@@ -233,6 +281,7 @@ fn query_rs(
     first: &RouteSummary,
     lost: u32,
     replan: &Result<RouteSummary, PlanError>,
+    (((x, y, heading), range), online): OnlinePlan<'_>,
 ) -> String {
     let mut q = String::new();
     let w = &mut q;
@@ -305,6 +354,41 @@ fn query_rs(
     let _ = writeln!(
         w,
         "pub const EXPECTED_REPLAN: Option<(f32, u32, u64)> = {replan_value};"
+    );
+    let _ = writeln!(
+        w,
+        "/// A start that is no network vertex, `(x, y, heading)`: halfway along the first \
+         route's first edge."
+    );
+    let _ = writeln!(
+        w,
+        "pub const ONLINE_START: (f32, f32, f32) = ({}, {}, {});",
+        lit(x),
+        lit(y),
+        lit(heading)
+    );
+    let _ = writeln!(
+        w,
+        "/// The range left there (`Planner::set_start_range`), metres."
+    );
+    let _ = writeln!(w, "pub const ONLINE_RANGE: f32 = {};", lit(range));
+    let online_value = match online {
+        Ok(s) => format!(
+            "Some(({}, {}, {}))",
+            lit(s.length),
+            s.network_edges,
+            s.work.total()
+        ),
+        Err(_) => "None".to_string(),
+    };
+    let _ = writeln!(
+        w,
+        "/// The host's plan from it, the landmark still lost: `Some((length m, network edges, \
+         work))`, or `None` when `plan` fails."
+    );
+    let _ = writeln!(
+        w,
+        "pub const EXPECTED_ONLINE: Option<(f32, u32, u64)> = {online_value};"
     );
 
     q
