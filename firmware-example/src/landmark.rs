@@ -9,7 +9,7 @@
 //! 2. `update_rosette(lost_landmark, &[0.0; D])` — the fixture's landmark (the first one the
 //!    route overflies) is lost — through [`RouteTask::planner`] between cycles, as a navigation
 //!    monitor would, then one more cycle re-plans;
-//! 3. a start that is no network vertex (halfway along the first route's first edge), with
+//! 3. a start that is no network vertex (halfway along the re-plan's first edge), with
 //!    the range left set by `set_start_range`: the core joins it to the overflights online
 //!    and plans again, the landmark still lost;
 //! 4. the verdict: the three answers equal the host's exactly ([`LandmarkFixture`]: length,

@@ -1,7 +1,7 @@
 //! Landmark networks (Babel): the host plans from the network's stored start to its stored
 //! goal in weather 0, loses the first landmark the route overflies (`update_rosette` with
 //! all-zero qualities) and plans again, then plans from a pose that is no network vertex
-//! (halfway along the first route's first edge, joined online with
+//! (halfway along the re-plan's first edge, joined online with
 //! [`ONLINE_RANGE_SHARE`] of the start's range left), as the `landmark` firmware will;
 //! `query.rs` records the three answers.
 
@@ -88,7 +88,11 @@ fn plan_landmark(bytes: &[u8]) -> Result<LandmarkPlan, String> {
         Ok(_) => planner.route_edges().to_vec(),
         Err(_) => Vec::new(),
     };
-    let first_edge = *first_edges.first().ok_or("the route has no edge")?;
+    // On the re-plan's route when there is one: it avoids the lost landmark.
+    let first_edge = *replan_edges
+        .first()
+        .or(first_edges.first())
+        .ok_or("the route has no edge")?;
     let piece = network
         .chain_piece(first_edge, network.chain_piece_count(first_edge) / 2)
         .ok_or("the first edge's middle piece does not rebuild")?;
@@ -357,8 +361,8 @@ fn query_rs(
     );
     let _ = writeln!(
         w,
-        "/// A start that is no network vertex, `(x, y, heading)`: halfway along the first \
-         route's first edge."
+        "/// A start that is no network vertex, `(x, y, heading)`: halfway along the re-plan's \
+         first edge."
     );
     let _ = writeln!(
         w,
