@@ -9,8 +9,10 @@
 //! Roadmap (niendorf-urban): random start and goal poses, 0–3 circular pop-ups, Dijkstra or A*.
 //! Terrain (medeiros-jacksboro, the firmware's turn rule `SharedEqually`): random poses, the
 //! built altitude and three others (−150, −75, +100 m), 0–2 pop-ups.
-//! Landmark (babel-II-N): the network's start and goal, a random weather, random rosette
-//! losses and 0–2 pop-ups. Voronoi (voronoi-dense): random poses and threat weights, threats
+//! Landmark (babel-II-N): the network's start and goal, or (each two times in three) a
+//! random pose within 8 km of a random overflight, joined online with a random range left,
+//! and a random goal point likewise; a random weather, random rosette losses and 0–2
+//! pop-ups. Voronoi (voronoi-dense): random poses and threat weights, threats
 //! popped and removed. Every roadmap and terrain route is also checked for continuity and the
 //! turn radius ([`route_is_flyable`]). Prints one line per mode; exits 1 if any work exceeds
 //! its bound or a route is not flyable.
@@ -257,6 +259,15 @@ fn landmark(queries: u64) -> Sweep {
         },
         search: Search::Dijkstra,
     };
+    let overflights = (l.landmark_count * l.directions) as u64;
+    // Within 8 km of a random overflight.
+    let near_an_overflight = |rng: &mut Rng| {
+        let v = net.vertex(rng.below(overflights) as u32).unwrap().position;
+        v + Vec2::new(
+            rng.range(-8000.0, 8000.0) as f32,
+            rng.range(-8000.0, 8000.0) as f32,
+        )
+    };
     sweep(&mut p, queries, 3, false, |p, rng, i| {
         if i % 4 == 0 {
             let _ = p.set_weather(rng.below(l.weather_count as u64) as u32);
@@ -266,7 +277,20 @@ fn landmark(queries: u64) -> Sweep {
             let n = rng.below(3);
             random_popups(p, rng, n, &net);
         }
-        q
+        let mut query = q;
+        if rng.below(3) > 0 {
+            let at = near_an_overflight(rng);
+            let heading = rng.range(-3.2, 3.2) as f32;
+            query.start = Pose::new(at.x, at.y, heading);
+            let _ = p.set_start_range(rng.range(2000.0, 14000.0) as f32);
+        }
+        if rng.below(3) > 0 {
+            query.goal = Goal {
+                position: near_an_overflight(rng),
+                heading: rng.chance(0.5).then(|| rng.range(-3.2, 3.2) as f32),
+            };
+        }
+        query
     })
 }
 
