@@ -9,6 +9,7 @@ use super::{
 };
 use crate::geometry::predicates::{self, PolygonView};
 use crate::geometry::{Primitive, Segment, Vec2};
+use heapless::Vec;
 
 /// Flight quantities at one sample.
 #[derive(Clone, Copy)]
@@ -16,6 +17,15 @@ struct Sample {
     speed: f32,
     a_long: f32,
     a_lat: f32,
+}
+
+/// A parameter interval still to prove flyable: its ends (parameter, sample) and its depth of
+/// bisection.
+#[derive(Clone, Copy)]
+struct Interval {
+    a: (f32, Sample),
+    b: (f32, Sample),
+    depth: u32,
 }
 
 impl HermiteSegment {
@@ -113,35 +123,58 @@ impl HermiteSegment {
         Ok(())
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// Proves `limits` on the parameter interval `[sa, sb]` (end samples `xa`, `xb`), bisecting
+    /// where the enclosure does not prove them (see [`HermiteSegment::check_flyable`]). Depth
+    /// first, the left half before the right, without recursion: a stack of the right halves
+    /// still to prove, at most one per level.
     fn refine_flyable(
         &self,
         limits: &FlyLimits,
-        sa: f32,
-        xa: &Sample,
-        sb: f32,
-        xb: &Sample,
-        depth: u32,
+        (sa, xa): (f32, Sample),
+        (sb, xb): (f32, Sample),
         splits_left: &mut u32,
     ) -> Result<(), Violation> {
-        let Err((limit, bound)) = self.certify(limits, xa, xb, (sb - sa) * self.t_max) else {
-            return Ok(());
-        };
-        let sm = 0.5 * (sa + sb);
-        if depth >= FLY_CHECK_MAX_DEPTH || *splits_left == 0 {
-            return Err(Violation::Unproven {
+        let mut pending: Vec<Interval, { FLY_CHECK_MAX_DEPTH as usize + 2 }> = Vec::new();
+        let _ = pending.push(Interval {
+            a: (sa, xa),
+            b: (sb, xb),
+            depth: 0,
+        });
+        while let Some(Interval { a, b, depth }) = pending.pop() {
+            let Err((limit, bound)) = self.certify(limits, &a.1, &b.1, (b.0 - a.0) * self.t_max)
+            else {
+                continue;
+            };
+            let sm = 0.5 * (a.0 + b.0);
+            let unproven = Violation::Unproven {
                 limit,
                 t: sm * self.t_max,
                 bound,
-            });
+            };
+            if depth >= FLY_CHECK_MAX_DEPTH || *splits_left == 0 {
+                return Err(unproven);
+            }
+            *splits_left -= 1;
+            let xm = self.sample(sm);
+            if let Some(v) = Self::sample_violation(limits, &xm, sm * self.t_max) {
+                return Err(v);
+            }
+            let right = Interval {
+                a: (sm, xm),
+                b,
+                depth: depth + 1,
+            };
+            let left = Interval {
+                a,
+                b: (sm, xm),
+                depth: depth + 1,
+            };
+            // Each level leaves at most one right half pending: the stack cannot overflow.
+            if pending.push(right).is_err() || pending.push(left).is_err() {
+                return Err(unproven);
+            }
         }
-        *splits_left -= 1;
-        let xm = self.sample(sm);
-        if let Some(v) = Self::sample_violation(limits, &xm, sm * self.t_max) {
-            return Err(v);
-        }
-        self.refine_flyable(limits, sa, xa, sm, &xm, depth + 1, splits_left)?;
-        self.refine_flyable(limits, sm, &xm, sb, xb, depth + 1, splits_left)
+        Ok(())
     }
 
     /// Whether the segment respects `limits` everywhere: speed in `[v_min, v_max]`, longitudinal
@@ -189,11 +222,8 @@ impl HermiteSegment {
         for i in 0..n {
             self.refine_flyable(
                 limits,
-                s_at(i),
-                &samples[i],
-                s_at(i + 1),
-                &samples[i + 1],
-                0,
+                (s_at(i), samples[i]),
+                (s_at(i + 1), samples[i + 1]),
                 &mut splits_left,
             )?;
         }
