@@ -36,6 +36,23 @@ pub fn parse_start(s: &str) -> Result<(f64, f64, f64), String> {
     }
 }
 
+/// `LON,LAT[,HEADING_DEG]` of `--goal`: a position and, optionally, a finite compass heading.
+pub fn parse_goal(s: &str) -> Result<(f64, f64, Option<f64>), String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
+        .collect::<Result<_, _>>()?;
+    let on_earth = |lon: f64, lat: f64| lon.abs() <= 180.0 && lat.abs() <= 90.0;
+    match v[..] {
+        [lon, lat] if on_earth(lon, lat) => Ok((lon, lat, None)),
+        [lon, lat, h] if on_earth(lon, lat) && h.is_finite() => Ok((lon, lat, Some(h))),
+        _ => Err(format!(
+            "expected LON,LAT or LON,LAT,HEADING_DEG with |lon| <= 180, |lat| <= 90, a finite \
+             heading, got {s:?}"
+        )),
+    }
+}
+
 /// `NAME,HEADING_DEG` of `--last-overflight`: a landmark's name and a finite compass
 /// heading (the name is everything before the last comma).
 pub fn parse_last_overflight(s: &str) -> Result<(String, f64), String> {

@@ -57,6 +57,8 @@ pub struct LandmarkRoute {
     /// From an [`OnlineStart`]: the range it had left, metres, and the piece that joins it to
     /// the first overflight (or the goal).
     pub online_start: Option<(f32, HermiteSegment)>,
+    /// To a goal that is not the network's: the piece from the last overflight.
+    pub goal_piece: Option<HermiteSegment>,
 }
 
 /// Why a landmark route could not be planned.
@@ -80,6 +82,9 @@ pub enum LandmarkPlanError {
     /// No overflight within the range left is reachable by one flyable piece clear of the
     /// zones and pop-ups (the range left, metres).
     OnlineStartUnconnected(f32),
+    /// No overflight reaches the goal (not the network's) by one flyable piece clear of the
+    /// zones and pop-ups within the range it allows.
+    OnlineGoalUnconnected,
     /// The core found no route.
     Plan(PlanError),
 }
@@ -113,6 +118,11 @@ impl fmt::Display for LandmarkPlanError {
                  flyable Hermite piece clear of the no-fly zones and pop-ups",
                 range / 1000.0
             ),
+            Self::OnlineGoalUnconnected => write!(
+                f,
+                "--goal: no overflight reaches it by one flyable Hermite piece clear of the \
+                 no-fly zones and pop-ups within the range the overflight allows"
+            ),
             Self::Plan(e) => write!(f, "no navigable route from the start to the goal: {e}"),
         }
     }
@@ -120,14 +130,15 @@ impl fmt::Display for LandmarkPlanError {
 
 impl std::error::Error for LandmarkPlanError {}
 
-/// Plans the network's start (or `online`) → goal in `weather` (a name of `s.weather`; `None`:
-/// the first) with `popups` added.
+/// Plans the network's start (or `online`) → the network's goal (or `online_goal`) in
+/// `weather` (a name of `s.weather`; `None`: the first) with `popups` added.
 pub fn plan_landmark(
     bytes: &[u8],
     s: &Scenario,
     weather: Option<&str>,
     popups: &[LocalPopup],
     online: Option<&OnlineStart>,
+    online_goal: Option<Goal>,
 ) -> Result<LandmarkRoute, LandmarkPlanError> {
     let net = Network::from_bytes(bytes).map_err(LandmarkPlanError::Load)?;
     let l = *net.landmark().ok_or(LandmarkPlanError::NotLandmark)?;
@@ -181,10 +192,10 @@ pub fn plan_landmark(
         .ok_or(LandmarkPlanError::NotLandmark)?;
     let query = Query {
         start,
-        goal: Goal {
+        goal: online_goal.unwrap_or(Goal {
             position: goal.position,
             heading: None,
-        },
+        }),
         search: Search::Dijkstra,
     };
     let summary = p
@@ -193,6 +204,7 @@ pub fn plan_landmark(
             (PlanError::StartUnconnected, Some(range)) if online.is_some() => {
                 LandmarkPlanError::OnlineStartUnconnected(range)
             }
+            (PlanError::GoalUnconnected, _) => LandmarkPlanError::OnlineGoalUnconnected,
             (e, _) => LandmarkPlanError::Plan(e),
         })?;
     let online_start = match online {
@@ -204,11 +216,25 @@ pub fn plan_landmark(
         None => None,
     };
     let edges = p.route_edges().to_vec();
+    let goal_piece = p.goal_piece();
+    // Each overflight with the leg that leaves it: the edges' sources, then, before an online
+    // goal's piece, the last edge's target (or the online start's).
+    let mut legs: Vec<(u32, f32)> = edges
+        .iter()
+        .filter_map(|&e| Some((net.edge_source(e)?, net.edge_record(e)?.cost)))
+        .collect();
+    if let Some(piece) = goal_piece {
+        // No edge: the piece leaves the query's start itself.
+        if let Some(v) = edges
+            .last()
+            .and_then(|&e| net.edge_link(e))
+            .map(|r| r.target)
+        {
+            legs.push((v, piece.length()));
+        }
+    }
     let mut overflights = Vec::new();
-    for &e in &edges {
-        let (Some(r), Some(source)) = (net.edge_record(e), net.edge_source(e)) else {
-            continue;
-        };
+    for (source, leg_m) in legs {
         if source >= overflight_count {
             continue;
         }
@@ -221,7 +247,7 @@ pub fn plan_landmark(
             heading_deg: compass_deg_from_heading(heading),
             quality,
             range_m: d_max * quality,
-            leg_m: r.cost,
+            leg_m,
         });
     }
     Ok(LandmarkRoute {
@@ -231,6 +257,7 @@ pub fn plan_landmark(
         overflights,
         pruned: (pruned, between.len() as u32),
         online_start,
+        goal_piece,
     })
 }
 
@@ -278,7 +305,7 @@ fn range_left(
 /// The route file of a landmark route: overflights, and every Hermite piece as its two line
 /// elements (local metres and m/s) with the piece's parameter range, so an autopilot can
 /// rebuild and sample it ([`skyroute::geometry::hermite::HermiteSegment::new`]); `legs` holds
-/// each leg (the online start's piece, then each edge) as a 50 m polyline for
+/// each leg (the online start's piece, each edge, the online goal's piece) as a 50 m polyline for
 /// `skyroute render`, `geometry` the route for GIS tools.
 pub fn landmark_route_json(
     r: &LandmarkRoute,
@@ -299,6 +326,9 @@ pub fn landmark_route_json(
                 .collect();
             route_legs.push((Some(e), pieces));
         }
+    }
+    if let Some(piece) = &r.goal_piece {
+        route_legs.push((None, vec![*piece]));
     }
     // Leg names: the start, the overflown landmarks in order, the goal.
     let mut names = vec!["start".to_string()];

@@ -63,6 +63,11 @@ struct PlanArgs {
     /// (--flown-m, --last-overflight).
     #[arg(long, value_parser = parse_start, allow_hyphen_values = true)]
     start: Option<(f64, f64, f64)>,
+    /// Plan to `LON,LAT[,HEADING_DEG]` (compass heading; none: any) instead of the scenario's
+    /// goal: a new destination in flight. On a landmark network the core joins it from the
+    /// overflights whose range it lies within, by one flyable Hermite piece each.
+    #[arg(long, value_parser = parse_goal, allow_hyphen_values = true)]
+    goal: Option<(f64, f64, Option<f64>)>,
     /// Landmark networks, with --start: metres flown since the last overflight (default 0).
     /// The range left is the last overflight's d_max x q less this.
     #[arg(long, value_parser = parse_non_negative)]
@@ -505,6 +510,7 @@ fn demo_command(dir: &Path) -> CliResult {
         scenario: &scenario_path,
         popups: &[],
         start: None,
+        goal: None,
         flown_m: None,
         last_overflight: None,
         scenario_popups: true,
@@ -549,6 +555,7 @@ fn plan(a: PlanArgs) -> CliResult {
         scenario: scenario_path,
         popup,
         start,
+        goal,
         flown_m,
         last_overflight,
         no_scenario_popups,
@@ -572,6 +579,7 @@ fn plan(a: PlanArgs) -> CliResult {
         scenario: &scenario_path,
         popups: &popup,
         start,
+        goal,
         flown_m,
         last_overflight,
         scenario_popups: !no_scenario_popups,

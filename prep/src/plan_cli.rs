@@ -39,6 +39,8 @@ pub struct PlanRequest<'a> {
     pub popups: &'a [(f64, f64, f64)],
     /// `--start`: `(lon, lat, compass heading)` replacing the scenario's start.
     pub start: Option<(f64, f64, f64)>,
+    /// `--goal`: `(lon, lat, compass heading or none)` replacing the scenario's goal.
+    pub goal: Option<(f64, f64, Option<f64>)>,
     /// `--flown-m`: landmark networks, metres flown since the last overflight.
     pub flown_m: Option<f64>,
     /// `--last-overflight`: landmark networks, the landmark overflown last and the compass
@@ -227,7 +229,12 @@ fn plan_landmark_route(
         flown_m: req.flown_m.unwrap_or(0.0) as f32,
         last_overflight: req.last_overflight.clone(),
     });
-    let r = match plan_landmark(bytes, s, req.weather, popups, online.as_ref()) {
+    // The scenario's goal is the network's unless `--goal` replaced it.
+    let online_goal = req.goal.map(|(lon, lat, heading)| skyroute::Goal {
+        position: crate::local::local(frame, lon, lat),
+        heading: heading.map(|c| crate::local::local_heading(frame, lon, lat, c)),
+    });
+    let r = match plan_landmark(bytes, s, req.weather, popups, online.as_ref(), online_goal) {
         Ok(r) => r,
         Err(LandmarkPlanError::Plan(e)) => {
             let w = req
@@ -253,7 +260,9 @@ fn plan_landmark_route(
             ))));
         }
         Err(
-            e @ (LandmarkPlanError::RangeSpent(..) | LandmarkPlanError::OnlineStartUnconnected(_)),
+            e @ (LandmarkPlanError::RangeSpent(..)
+            | LandmarkPlanError::OnlineStartUnconnected(_)
+            | LandmarkPlanError::OnlineGoalUnconnected),
         ) => return Err(Box::new(NoRoute(format!("{on}: {e}")))),
         Err(e) => return Err(format!("{on}: {e}").into()),
     };
@@ -461,9 +470,10 @@ fn plan_voronoi_route(
     Ok(voronoi_route_json(&m, frame, &s.name))
 }
 
-/// The scenario with its start replaced by `--start` (after the network's binding to the
-/// scenario was checked, so that the new start is checked like any query's). A landmark
-/// start keeps the scenario start's `dist_m`: the range at the mission's start fix.
+/// The scenario with its start and goal replaced by `--start` and `--goal` (after the
+/// network's binding to the scenario was checked, so that the new ends are checked like any
+/// query's). A landmark start keeps the scenario start's `dist_m`: the range at the mission's
+/// start fix.
 /// `--flown-m` and `--last-overflight` need `--start` and a landmark network.
 fn with_start(
     mut s: scenario::Scenario,
@@ -490,6 +500,19 @@ fn with_start(
                 "{option} needs --start: it gives the range left where the aircraft is"
             ));
         }
+    }
+    if let Some((lon, lat, heading_deg)) = req.goal {
+        let name = s
+            .goal
+            .as_ref()
+            .map_or_else(|| "goal".to_string(), |e| e.name.clone());
+        s.goal = Some(scenario::Endpoint {
+            name,
+            lon,
+            lat,
+            heading_deg,
+            dist_m: None,
+        });
     }
     let Some((lon, lat, heading_deg)) = req.start else {
         return Ok(s);

@@ -2,7 +2,7 @@
 //! first leg starts at the given pose (checked against a closed form: a straight leg to a
 //! free-heading waypoint), the new start is checked like the scenario's (inside a building:
 //! the leg leaves it by an exit, named); on a landmark network the start is joined online
-//! with the range left (`--flown-m`, `--last-overflight`).
+//! with the range left (`--flown-m`, `--last-overflight`), and `--goal` likewise.
 
 mod common;
 
@@ -183,4 +183,55 @@ fn flown_m_on_a_roadmap_network_is_refused_by_name() {
         "{}",
         one_line_error(&o)
     );
+}
+
+#[test]
+fn a_landmark_goal_is_joined_online_from_the_overflights() {
+    let dir = TempDir::new("goal-option-landmark");
+    let net = dir.file("babel.bin");
+    let sc = scenario("babel-I-detour.geojson");
+    ok(skyroute(&["build", &sc, "-o", &net]), "build");
+    let out = dir.file("route.json");
+    let plan = |extra: &[&str]| {
+        let mut args = vec!["plan", net.as_str(), "--scenario", sc.as_str(), "-o", &out];
+        args.extend_from_slice(extra);
+        skyroute(&args)
+    };
+    let bytes = std::fs::read(&net).unwrap();
+    let frame = skyroute::Network::from_bytes(&bytes).unwrap().local_frame();
+    let goal = frame.position(12.05, 48.11).unwrap();
+    for extra in [
+        &["--goal", "12.05,48.11"][..],
+        &["--goal", "12.05,48.11,90"],
+    ] {
+        ok(plan(extra), "plan --goal");
+        let route: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        let pieces = route["pieces"].as_array().unwrap();
+        let last = pieces.last().unwrap();
+        assert!(last["edge"].is_null(), "{last}");
+        let to = &last["to"]["position"];
+        let gap = (to[0].as_f64().unwrap() - goal.x as f64)
+            .hypot(to[1].as_f64().unwrap() - goal.y as f64);
+        assert!(gap < 0.01, "the last piece ends {gap} m from --goal");
+        let legs = route["legs"].as_array().unwrap();
+        assert_eq!(legs.last().unwrap()["to"], "goal");
+        if extra[1].ends_with(",90") {
+            // Compass 90° is east, the local frame's x axis up to the meridian convergence.
+            let v = &last["to"]["velocity"];
+            let (vx, vy) = (v[0].as_f64().unwrap(), v[1].as_f64().unwrap());
+            assert!(vy.atan2(vx).abs() < 0.05, "arrives heading {vx}, {vy}");
+        }
+        std::fs::remove_file(&out).unwrap();
+    }
+    // A goal inside no-fly zone Z2: no piece reaches it (exit 3); a malformed one (exit 2).
+    let o = plan(&["--goal", "12.04,48.08,90"]);
+    assert_eq!(code(&o), 3);
+    assert!(
+        one_line_error(&o).contains("--goal: no overflight"),
+        "{}",
+        one_line_error(&o)
+    );
+    assert_eq!(code(&plan(&["--goal", "12.05"])), 2);
+    assert!(!std::path::Path::new(&out).exists());
 }
