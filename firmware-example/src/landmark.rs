@@ -175,7 +175,11 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
 
     // 4. From where the aircraft is, joined online.
     if let Err(e) = task.planner().set_start_range(fixture.online_range) {
-        defmt::error!("set_start_range({=f32}) failed: {}", fixture.online_range, e);
+        defmt::error!(
+            "set_start_range({=f32}) failed: {}",
+            fixture.online_range,
+            e
+        );
         return false;
     }
     let (x, y, heading) = fixture.online_start;
@@ -299,11 +303,20 @@ fn check_replan(
             true
         }
         (Ok(s), None) => {
-            defmt::error!("{=str} found {=f32} m; the host found no route", what, s.length);
+            defmt::error!(
+                "{=str} found {=f32} m; the host found no route",
+                what,
+                s.length
+            );
             false
         }
         (Err(e), Some((length, _, _))) => {
-            defmt::error!("{=str} failed ({}); the host found {=f32} m", what, e, length);
+            defmt::error!(
+                "{=str} failed ({}); the host found {=f32} m",
+                what,
+                e,
+                length
+            );
             false
         }
     }

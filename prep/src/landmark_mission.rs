@@ -296,7 +296,7 @@ fn range_left(
         }
     };
     let left = allowed - o.flown_m;
-    if !(left >= 0.0) {
+    if left.is_nan() || left < 0.0 {
         return Err(LandmarkPlanError::RangeSpent(o.flown_m, allowed));
     }
     Ok(left)

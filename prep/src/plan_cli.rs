@@ -480,7 +480,13 @@ fn with_start(
     req: &PlanRequest,
     net: &skyroute::Network,
 ) -> Result<scenario::Scenario, String> {
-    let landmark = net.mode() == skyroute::network::Mode::Landmark;
+    let landmark = match net.mode() {
+        skyroute::network::Mode::Landmark => true,
+        skyroute::network::Mode::Roadmap
+        | skyroute::network::Mode::Terrain
+        | skyroute::network::Mode::Voronoi
+        | skyroute::network::Mode::Unknown(_) => false,
+    };
     let landmark_option = match (req.flown_m.is_some(), req.last_overflight.is_some()) {
         (true, _) => Some("--flown-m"),
         (false, true) => Some("--last-overflight"),

@@ -10,10 +10,11 @@
 //! [`Planner::set_weather`] and [`Planner::update_rosette`] are O(1): re-pruning a landmark's
 //! edges costs nothing until a search reads them.
 
-use super::landmark_connect::LinkSide;
 use super::popup::{Popup, PopupSummary};
 use super::search::{Ends, LandmarkEnd};
-use super::state::{LandmarkState, ModeState, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES};
+use super::state::{
+    LandmarkState, LinkSide, ModeState, MAX_ROSETTE_DIRECTIONS, MAX_ROSETTE_OVERRIDES,
+};
 use super::{Meter, PlanError, Planner, Query, RouteSummary, SummarySlot};
 use crate::geometry::{wrap_to_pi, Vec2};
 use crate::network::format::LandmarkRecord;

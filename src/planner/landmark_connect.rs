@@ -23,11 +23,10 @@
 //! [`MAX_LINKS`] with the smallest lower bound of a route through them (the piece plus the
 //! chord to the other end) are kept, and the search is exact over those.
 
-use super::landmark::POPUP_CHORDS_PER_PIECE;
 use super::popup::Popup;
 use super::search::{Arrival, LandmarkEnd};
-use super::state::{ModeState, OnlineLink};
-use super::{Meter, PlanError, Planner, Query, MAX_LINKS};
+use super::state::{LinkSide, ModeState, OnlineLink};
+use super::{Meter, PlanError, Planner, Query, MAX_LINKS, POPUP_CHORDS_PER_PIECE};
 use crate::geometry::hermite::{HermiteSegment, LineElement};
 use crate::geometry::predicates::PolygonView;
 use crate::geometry::{Pose, Vec2};
@@ -361,15 +360,6 @@ fn keep_cheapest(kept: &mut Vec<(f32, OnlineLink), MAX_LINKS>, key: f32, link: O
             tail.rotate_right(1);
         }
     }
-}
-
-/// Which end of a landmark query an online link joins.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum LinkSide {
-    /// From the query's start to a vertex.
-    Start,
-    /// From a vertex to the query's goal.
-    Goal,
 }
 
 /// The link to (or from) vertex `v` by `piece`.

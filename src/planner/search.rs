@@ -1,8 +1,7 @@
 //! The query: validate, connect, search (Dijkstra or A*), and write the route.
 
 use super::heap::ItemState;
-use super::landmark_connect::LinkSide;
-use super::state::ModeState;
+use super::state::{LinkSide, ModeState};
 use super::{
     Link, Meter, Phase, PlanError, PlanStep, Planner, Query, QueryField, RouteSummary, Search,
     SummarySlot, Work, FROM_START,

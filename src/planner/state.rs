@@ -79,6 +79,15 @@ pub(super) struct OnlineLink {
     pub(super) length: f32,
 }
 
+/// Which end of a landmark query an online link joins.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum LinkSide {
+    /// From the query's start to a vertex.
+    Start,
+    /// From a vertex to the query's goal.
+    Goal,
+}
+
 /// Landmark mode's state: the weather, the in-flight rosettes, the range left at an online
 /// start, and the last route.
 #[derive(Clone, Debug)]
