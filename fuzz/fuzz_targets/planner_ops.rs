@@ -54,6 +54,7 @@ enum Op {
         qualities: Vec<f32>,
     },
     ClearRosette(u32),
+    StartRange(f32),
     Altitude(f32, f32),
     Switch {
         announced: Vec<(u8, f32)>,
@@ -164,6 +165,9 @@ fn reset(l: &mut Loaded) {
         for lm in 0..l.landmarks {
             p.clear_rosette(lm);
         }
+        if let Some(range) = p.network().landmark().map(|r| r.start_range_m) {
+            let _ = p.set_start_range(range);
+        }
     }
     if let Some((a, s)) = l.altitude {
         p.set_altitude(a, s).unwrap();
@@ -223,6 +227,9 @@ fuzz_target!(|input: Input| {
             }
             Op::ClearRosette(lm) => {
                 let _ = p.clear_rosette(lm);
+            }
+            Op::StartRange(range) => {
+                let _ = p.set_start_range(range);
             }
             Op::Altitude(a, s) => {
                 let _ = p.set_altitude(a, s);
