@@ -6,7 +6,7 @@
 //! | counter | one unit is |
 //! |---|---|
 //! | `vertex_scans` | reading one vertex's pose (candidate search, heap reset, route walk) |
-//! | `dubins_solves` | solving one Dubins path (six words), or picking the next shortest goal path to check (a scan of ≤ 360 stored lengths) and solving its one word again |
+//! | `dubins_solves` | solving one Dubins path (six words), or picking the next shortest goal path to check (a scan of ≤ 360 stored lengths) and solving its one word again, or (landmark mode) building one online Hermite piece and checking its flyability (at most `NEWTON_MAX_STEPS` quadratures and `65 + 4096` samples) |
 //! | `collision_tests` | one obstacle bounding-box test (or the distance of its box from an endpoint, with an insertion into a sorted list of ≤ 32), or one exact predicate against one polygon edge, containment test or circle |
 //! | `heap_steps` | one level of a heap sift (push, decrease-key or pop) |
 //! | `relaxations` | examining one out-edge or one goal link of a popped vertex |
