@@ -128,3 +128,17 @@ impl Poly64 {
         (p, v, a)
     }
 }
+
+/// The polygons among `obstacles`, in f64 (circles left out).
+pub fn obstacle_polygons(obstacles: &[skyroute::network::write::ObstacleSpec]) -> Vec<Vec<P>> {
+    use skyroute::network::write::ObstacleSpec;
+    obstacles
+        .iter()
+        .filter_map(|o| match o {
+            ObstacleSpec::Polygon(pts) => {
+                Some(pts.iter().map(|p| (p.x as f64, p.y as f64)).collect())
+            }
+            _ => None,
+        })
+        .collect()
+}

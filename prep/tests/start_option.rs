@@ -90,18 +90,27 @@ fn a_start_300_m_north_of_a_free_heading_waypoint_flies_300_m_straight_to_it() {
 /// heading).
 const ON_THE_ROUTE: &str = "11.6528,48.1071,100";
 
-#[test]
-fn a_landmark_start_is_joined_online_with_the_range_left() {
-    let dir = TempDir::new("start-option-landmark");
+/// babel-I-detour's network, built in `dir`.
+fn babel_i_detour(dir: &TempDir) -> String {
     let net = dir.file("babel.bin");
     let sc = scenario("babel-I-detour.geojson");
     ok(skyroute(&["build", &sc, "-o", &net]), "build");
-    let out = dir.file("route.json");
-    let plan = |extra: &[&str]| {
-        let mut args = vec!["plan", net.as_str(), "--scenario", sc.as_str(), "-o", &out];
-        args.extend_from_slice(extra);
-        skyroute(&args)
-    };
+    net
+}
+
+/// `skyroute plan NET --scenario babel-I-detour -o OUT EXTRA...`.
+fn plan_babel_i_detour(net: &str, out: &str, extra: &[&str]) -> std::process::Output {
+    let sc = scenario("babel-I-detour.geojson");
+    let mut args = vec!["plan", net, "--scenario", sc.as_str(), "-o", out];
+    args.extend_from_slice(extra);
+    skyroute(&args)
+}
+
+#[test]
+fn a_landmark_start_is_joined_online_with_the_range_left() {
+    let dir = TempDir::new("start-option-landmark");
+    let (net, out) = (babel_i_detour(&dir), dir.file("route.json"));
+    let plan = |extra: &[&str]| plan_babel_i_detour(&net, &out, extra);
     ok(
         plan(&["--start", ON_THE_ROUTE, "--flown-m", "1500"]),
         "plan --start",
@@ -188,15 +197,8 @@ fn flown_m_on_a_roadmap_network_is_refused_by_name() {
 #[test]
 fn a_landmark_goal_is_joined_online_from_the_overflights() {
     let dir = TempDir::new("goal-option-landmark");
-    let net = dir.file("babel.bin");
-    let sc = scenario("babel-I-detour.geojson");
-    ok(skyroute(&["build", &sc, "-o", &net]), "build");
-    let out = dir.file("route.json");
-    let plan = |extra: &[&str]| {
-        let mut args = vec!["plan", net.as_str(), "--scenario", sc.as_str(), "-o", &out];
-        args.extend_from_slice(extra);
-        skyroute(&args)
-    };
+    let (net, out) = (babel_i_detour(&dir), dir.file("route.json"));
+    let plan = |extra: &[&str]| plan_babel_i_detour(&net, &out, extra);
     let bytes = std::fs::read(&net).unwrap();
     let frame = skyroute::Network::from_bytes(&bytes).unwrap().local_frame();
     let goal = frame.position(12.05, 48.11).unwrap();

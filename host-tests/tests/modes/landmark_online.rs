@@ -6,14 +6,13 @@
 //! work bound.
 
 use skyroute::geometry::hermite::{HermiteSegment, LineElement};
-use skyroute::network::write::ObstacleSpec;
 use skyroute::network::Network;
 use skyroute::planner::{Goal, PlanError, Popup, Query, Search, POPUP_CHORDS_PER_PIECE};
 use skyroute::{Planner, Pose, Vec2};
 use skyroute_prep::build::Built;
 use skyroute_prep::scenario::Scenario;
 
-use host_tests::reference::{dist_polygon, Poly64, P};
+use host_tests::reference::{dist_polygon, obstacle_polygons, Poly64};
 use host_tests::{full_tier_only, scenarios};
 
 type Lp<'n> = Planner<'n, 1024, 40000, 4, 128>;
@@ -45,26 +44,12 @@ fn pose_on(net: &Network, e: u32, k: u32, s: f32) -> Pose {
     Pose::new(at.x, at.y, v.y.atan2(v.x))
 }
 
-/// The polygons of the scenario's zones, f64.
-fn polygons(built: &Built) -> Vec<Vec<P>> {
-    built
-        .obstacles
-        .iter()
-        .filter_map(|o| match o {
-            ObstacleSpec::Polygon(pts) => {
-                Some(pts.iter().map(|p| (p.x as f64, p.y as f64)).collect())
-            }
-            _ => None,
-        })
-        .collect()
-}
-
 /// Samples `piece` in f64: the vehicle's limits, the clearance from every zone, and its end
 /// conditions (position and velocity at both ends, zero acceleration at the end).
 fn check_piece(s: &Scenario, built: &Built, piece: &HermiteSegment, from: &Pose, to: &Pose) {
     let v = &s.vehicle;
     let clearance = s.planner.clearance_m.unwrap_or(0.0);
-    let polys = polygons(built);
+    let polys = obstacle_polygons(&built.obstacles);
     let poly = Poly64::new(piece);
     let (p0, v0, _) = poly.eval(0.0);
     let (p1, v1, a1) = poly.eval(1.0);

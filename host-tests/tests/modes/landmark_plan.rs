@@ -7,7 +7,6 @@
 //! Run with `--release -- --nocapture` to see the counts, headings and figures. These tests
 //! build whole Babel networks: they run in the full tier, on the process's cached builds.
 
-use skyroute::network::write::ObstacleSpec;
 use skyroute::network::Network;
 use skyroute::planner::{Goal, Popup, Query, Search};
 use skyroute::Planner;
@@ -15,7 +14,7 @@ use skyroute_prep::build::Built;
 use skyroute_prep::scenario::Scenario;
 use std::time::Instant;
 
-use host_tests::reference::{dist_polygon, Poly64, P};
+use host_tests::reference::{dist_polygon, obstacle_polygons, Poly64, P};
 use host_tests::{full_tier_only, scenarios};
 
 type Lp<'n> = Planner<'n, 1024, 40000, 4, 128>;
@@ -35,18 +34,6 @@ fn build_scenario(name: &str) -> (&'static Scenario, &'static Built) {
 
 // ------------------------------------------------------------------------------------------------
 // Independent f64 reference: `host_tests::reference`
-
-fn polygons(obstacles: &[ObstacleSpec]) -> Vec<Vec<P>> {
-    obstacles
-        .iter()
-        .filter_map(|o| match o {
-            ObstacleSpec::Polygon(pts) => {
-                Some(pts.iter().map(|p| (p.x as f64, p.y as f64)).collect())
-            }
-            _ => None,
-        })
-        .collect()
-}
 
 /// The scenario's own quality of landmark `l` at compass `deg`, weather `w` (linear between
 /// the 12 given headings).
@@ -86,7 +73,7 @@ fn check_route(
     let d = l.directions;
     let v = &s.vehicle;
     let clearance = s.planner.clearance_m.unwrap_or(0.0);
-    let polys = polygons(&built.obstacles);
+    let polys = obstacle_polygons(&built.obstacles);
     let mut c = RouteCheck {
         min_clearance: f64::INFINITY,
         min_speed: f64::INFINITY,

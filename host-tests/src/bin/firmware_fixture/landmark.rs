@@ -346,15 +346,7 @@ fn query_rs(
         "/// The re-plan after losing it, as the host found it: {replan_doc}. `Some((length m, \
          network edges, work))`, or `None` when `plan` fails."
     );
-    let replan_value = match &replan {
-        Ok(s) => format!(
-            "Some(({}, {}, {}))",
-            lit(s.length),
-            s.network_edges,
-            s.work.total()
-        ),
-        Err(_) => "None".to_string(),
-    };
+    let replan_value = answer_literal(replan);
     let _ = writeln!(
         w,
         "pub const EXPECTED_REPLAN: Option<(f32, u32, u64)> = {replan_value};"
@@ -376,15 +368,7 @@ fn query_rs(
         "/// The range left there (`Planner::set_start_range`), metres."
     );
     let _ = writeln!(w, "pub const ONLINE_RANGE: f32 = {};", lit(range));
-    let online_value = match online {
-        Ok(s) => format!(
-            "Some(({}, {}, {}))",
-            lit(s.length),
-            s.network_edges,
-            s.work.total()
-        ),
-        Err(_) => "None".to_string(),
-    };
+    let online_value = answer_literal(online);
     let _ = writeln!(
         w,
         "/// The host's plan from it, the landmark still lost: `Some((length m, network edges, \
@@ -396,4 +380,18 @@ fn query_rs(
     );
 
     q
+}
+
+/// A plan's answer as `query.rs` writes it: `Some((length m, network edges, work))`, or `None`
+/// when `plan` failed.
+fn answer_literal(answer: &Result<RouteSummary, PlanError>) -> String {
+    match answer {
+        Ok(s) => format!(
+            "Some(({}, {}, {}))",
+            lit(s.length),
+            s.network_edges,
+            s.work.total()
+        ),
+        Err(_) => "None".to_string(),
+    }
 }
