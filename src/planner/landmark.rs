@@ -234,11 +234,21 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             Some(v) => LandmarkEnd::Vertex(v),
             None => LandmarkEnd::Online,
         };
-        if from == LandmarkEnd::Online {
-            self.connect_online_start(&l, query, to, meter)?;
-        }
-        if to == LandmarkEnd::Online {
-            self.connect_online_goal(&l, query, from, meter)?;
+        // The other end's vertex, when it is one the piece may join directly: the stored goal
+        // for a start link, the stored start for a goal link.
+        match (from, to) {
+            (LandmarkEnd::Online, LandmarkEnd::Vertex(goal)) => {
+                self.connect_online(&l, query, LinkSide::Start, Some(goal), meter)?
+            }
+            (LandmarkEnd::Vertex(start), LandmarkEnd::Online) => {
+                let stored = (start == l.start_vertex).then_some(start);
+                self.connect_online(&l, query, LinkSide::Goal, stored, meter)?
+            }
+            (LandmarkEnd::Online, LandmarkEnd::Online) => {
+                self.connect_online(&l, query, LinkSide::Start, None, meter)?;
+                self.connect_online(&l, query, LinkSide::Goal, None, meter)?
+            }
+            (LandmarkEnd::Vertex(_), LandmarkEnd::Vertex(_)) => {}
         }
         meter.check()?;
         Ok(Ends::Landmark { from, to })
@@ -372,10 +382,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let (lo, hi) = popup.bounding_box();
         let w = Vec2::new(clearance, clearance);
         let (lo, hi) = (lo - w, hi + w);
-        let polygon_tests = match popup {
-            Popup::Circle { .. } => 1,
-            Popup::Polygon(points) => points.len() as u32 + 1,
-        };
         for k in 0..net.chain_piece_count(e) {
             let i = range.start + k;
             let (Some(a), Some(b)) = (net.chain_element(i), net.chain_element(i + 1)) else {
@@ -392,17 +398,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             let Some(seg) = net.chain_piece(e, k) else {
                 return true;
             };
-            summary.predicate_tests = summary
-                .predicate_tests
-                .saturating_add(POPUP_CHORDS_PER_PIECE as u32 * polygon_tests);
-            let hit = match popup {
-                Popup::Circle { centre, radius } => {
-                    seg.conflicts_with_circle(*centre, *radius, clearance, POPUP_CHORDS_PER_PIECE)
-                }
-                Popup::Polygon(points) => {
-                    seg.conflicts_with_polygon(points.as_slice(), clearance, POPUP_CHORDS_PER_PIECE)
-                }
-            };
+            let (hit, tests) = popup.conflicts_with_piece(&seg, clearance, POPUP_CHORDS_PER_PIECE);
+            summary.predicate_tests = summary.predicate_tests.saturating_add(tests);
             if hit {
                 return true;
             }

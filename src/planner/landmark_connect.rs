@@ -23,8 +23,7 @@
 //! [`MAX_LINKS`] with the smallest lower bound of a route through them (the piece plus the
 //! chord to the other end) are kept, and the search is exact over those.
 
-use super::popup::Popup;
-use super::search::{Arrival, LandmarkEnd};
+use super::search::Arrival;
 use super::state::{LinkSide, ModeState, OnlineLink};
 use super::{Meter, PlanError, Planner, Query, MAX_LINKS, POPUP_CHORDS_PER_PIECE};
 use crate::geometry::hermite::{HermiteSegment, LineElement};
@@ -102,85 +101,68 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// Joins `query.start` to the overflights and, when the goal is a vertex, to it (module
-    /// documentation). Counts per vertex one vertex scan; per vertex within range one piece
-    /// (a `dubins_solves` unit: its construction and flyability check, bounded computations
+    /// Joins one end of `query` to the network (module documentation): on the start side to
+    /// the overflights and `extra` (the stored goal, when the search ends there), on the goal
+    /// side from the overflights and `extra` (the stored start, when the search starts
+    /// there). Counts per vertex one vertex scan; per vertex within range one piece (a
+    /// `dubins_solves` unit: its construction and flyability check, bounded computations
     /// measured in `docs/BENCHMARKS.md`), a box test per obstacle and pop-up,
     /// [`POPUP_CHORDS_PER_PIECE`] predicates per polygon edge, and containment or circle where
     /// a box meets the piece's reach, and one relaxation.
-    pub(super) fn connect_online_start(
+    pub(super) fn connect_online(
         &mut self,
         l: &LandmarkRecord,
         query: &Query,
-        goal: LandmarkEnd,
+        side: LinkSide,
+        extra: Option<u32>,
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
-        let range = self.start_range().ok_or(PlanError::NotLandmarkNetwork)?;
-        let goal_vertex = match goal {
-            LandmarkEnd::Vertex(g) => Some(g),
-            LandmarkEnd::Online => None,
-        };
         let mut kept: Vec<(f32, OnlineLink), MAX_LINKS> = Vec::new();
         let overflights = l.landmark_count.saturating_mul(l.directions);
-        for v in (0..overflights).chain(goal_vertex) {
+        for v in (0..overflights).chain(extra) {
             meter.work.vertex_scans += 1;
-            let Some(to) = self.network.vertex(v) else {
+            let Some((from, to, range)) = self.online_ends(l, query, side, v) else {
                 continue;
             };
             // A curve is at least as long as its chord.
-            if !(query.start.position.distance(to.position) <= range) {
+            if !(from.position.distance(to.position) <= range) {
                 continue;
             }
-            if let Some(piece) = self.online_piece(l, &query.start, &to, range, meter) {
+            if let Some(piece) = self.online_piece(l, &from, &to, range, meter) {
                 meter.work.relaxations += 1;
-                let bound = piece.length() + to.position.distance(query.goal.position);
-                keep_cheapest(&mut kept, bound, link(v, &piece));
+                // A lower bound of a route through the link: the piece, then the chord to
+                // the query's other end.
+                let rest = match side {
+                    LinkSide::Start => to.position.distance(query.goal.position),
+                    LinkSide::Goal => query.start.position.distance(from.position),
+                };
+                keep_cheapest(&mut kept, piece.length() + rest, link(v, &piece));
             }
             meter.check()?;
         }
-        self.store_links(LinkSide::Start, &kept)
+        self.store_links(side, &kept)
     }
 
-    /// Joins the overflights (and the stored start, when the search starts there) to
-    /// `query.goal` (module documentation); counts as [`Planner::connect_online_start`].
-    pub(super) fn connect_online_goal(
-        &mut self,
+    /// The poses the piece of a `side` link with vertex `v` joins, and the range it may use:
+    /// from the query's start to `v` within the range left, or from `v` to the query's goal
+    /// within `v`'s range (the start range from the stored start).
+    fn online_ends(
+        &self,
         l: &LandmarkRecord,
         query: &Query,
-        from: LandmarkEnd,
-        meter: &mut Meter,
-    ) -> Result<(), PlanError> {
-        let from_start = match from {
-            LandmarkEnd::Vertex(v) if v == l.start_vertex => Some(v),
-            _ => None,
-        };
-        let mut kept: Vec<(f32, OnlineLink), MAX_LINKS> = Vec::new();
-        let overflights = l.landmark_count.saturating_mul(l.directions);
-        for v in (0..overflights).chain(from_start) {
-            meter.work.vertex_scans += 1;
-            let (Some(at), Some(range)) = (self.network.vertex(v), self.link_range(l, v)) else {
-                continue;
-            };
-            if !(at.position.distance(query.goal.position) <= range) {
-                continue;
+        side: LinkSide,
+        v: u32,
+    ) -> Option<(Pose, Pose, f32)> {
+        let at = self.network.vertex(v)?;
+        match side {
+            LinkSide::Start => Some((query.start, at, self.start_range()?)),
+            LinkSide::Goal => {
+                let range = match v == l.start_vertex {
+                    true => l.start_range_m,
+                    false => self.overflight_range(v)?,
+                };
+                Some((at, goal_pose(query, &at), range))
             }
-            let goal = goal_pose(query, &at);
-            if let Some(piece) = self.online_piece(l, &at, &goal, range, meter) {
-                meter.work.relaxations += 1;
-                let bound = query.start.position.distance(at.position) + piece.length();
-                keep_cheapest(&mut kept, bound, link(v, &piece));
-            }
-            meter.check()?;
-        }
-        self.store_links(LinkSide::Goal, &kept)
-    }
-
-    /// The range a goal link from vertex `v` may use: the start range from the stored start,
-    /// else `v`'s overflight range.
-    fn link_range(&self, l: &LandmarkRecord, v: u32) -> Option<f32> {
-        match v == l.start_vertex {
-            true => Some(l.start_range_m),
-            false => self.overflight_range(v),
         }
     }
 
@@ -210,7 +192,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         du: f32,
         best: &mut Option<(f32, Arrival)>,
         meter: &mut Meter,
-    ) -> Result<(), PlanError> {
+    ) {
         let links = self.online_links(LinkSide::Goal);
         meter.work.relaxations += links.len() as u64;
         for (k, link) in links.iter().enumerate() {
@@ -219,7 +201,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 *best = Some((total, Arrival::FromState { state: u, link: k }));
             }
         }
-        Ok(())
     }
 
     /// The piece of online link `k` on `side`, built again from `query` as when it was found
@@ -233,23 +214,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     ) -> Result<HermiteSegment, PlanError> {
         let l = *self.network.landmark().ok_or(PlanError::Internal)?;
         let link = *self.online_links(side).get(k).ok_or(PlanError::Internal)?;
-        let at = self
-            .network
-            .vertex(link.vertex)
+        let (from, to, range) = self
+            .online_ends(&l, query, side, link.vertex)
             .ok_or(PlanError::Internal)?;
-        let piece = match side {
-            LinkSide::Start => {
-                let range = self.start_range().ok_or(PlanError::Internal)?;
-                self.online_piece(&l, &query.start, &at, range, meter)
-            }
-            LinkSide::Goal => {
-                let range = self
-                    .link_range(&l, link.vertex)
-                    .ok_or(PlanError::Internal)?;
-                self.online_piece(&l, &at, &goal_pose(query, &at), range, meter)
-            }
-        };
-        piece.ok_or(PlanError::Internal)
+        self.online_piece(&l, &from, &to, range, meter)
+            .ok_or(PlanError::Internal)
     }
 
     /// The piece from pose `start` to pose `to` if it is a link (module documentation):
@@ -321,16 +290,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             if !meets(popup.bounding_box()) {
                 continue;
             }
-            let hit = match popup {
-                Popup::Circle { centre, radius } => {
-                    meter.work.collision_tests += chords as u64;
-                    piece.conflicts_with_circle(*centre, *radius, clearance, chords)
-                }
-                Popup::Polygon(points) => {
-                    meter.work.collision_tests += (chords * (points.len() + 1)) as u64;
-                    piece.conflicts_with_polygon(points.as_slice(), clearance, chords)
-                }
-            };
+            let (hit, tests) = popup.conflicts_with_piece(piece, clearance, chords);
+            meter.work.collision_tests += tests as u64;
             if hit {
                 return true;
             }

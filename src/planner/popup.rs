@@ -4,6 +4,7 @@
 
 use super::state::ModeState;
 use super::{Planner, PopupError};
+use crate::geometry::hermite::HermiteSegment;
 use crate::geometry::predicates::{
     conflicts_with_circle, conflicts_with_polygon, point_in_polygon, point_segment_distance,
     polygon_is_simple,
@@ -100,6 +101,30 @@ impl Popup {
             Popup::Polygon(points) => (
                 conflicts_with_polygon(prim, points.as_slice(), clearance),
                 points.len() as u32 + 1,
+            ),
+        }
+    }
+
+    /// Whether the Hermite piece `seg` may come within `clearance` of the pop-up, tested with
+    /// `chords` chords (conservative: [`HermiteSegment::conflicts_with_circle`] and
+    /// [`HermiteSegment::conflicts_with_polygon`]). Returns the verdict and the number of exact
+    /// predicate evaluations it counts: per chord, 1 for a circle and one per polygon edge plus
+    /// the containment test for a polygon.
+    pub(super) fn conflicts_with_piece(
+        &self,
+        seg: &HermiteSegment,
+        clearance: f32,
+        chords: usize,
+    ) -> (bool, u32) {
+        let chords_u32 = chords as u32;
+        match self {
+            Popup::Circle { centre, radius } => (
+                seg.conflicts_with_circle(*centre, *radius, clearance, chords),
+                chords_u32,
+            ),
+            Popup::Polygon(points) => (
+                seg.conflicts_with_polygon(points.as_slice(), clearance, chords),
+                chords_u32 * (points.len() as u32 + 1),
             ),
         }
     }

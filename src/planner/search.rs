@@ -300,25 +300,24 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             *via = FROM_START;
             meter.work.heap_steps += self.heap.push_or_decrease(from, 0.0) as u64;
         }
-        let online = matches!(
-            ends,
+        let links = match ends {
+            Ends::Links => self.start_links.len(),
             Ends::Landmark {
                 from: LandmarkEnd::Online,
                 ..
-            }
-        );
-        let links = match ends {
-            Ends::Links => self.start_links.len(),
-            Ends::Landmark { .. } if online => self.online_links(LinkSide::Start).len(),
-            Ends::Landmark { .. } => 0,
+            } => self.online_links(LinkSide::Start).len(),
+            Ends::Landmark {
+                from: LandmarkEnd::Vertex(_),
+                ..
+            } => 0,
         };
         for k in 0..links {
-            let link = if online {
-                self.online_links(LinkSide::Start)
+            let link = match ends {
+                Ends::Links => self.start_links.get(k).map(|l| (l.vertex, l.cost)),
+                Ends::Landmark { .. } => self
+                    .online_links(LinkSide::Start)
                     .get(k)
-                    .map(|l| (l.vertex, l.length))
-            } else {
-                self.start_links.get(k).map(|l| (l.vertex, l.cost))
+                    .map(|l| (l.vertex, l.length)),
             };
             let (vertex, cost) = link.ok_or(PlanError::Internal)?;
             self.seed_link(query, k, vertex, cost, meter)?;
@@ -378,7 +377,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             ..
         } = ends
         {
-            self.offer_online_goal_links(u, du, best, meter)?;
+            self.offer_online_goal_links(u, du, best, meter);
         }
         meter.work.relaxations += self.goal_links.len() as u64;
         for k in 0..self.goal_links.len() {
