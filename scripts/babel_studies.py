@@ -5,7 +5,8 @@ Markdown table for docs/PAPERS.md:
 1. Scenario I, two landmarks degraded to half their range (3.5 km): every pair of babel-I-bridged's
    ten landmarks halved in turn (45 weathers in one scenario, one network), planned start -> goal.
 2. Scenario III, every rosette scaled down (the paper's 70 %, and the levels between): one
-   weather per level on babel-III-reach.
+   weather per level on babel-III-reach and on babel-III-zigzag (the repo's layout of the
+   paper's scenario III: a main row of landmarks 11.3-11.9 km apart and closer alternates).
 3. Landmark density: 30, 40 and 50 of babel-III-reach's landmarks (a fixed-seed choice of the
    others dropped), nominal and at 90 %: the stored edges, the share pruned onboard and the route.
 4. The two readings of the network: `build --landmark-ranges ground` (our default: chains out of
@@ -35,6 +36,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENARIO_I = os.path.join(ROOT, "scenarios", "babel-I-bridged.geojson")
 SCENARIO_III = os.path.join(ROOT, "scenarios", "babel-III-reach.geojson")
+SCENARIO_III_ZIGZAG = os.path.join(ROOT, "scenarios", "babel-III-zigzag.geojson")
 LEVELS = [1.0, 0.9, 0.85, 0.8, 0.75, 0.7]
 PLANNED = re.compile(r"planned .* in weather (\S+): ([0-9.]+) km over (\d+) overflights.*work (\d+) "
                      r"\((\d+) of (\d+) edges leaving overflights not navigable\)")
@@ -136,18 +138,24 @@ def scaled_weathers(s, levels):
 
 
 def study_degradation(skyroute, tmp):
-    s = json.load(open(SCENARIO_III))
+    for scenario in (SCENARIO_III, SCENARIO_III_ZIGZAG):
+        degrade(skyroute, tmp, scenario)
+
+
+def degrade(skyroute, tmp, scenario):
+    s = json.load(open(scenario))
+    name = s["name"]
     names = scaled_weathers(s, LEVELS)
-    path = os.path.join(tmp, "babel-III-levels.geojson")
+    path = os.path.join(tmp, f"{name}-levels.geojson")
     json.dump(s, open(path, "w"))
-    net = os.path.join(tmp, "babel-III-levels.bin")
+    net = os.path.join(tmp, f"{name}-levels.bin")
     edges, secs = build(skyroute, path, net)
-    print("\n### Scenario III: every rosette scaled\n")
-    print(f"babel-III-reach, {edges} stored edges (built in {secs:.0f} s).\n")
+    print(f"\n### Scenario III: every rosette scaled ({name})\n")
+    print(f"{name}, {edges} stored edges (built in {secs:.0f} s).\n")
     print("| rosettes at | range | route (km) | overflights | mean heading change between overflights (°) | edges pruned onboard |")
     print("|---:|---:|---:|---:|---:|---:|")
     for n, l in zip(names, LEVELS):
-        got, why = plan(skyroute, net, path, n, os.path.join(tmp, f"III-{n}.json"))
+        got, why = plan(skyroute, net, path, n, os.path.join(tmp, f"{name}-{n}.json"))
         if got:
             km, over, pruned, leaving, _ = got
             print(f"| {l:.0%} | {12.5 * l:.2f} km | {km:.1f} | {over} | {heading_changes(why):.0f} | "

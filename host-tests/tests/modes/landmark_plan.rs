@@ -17,7 +17,9 @@ use std::time::Instant;
 use host_tests::reference::{dist_polygon, obstacle_polygons, Poly64, P};
 use host_tests::{full_tier_only, scenarios};
 
-type Lp<'n> = Planner<'n, 1024, 40000, 4, 128>;
+/// The planner these tests load: room for babel-III-zigzag, the largest landmark network they build
+/// (600 overflights, 41 890 edges).
+type Lp<'n> = Planner<'n, 1024, 48000, 4, 128>;
 
 /// The scenario and its network: the process's cached build (shared with `landmark_build`,
 /// `landmark_load` and `network_images`; babel-I with hull repair).
@@ -494,6 +496,73 @@ fn babel_i_detour_goes_round_the_two_degraded_landmarks() {
             );
         }
     }
+}
+
+/// Babel's scenario III as the paper tells it, on the repo's `babel-III-zigzag` (its
+/// `description` gives the layout): at the nominal 12.5 km the route overflies only the main
+/// row M1 … M8 (legs of 11.3–11.9 km); at 70 % (`degraded`, 8.75 km) no main leg is in range and
+/// the route zig-zags through closer landmarks: more overflights, more heading changes, longer.
+/// `plan_all_weathers` checks each route in f64 (range, speed, accelerations, clearance, joints)
+/// and against the straight-leg reachability reference.
+#[test]
+fn babel_iii_zigzag_flies_long_legs_and_zig_zags_at_70_percent() {
+    if !full_tier_only(
+        "landmark_plan::babel_iii_zigzag_flies_long_legs_and_zig_zags_at_70_percent",
+        "builds babel-III-zigzag",
+    ) {
+        return;
+    }
+    let (s, built) = build_scenario("babel-III-zigzag");
+    let outcomes = plan_all_weathers("babel-III-zigzag", s, built);
+    let route = |w: usize| outcomes[w].as_ref().expect("a route in every weather");
+    let (nominal, degraded) = (route(0), route(1));
+    // The mean change of overflight heading between consecutive overflights, degrees.
+    let turning = |o: &Vec<(f64, f64)>| {
+        let d: Vec<f64> = o
+            .windows(2)
+            .map(|p| ((p[1].0 - p[0].0 + 180.0).rem_euclid(360.0) - 180.0).abs())
+            .collect();
+        d.iter().sum::<f64>() / d.len() as f64
+    };
+    println!(
+        "babel-III-zigzag: nominal {:.1} km over {} overflights (mean heading change {:.0}°), \
+         70 % {:.1} km over {} (mean heading change {:.0}°)",
+        nominal.0 / 1000.0,
+        nominal.1.len(),
+        turning(&nominal.1),
+        degraded.0 / 1000.0,
+        degraded.1.len(),
+        turning(&degraded.1)
+    );
+    assert!(nominal.1.iter().all(|&(_, leg)| leg > 8750.0), "{nominal:?}");
+    assert!(degraded.1.iter().all(|&(_, leg)| leg <= 8750.0), "{degraded:?}");
+    assert!(degraded.1.len() > nominal.1.len());
+    assert!(turning(&degraded.1) > turning(&nominal.1) + 10.0);
+    assert!(degraded.0 > nominal.0);
+
+    let net = Network::from_bytes(&built.bytes).unwrap();
+    let l = *net.landmark().unwrap();
+    let mut planner: Box<Lp> = Box::new(Planner::new());
+    planner.load(&built.bytes).unwrap();
+    let overflown = |planner: &Lp| -> Vec<String> {
+        planner
+            .route_edges()
+            .iter()
+            .map(|&e| net.edge_link(e).unwrap().source)
+            .filter(|&v| v < l.landmark_count * l.directions)
+            .map(|v| s.landmarks[(v / l.directions) as usize].name.clone())
+            .collect()
+    };
+    planner.plan(&query(&net), planner.worst_case_work()).unwrap();
+    let main_row: Vec<String> = (1..=8).map(|k| format!("M{k}")).collect();
+    assert_eq!(overflown(&planner), main_row);
+    planner.set_weather(1).unwrap();
+    planner.plan(&query(&net), planner.worst_case_work()).unwrap();
+    let zigzag = overflown(&planner);
+    assert!(
+        zigzag.windows(2).all(|p| !(p[0].starts_with('M') && p[1].starts_with('M'))),
+        "two main landmarks in a row at 70 %: {zigzag:?}"
+    );
 }
 
 /// Smallest f64 distance from any piece of edge `e` (sampled densely) to `centre`.
