@@ -32,7 +32,7 @@ pub struct BuildOptions {
     pub grid_cell_m: Option<f32>,
     /// Terrain mode: nodes closer than this to a kept node are dropped (default 0: none).
     pub node_spacing_m: Option<f64>,
-    /// Terrain mode: the longest edge tried (default 10 km).
+    /// Terrain mode: the longest edge tried (default: every pair of nodes).
     pub max_edge_m: Option<f64>,
     /// Terrain mode: how much farther than the widening a node lies from its corner along
     /// each axis (default 1 m; more leaves room for the turn arcs).
@@ -293,7 +293,7 @@ fn build_terrain(
     let clearance = s.planner.clearance_m.unwrap_or(0.0);
     let params = TerrainParams {
         min_node_spacing_m: options.node_spacing_m.unwrap_or(0.0),
-        max_edge_m: Some(options.max_edge_m.unwrap_or(10_000.0)),
+        max_edge_m: options.max_edge_m,
         node_margin_m: options.node_margin_m.unwrap_or(DEFAULT_NODE_MARGIN_M),
         extra_altitudes_m: options.extra_altitudes_m.clone(),
         ..TerrainParams::default()

@@ -226,7 +226,9 @@ enum Command {
         /// Terrain mode: drop nodes closer than this to a kept one, metres (default 0).
         #[arg(long, value_parser = parse_non_negative, allow_hyphen_values = true)]
         node_spacing: Option<f64>,
-        /// Terrain mode: the longest edge tried, metres (default 10000).
+        /// Terrain mode: the longest edge tried, metres (default: every pair of nodes, the paper's
+        /// visibility graph; a bound makes a smaller network for a small target, at the cost of
+        /// routes that need a long straight).
         #[arg(long, value_parser = parse_positive, allow_hyphen_values = true)]
         max_edge: Option<f64>,
         /// Terrain mode: extra offset of a node from its corner beyond the widening, metres

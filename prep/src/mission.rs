@@ -14,8 +14,8 @@ use crate::scenario::{Endpoint, Scenario};
 use rayon::prelude::*;
 use skyroute::network::Mode;
 use skyroute::planner::{
-    Goal, PlanError, PlannerConfig, Query, QueryField, RouteSummary, Search, TurnRule, Violation,
-    Work,
+    ArcCheckStats, Goal, PlanError, PlannerConfig, Query, QueryField, RouteSummary, Search,
+    TurnRule, Violation, Work,
 };
 use skyroute::{Planner, Pose, Primitive, Vec2};
 use std::fmt;
@@ -65,6 +65,12 @@ pub struct Leg {
     pub primitives: Vec<Primitive>,
     /// Whether its connections needed the widened radius ([`MissionOptions`]).
     pub widened: bool,
+    /// The turn-arc checks of the leg's search against the elevation grid (terrain networks;
+    /// zero otherwise).
+    pub arc_checks: ArcCheckStats,
+    /// The most cells one turn-arc check may visit on this network (the bound the work bound
+    /// uses; terrain networks, zero otherwise).
+    pub cells_per_turn_bound: u64,
 }
 
 /// A planned mission.
@@ -679,6 +685,7 @@ fn plan_legs(
         };
         let (planned, widened) = plan_query(&mut p, &q, budget, adaptive);
         let planned = planned.map_err(unreachable)?;
+        let arc_checks = p.arc_check_stats();
         // Post-processing (Niendorf et al. §V): both passes keep the route collision-free.
         p.shortcut(budget).map_err(unreachable)?;
         p.smooth_headings(SMOOTHING_HEADINGS, budget)
@@ -692,6 +699,11 @@ fn plan_legs(
             planned_length: planned.length,
             primitives: p.route().to_vec(),
             widened,
+            arc_checks,
+            cells_per_turn_bound: match p.network().mode() {
+                Mode::Terrain => p.terrain_bound_inputs().cells_per_turn,
+                _ => 0,
+            },
         });
     }
     Ok((legs, length))

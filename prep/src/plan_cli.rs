@@ -346,6 +346,17 @@ fn plan_mission_route(
                 ""
             }
         );
+        if l.arc_checks.arcs > 0 {
+            println!(
+                "    {} turn arcs checked against the elevation grid: {} cells, {:.1} per arc, at \
+                 most {} (bound {})",
+                l.arc_checks.arcs,
+                l.arc_checks.cells,
+                l.arc_checks.cells as f64 / l.arc_checks.arcs as f64,
+                l.arc_checks.most_cells,
+                l.cells_per_turn_bound
+            );
+        }
         if let Some(note) = crate::mission::exit_note(l, s, popups) {
             println!("    {note}");
         }

@@ -417,6 +417,73 @@ fn a_terrain_goal_on_the_dem_but_far_from_every_node_is_planned() {
     );
 }
 
+/// The default terrain network joins every visible pair of nodes; `--max-edge` keeps a subset
+/// of its edges on the same nodes, so the exact search plans P → Q no shorter on it. Each plan
+/// reports its turn-arc checks against the elevation grid, within the stated bound.
+#[test]
+fn a_terrain_network_of_every_pair_plans_no_longer_than_one_with_a_longest_edge() {
+    let dir = TempDir::new("terrain-max-edge");
+    let (_, s) = jacksboro_in(&dir);
+    let sc = dir.file("jb.geojson");
+    write_json(&sc, &s);
+    let mut planned = Vec::new();
+    for (name, extra) in [
+        ("every.bin", vec![]),
+        ("10km.bin", vec!["--max-edge", "10000"]),
+    ] {
+        let net = dir.file(name);
+        let mut args = vec!["build", sc.as_str(), "-o", net.as_str()];
+        args.extend(extra);
+        let built = stdout(&ok(skyroute(&args), "build terrain"));
+        let out = dir.file("route.json");
+        let o = ok(
+            skyroute(&[
+                "plan",
+                &net,
+                "--scenario",
+                &sc,
+                "--turn-rule",
+                "shared-equally",
+                "-o",
+                &out,
+            ]),
+            "plan terrain",
+        );
+        let text = stdout(&o);
+        let line = text
+            .lines()
+            .find(|l| l.contains("turn arcs checked against the elevation grid"))
+            .unwrap_or_else(|| panic!("no turn-arc line in {text}"));
+        let numbers: Vec<f64> = line
+            .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .filter_map(|w| w.parse().ok())
+            .collect();
+        let [arcs, cells, mean, most, bound] = numbers[..] else {
+            panic!("{line}")
+        };
+        assert!(arcs > 0.0 && cells >= arcs, "{line}");
+        assert!((mean - cells / arcs).abs() < 0.06, "{line}");
+        assert!(most >= mean && most <= bound, "{line}");
+        let route = read_json(&out);
+        planned.push((
+            route["legs"][0]["planned_length_m"].as_f64().unwrap(),
+            built,
+        ));
+    }
+    let (every, limited) = (&planned[0], &planned[1]);
+    assert!(every.0 <= limited.0 + 0.01, "{every:?} against {limited:?}");
+    assert!(every.1.contains("1760 nodes") && limited.1.contains("1760 nodes"));
+    // "terrain graph N nodes, E edges": the default tries the pairs beyond 10 km too.
+    let edges = |summary: &str| -> u64 {
+        let after = summary.split(" nodes, ").nth(1).expect("a node count");
+        after.split(' ').next().unwrap().parse().unwrap()
+    };
+    assert!(
+        edges(&every.1) > edges(&limited.1),
+        "{every:?} against {limited:?}"
+    );
+}
+
 #[test]
 fn ruz_popups_plans_and_a_fixed_radius_says_why_it_cannot() {
     let dir = TempDir::new("ruz");

@@ -534,8 +534,14 @@ fn babel_iii_zigzag_flies_long_legs_and_zig_zags_at_70_percent() {
         degraded.1.len(),
         turning(&degraded.1)
     );
-    assert!(nominal.1.iter().all(|&(_, leg)| leg > 8750.0), "{nominal:?}");
-    assert!(degraded.1.iter().all(|&(_, leg)| leg <= 8750.0), "{degraded:?}");
+    assert!(
+        nominal.1.iter().all(|&(_, leg)| leg > 8750.0),
+        "{nominal:?}"
+    );
+    assert!(
+        degraded.1.iter().all(|&(_, leg)| leg <= 8750.0),
+        "{degraded:?}"
+    );
     assert!(degraded.1.len() > nominal.1.len());
     assert!(turning(&degraded.1) > turning(&nominal.1) + 10.0);
     assert!(degraded.0 > nominal.0);
@@ -553,14 +559,20 @@ fn babel_iii_zigzag_flies_long_legs_and_zig_zags_at_70_percent() {
             .map(|v| s.landmarks[(v / l.directions) as usize].name.clone())
             .collect()
     };
-    planner.plan(&query(&net), planner.worst_case_work()).unwrap();
+    planner
+        .plan(&query(&net), planner.worst_case_work())
+        .unwrap();
     let main_row: Vec<String> = (1..=8).map(|k| format!("M{k}")).collect();
     assert_eq!(overflown(&planner), main_row);
     planner.set_weather(1).unwrap();
-    planner.plan(&query(&net), planner.worst_case_work()).unwrap();
+    planner
+        .plan(&query(&net), planner.worst_case_work())
+        .unwrap();
     let zigzag = overflown(&planner);
     assert!(
-        zigzag.windows(2).all(|p| !(p[0].starts_with('M') && p[1].starts_with('M'))),
+        zigzag
+            .windows(2)
+            .all(|p| !(p[0].starts_with('M') && p[1].starts_with('M'))),
         "two main landmarks in a row at 70 %: {zigzag:?}"
     );
 }

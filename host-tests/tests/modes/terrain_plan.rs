@@ -20,8 +20,8 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 /// A host planner with room for the Jacksboro networks' search states: under the paper's turn
-/// rule one per transition (1 727 995 with a 700 m level), about 43 MB.
-type TerrainPlanner<'n> = Planner<'n, 2097152, 131072, 4, 1024>;
+/// rule one per transition (2 223 215 with a 700 m level), about 86 MB.
+type TerrainPlanner<'n> = Planner<'n, 4194304, 131072, 4, 1024>;
 
 /// Sample spacing along the route, and the most distance between lines across it, metres
 /// (below the smallest DEM cell side, 74.4 m).

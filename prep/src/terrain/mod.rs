@@ -99,7 +99,7 @@
 //! # 3. Edges
 //!
 //! Every pair of nodes of the same level at most [`TerrainParams::max_edge_m`] apart (all pairs
-//! for `None`) is joined if the straight segment's capsule of radius `widen` meets no cell
+//! for `None`, the default: the paper's visibility graph) is joined if the straight segment's capsule of radius `widen` meets no cell
 //! blocked at that level's altitude ([`segment_cells`], stopping at the first blocked cell).
 //! Since both nodes' discs lie inside the grid, so does the capsule.
 //!
@@ -109,9 +109,9 @@
 //! the obstacle on either side of the node (the classical reduced visibility graph, e.g.
 //! LaValle, *Planning Algorithms* §6.2.4). At a node the grown region is the quadrant `s` of its
 //! corner's blocked cell, and the line in direction `u` stays out of it iff
-//! `(s_x u_x)(s_y u_y) ≤ 0`. On Jacksboro at 750 m this keeps 29 442 of 69 444 directed edges
-//! (and 0.73 M of 3.7 M turn transitions), the difference between a network that fits a flight
-//! computer's search state and one that does not. (A route with turns of a minimum radius can
+//! `(s_x u_x)(s_y u_y) ≤ 0`. On Jacksboro at 750 m this keeps 32 222 of 75 486 directed edges,
+//! the difference between a network that fits a flight computer's search state and one that
+//! does not. (A route with turns of a minimum radius can
 //! in principle need a non-tangent edge to gain room for a turn; the measured completeness is
 //! in `docs/BENCHMARKS.md` and the README.)
 //!

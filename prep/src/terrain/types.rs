@@ -16,7 +16,7 @@ pub struct TerrainParams {
     pub node_margin_m: f64,
     /// Nodes closer than this to an already kept node are dropped, metres (0: no thinning).
     pub min_node_spacing_m: f64,
-    /// Longest edge tried, metres; `None`: every pair.
+    /// Longest edge tried, metres; `None` (the default): every pair, the paper's visibility graph.
     pub max_edge_m: Option<f64>,
     /// Keep only edges whose line is tangent to the blocked region at both nodes (the reduced
     /// visibility graph; see the module documentation).
@@ -35,7 +35,7 @@ impl Default for TerrainParams {
             cell_m: None,
             node_margin_m: 1.0,
             min_node_spacing_m: 0.0,
-            max_edge_m: Some(10_000.0),
+            max_edge_m: None,
             tangent_edges_only: true,
             extra_altitudes_m: Vec::new(),
         }

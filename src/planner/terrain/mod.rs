@@ -39,11 +39,11 @@
 //!
 //! Memory: the paper's rule needs `S = (|E| + Ks + 1) + Ks + T + Σₖ outdeg(vₖ)` search states,
 //! `T = Σ_v indeg(v)·outdeg(v)` (the first `|E| + Ks + 1` entries of the planner's `via` hold
-//! the table of each straight's first pair state; no other memory). On the Jacksboro networks
-//! `T` is 38 424 (the 4 084-edge network of the STM32F405 firmware, whose `V` holds 4 416
-//! states: it plans with the equal split) and 729 820 (the 29 442-edge network: about 15 MB of
-//! planner on the host, beyond the 1 MiB board); a planner whose `V` is too small for a query
-//! under the paper's rule refuses it with
+//! the table of each straight's first pair state; no other memory). On the Jacksboro networks:
+//! the 4 084-edge network of the STM32F405 firmware has `T` = 38 424, where its `V` holds 4 416
+//! states, so it plans with the equal split; the default 32 222-edge network needs `S` = 947 143
+//! (`skyroute info`), about 19 MB of planner on the host, beyond the 1 MiB board. A planner
+//! whose `V` is too small for a query under the paper's rule refuses it with
 //! [`PlanError::TooManySearchStates`](crate::planner::PlanError::TooManySearchStates).
 //!
 //! # Costs, and why every step is non-negative
