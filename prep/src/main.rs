@@ -44,7 +44,10 @@ message names the file and the field, or the option):
     the turn radius for roadmaps, 4000 m for terrain, 2000 m for landmarks)
   the network has at least one vertex
 Option values must be finite numbers, lengths positive (--node-spacing and --node-margin
-may be 0); a malformed value is a usage error, exit code 2.";
+may be 0); a malformed value is a usage error, exit code 2. An option of one mode (roadmap:
+--sample-spacing, --neighbour-radius, --discretised; terrain: --node-spacing, --max-edge,
+--node-margin, --altitude-levels; landmark: --landmark-ranges) given for a scenario of
+another mode is refused, exit code 1.";
 
 /// `skyroute plan`'s arguments.
 #[derive(clap::Args)]
@@ -371,20 +374,26 @@ enum Command {
     },
 }
 
-/// `skyroute build`.
+/// `skyroute build`. `mode_options` names the options given that apply to one mode only, with
+/// that mode: each is refused on a scenario of another mode.
 fn build_command(
     path: &Path,
     output: &Path,
     options: &BuildOptions,
     hull_repair: bool,
     mode: Option<Mode>,
+    mode_options: &[(&str, Mode)],
 ) -> CliResult {
     let t0 = Instant::now();
     let s = load_scenario(path, hull_repair, mode)?;
-    if options.landmark_ranges != Default::default() && s.planner.mode != Mode::Landmark {
+    if let Some((option, applies_to)) = mode_options
+        .iter()
+        .find(|(_, applies_to)| *applies_to != s.planner.mode)
+    {
         return Err(format!(
-            "{}: --landmark-ranges applies to landmark networks, and this is a {} scenario",
+            "{}: {option} applies to {} networks, and this is a {} scenario",
             path.display(),
+            applies_to.as_str(),
             s.planner.mode.as_str()
         )
         .into());
@@ -506,6 +515,7 @@ fn demo_command(dir: &Path) -> CliResult {
         &BuildOptions::default(),
         false,
         None,
+        &[],
     )?;
     plan_command(&PlanRequest {
         network: &network,
@@ -622,6 +632,33 @@ fn run(cli: Cli) -> CliResult {
             hull_repair,
             mode,
         } => {
+            let given = [
+                ("--sample-spacing", sample_spacing.is_some(), Mode::Roadmap),
+                (
+                    "--neighbour-radius",
+                    neighbour_radius.is_some(),
+                    Mode::Roadmap,
+                ),
+                ("--discretised", discretised.is_some(), Mode::Roadmap),
+                ("--node-spacing", node_spacing.is_some(), Mode::Terrain),
+                ("--max-edge", max_edge.is_some(), Mode::Terrain),
+                ("--node-margin", node_margin.is_some(), Mode::Terrain),
+                (
+                    "--altitude-levels",
+                    !altitude_levels.is_empty(),
+                    Mode::Terrain,
+                ),
+                (
+                    "--landmark-ranges",
+                    landmark_ranges.is_some(),
+                    Mode::Landmark,
+                ),
+            ];
+            let mode_options: Vec<(&str, Mode)> = given
+                .iter()
+                .filter(|(_, is_given, _)| *is_given)
+                .map(|&(option, _, applies_to)| (option, applies_to))
+                .collect();
             let options = BuildOptions {
                 sample_spacing_m: sample_spacing,
                 neighbour_radius_m: neighbour_radius,
@@ -633,7 +670,7 @@ fn run(cli: Cli) -> CliResult {
                 extra_altitudes_m: altitude_levels,
                 landmark_ranges: landmark_ranges.unwrap_or_default(),
             };
-            build_command(&path, &output, &options, hull_repair, mode)
+            build_command(&path, &output, &options, hull_repair, mode, &mode_options)
         }
         Command::Plan(a) => plan(a),
         Command::Demo { output } => demo_command(&output),

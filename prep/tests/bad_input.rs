@@ -576,6 +576,78 @@ fn render_refuses_a_geojson_file_as_a_route_by_what_it_is() {
     );
 }
 
+/// Every build option that one mode only uses is refused, by name, on a scenario of another
+/// mode, even at its default value; nothing is written.
+#[test]
+fn a_mode_only_build_option_on_another_mode_is_refused() {
+    let dir = TempDir::new("mode-options");
+    let out = dir.file("n.bin");
+    let roadmap = niendorf();
+    let terrain = scenario("medeiros-jacksboro.geojson");
+    let landmark = scenario("babel-II-N.geojson");
+    let cases: [(&str, &[&str], &str, &str); 9] = [
+        (
+            &roadmap,
+            &["--landmark-ranges", "ground"],
+            "--landmark-ranges",
+            "landmark",
+        ),
+        (&roadmap, &["--max-edge", "5000"], "--max-edge", "terrain"),
+        (
+            &roadmap,
+            &["--node-spacing", "0"],
+            "--node-spacing",
+            "terrain",
+        ),
+        (
+            &roadmap,
+            &["--node-margin", "1"],
+            "--node-margin",
+            "terrain",
+        ),
+        (
+            &landmark,
+            &["--altitude-levels", "700"],
+            "--altitude-levels",
+            "terrain",
+        ),
+        (
+            &terrain,
+            &["--sample-spacing", "50"],
+            "--sample-spacing",
+            "roadmap",
+        ),
+        (
+            &terrain,
+            &["--neighbour-radius", "192"],
+            "--neighbour-radius",
+            "roadmap",
+        ),
+        (
+            &terrain,
+            &["--discretised=added"],
+            "--discretised",
+            "roadmap",
+        ),
+        (&landmark, &["--discretised"], "--discretised", "roadmap"),
+    ];
+    for (sc, option, name, applies_to) in cases {
+        let mode = if sc == roadmap {
+            "roadmap"
+        } else if sc == terrain {
+            "terrain"
+        } else {
+            "landmark"
+        };
+        let mut args = vec!["build", sc];
+        args.extend(option);
+        args.extend(["-o", &out]);
+        let applies = format!("{name} applies to {applies_to} networks");
+        let is = format!("this is a {mode} scenario");
+        refused(&args, &out, 1, &[&applies, &is]);
+    }
+}
+
 #[test]
 fn a_landmark_only_build_option_on_another_mode_is_refused() {
     let dir = TempDir::new("landmark-ranges");

@@ -37,7 +37,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Landmark mode: sets the range the aircraft has left before it must overfly a landmark,
     /// metres: its last overflight's `d_max·q` ([`Planner::overflight_range`]) less what it has
     /// flown since. It bounds the piece that joins a start that is not a network vertex to the
-    /// network (module documentation); until set, the network's start range does.
+    /// network (module documentation); until set, the network's start range does. The range
+    /// stays in force for every later query, whatever its start, until it is set again or a
+    /// network is loaded (which restores the network's start range).
     pub fn set_start_range(&mut self, range_m: f32) -> Result<(), PlanError> {
         self.cancel_plan();
         if !range_m.is_finite() || range_m < 0.0 {
