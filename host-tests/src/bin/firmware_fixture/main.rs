@@ -533,7 +533,7 @@ fn run(args: Args) -> Result<(), String> {
     );
     eprintln!("firmware_fixture: capacities V={v_cap} E={e_cap} P={P_CAP} R={R_CAP}: planner ≈ {ram} B of RAM");
     if ram > RAM_BYTES * 3 / 4 {
-        eprintln!("firmware_fixture: warning: the planner needs ≈{ram} B, most of the 128 KiB RAM");
+        eprintln!("firmware_fixture: warning: the planner needs ≈{ram} B, over three quarters of the STM32F405's 128 KiB RAM (the larger target, mps2-an500, has 1 MiB)");
     }
     if bytes.len() > FLASH_BYTES * 7 / 8 {
         eprintln!(

@@ -271,7 +271,7 @@ fn report(
         p.storage_bytes
     );
     if ram > RAM_BYTES * 3 / 4 {
-        eprintln!("firmware_fixture: warning: ≈{ram} B is most of the 128 KiB RAM");
+        eprintln!("firmware_fixture: warning: ≈{ram} B is over three quarters of the STM32F405's 128 KiB RAM (the larger target, mps2-an500, has 1 MiB)");
     }
     if len > FLASH_BYTES * 7 / 8 {
         eprintln!("firmware_fixture: warning: the {len} B image leaves little of the 1 MiB flash");
