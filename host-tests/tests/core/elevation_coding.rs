@@ -1,0 +1,156 @@
+//! A terrain network's elevation coding (`skyroute::network::elevation`): codes decode to
+//! `base + code · step` with 255 unknown (docs/FORMAT.md), encoding rounds up and the blocking
+//! code splits the codes exactly as Medeiros & da Silva's rule does, checked by a scan over all
+//! 256 codes in f64; and the loader refuses an image whose coding is not finite with a positive
+//! step, or whose top code's bound overflows.
+
+use host_tests::damage::fix_crc;
+use host_tests::Rng;
+use skyroute::geometry::grid::CellGrid;
+use skyroute::network::elevation::{ElevationCoding, ELEVATION_BLOCKED};
+use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, TerrainSpec};
+use skyroute::network::Parameter;
+use skyroute::{LoadError, Network, Pose, Vec2};
+
+/// A coding whose two numbers are unlikely to appear elsewhere in the image.
+const BASE_M: f32 = 236.265_62;
+const STEP_M: f32 = 3.312_5;
+
+fn coding(base_m: f32, step_m: f32) -> ElevationCoding {
+    ElevationCoding { base_m, step_m }
+}
+
+#[test]
+fn codes_decode_to_base_plus_code_steps_and_255_is_unknown() {
+    let c = coding(BASE_M, STEP_M);
+    for code in 0..ELEVATION_BLOCKED {
+        let expected = BASE_M as f64 + code as f64 * STEP_M as f64;
+        let got = c.upper_bound(code) as f64;
+        assert!(
+            (got - expected).abs() <= 1e-4 * expected,
+            "code {code}: {got}"
+        );
+    }
+    assert_eq!(c.upper_bound(ELEVATION_BLOCKED), f32::INFINITY);
+    assert!(c.is_valid());
+}
+
+/// For random codings and elevations: `encode` gives the smallest code whose bound reaches the
+/// elevation, and `blocking_code(a, s)` the smallest whose bound reaches `a − s`, both found
+/// here by scanning every code's bound.
+#[test]
+fn encode_and_blocking_code_match_a_scan_over_every_code() {
+    let mut rng = Rng(0xe1e7_a710);
+    for _ in 0..2_000 {
+        let c = coding(
+            rng.range(-500.0, 3000.0) as f32,
+            rng.range(0.01, 40.0) as f32,
+        );
+        let top = c.upper_bound(ELEVATION_BLOCKED - 1);
+        let e = rng.range(c.base_m as f64 - 50.0, top as f64 + 50.0) as f32;
+        let scan = |x: f32| {
+            (0..ELEVATION_BLOCKED)
+                .find(|&k| c.upper_bound(k) >= x)
+                .unwrap_or(ELEVATION_BLOCKED)
+        };
+        assert_eq!(c.encode(e), scan(e), "{c:?} elevation {e}");
+        let safety = rng.range(0.0, 300.0) as f32;
+        let altitude = e + safety;
+        assert_eq!(
+            c.blocking_code(altitude, safety),
+            scan(altitude - safety),
+            "{c:?} altitude {altitude} safety {safety}"
+        );
+    }
+    let c = coding(BASE_M, STEP_M);
+    assert_eq!(c.encode(f32::NAN), ELEVATION_BLOCKED);
+    assert_eq!(c.blocking_code(f32::NAN, 100.0), 0);
+}
+
+/// A two-node terrain image with the coding above.
+fn terrain_image() -> Vec<u8> {
+    let grid = CellGrid {
+        origin: Vec2::new(0.0, 0.0),
+        cell: 100.0,
+        cols: 10,
+        rows: 10,
+    };
+    let (a, b) = (Vec2::new(200.0, 200.0), Vec2::new(800.0, 700.0));
+    let spec = NetworkSpec {
+        origin_lat_deg: 36.5,
+        origin_lon_deg: -84.2,
+        turn_radius_m: 50.0,
+        clearance_m: 20.0,
+        vertices: [a, b]
+            .iter()
+            .map(|&p| Pose {
+                position: p,
+                heading: 0.0,
+            })
+            .collect(),
+        edges: vec![
+            EdgeSpec::line(0, 1, a.distance(b)),
+            EdgeSpec::line(1, 0, a.distance(b)),
+        ],
+        obstacles: Vec::new(),
+        grid_cell_m: 1000.0,
+        landmark: None,
+        voronoi: None,
+        terrain: Some(TerrainSpec {
+            grid,
+            coding: coding(BASE_M, STEP_M),
+            codes: vec![10; 100],
+            widen_m: 20.0,
+            altitude_m: 900.0,
+            safety_height_m: 100.0,
+        }),
+        provenance: Vec::new(),
+    };
+    encode(&spec).expect("a valid terrain spec encodes")
+}
+
+/// `bytes` with the coding's two numbers (stored side by side as little-endian f32) replaced
+/// and the checksum fixed, so that the loader's field checks decide.
+fn with_coding(bytes: &[u8], base_m: f32, step_m: f32) -> Vec<u8> {
+    let mut stored = BASE_M.to_le_bytes().to_vec();
+    stored.extend(STEP_M.to_le_bytes());
+    let at: Vec<usize> = (0..bytes.len() - 8)
+        .filter(|&i| bytes[i..i + 8] == stored[..])
+        .collect();
+    assert_eq!(at.len(), 1, "the coding is stored once: {at:?}");
+    let mut out = bytes.to_vec();
+    out[at[0]..at[0] + 4].copy_from_slice(&base_m.to_le_bytes());
+    out[at[0] + 4..at[0] + 8].copy_from_slice(&step_m.to_le_bytes());
+    fix_crc(&mut out);
+    out
+}
+
+#[test]
+fn a_terrain_image_with_a_bad_coding_is_refused_at_load() {
+    let bytes = terrain_image();
+    let net = Network::from_bytes(&bytes).expect("the valid image loads");
+    assert_eq!(net.elevation_coding(), Some(coding(BASE_M, STEP_M)));
+    // A tiny positive step is a valid coding, and the patched image loads.
+    let fine = with_coding(&bytes, 0.0, 1e-3);
+    assert!(Network::from_bytes(&fine).is_ok());
+    let refused = LoadError::InvalidParameter {
+        parameter: Parameter::Terrain,
+    };
+    for (base, step) in [
+        (f32::NAN, STEP_M),
+        (f32::INFINITY, STEP_M),
+        (BASE_M, f32::NAN),
+        (BASE_M, f32::INFINITY),
+        (BASE_M, 0.0),
+        (BASE_M, -STEP_M),
+        // Finite numbers whose top code's bound, 3e38 + 254 · 1e37, overflows f32.
+        (3e38, 1e37),
+    ] {
+        let damaged = with_coding(&bytes, base, step);
+        assert_eq!(
+            Network::from_bytes(&damaged).err(),
+            Some(refused),
+            "base {base}, step {step}"
+        );
+    }
+}
