@@ -65,6 +65,37 @@ fn encode_and_blocking_code_match_a_scan_over_every_code() {
     let c = coding(BASE_M, STEP_M);
     assert_eq!(c.encode(f32::NAN), ELEVATION_BLOCKED);
     assert_eq!(c.blocking_code(f32::NAN, 100.0), 0);
+    // An invalid coding blocks everything (fail safe) and encodes every elevation as unknown.
+    for bad in [coding(BASE_M, 0.0), coding(f32::NAN, STEP_M)] {
+        assert_eq!(bad.blocking_code(900.0, 100.0), 0, "{bad:?}");
+        assert_eq!(bad.encode(300.0), ELEVATION_BLOCKED, "{bad:?}");
+    }
+}
+
+/// Elevations exactly at a code's bound and one f32 step either side of it: the f32 division
+/// that estimates the code can land on either side there, and the result must still be the
+/// scan's.
+#[test]
+fn elevations_at_and_beside_every_bound_encode_as_the_scan_says() {
+    let mut rng = Rng(0xb0_0d5);
+    for _ in 0..200 {
+        let c = coding(
+            rng.range(-500.0, 3000.0) as f32,
+            rng.range(0.01, 40.0) as f32,
+        );
+        let scan = |x: f32| {
+            (0..ELEVATION_BLOCKED)
+                .find(|&k| c.upper_bound(k) >= x)
+                .unwrap_or(ELEVATION_BLOCKED)
+        };
+        for k in 0..ELEVATION_BLOCKED {
+            let b = c.upper_bound(k);
+            for x in [b.next_down(), b, b.next_up()] {
+                assert_eq!(c.encode(x), scan(x), "{c:?} code {k} elevation {x}");
+                assert_eq!(c.blocking_code(x + 50.0, 50.0), scan(x + 50.0 - 50.0));
+            }
+        }
+    }
 }
 
 /// A two-node terrain image with the coding above.
