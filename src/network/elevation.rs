@@ -69,25 +69,21 @@ impl ElevationCoding {
         self.smallest_code_reaching(threshold)
     }
 
-    /// The smallest code in `0..=255` whose bound is `≥ x` (255 always qualifies). An estimate
-    /// from the division, then corrected by single steps against the exact `f32` bounds (the
-    /// estimate is off by at most one or two codes from rounding).
+    /// The smallest code in `0..=255` whose bound is `≥ x`, for `x` not NaN (255's bound is
+    /// `+∞`, so one always qualifies). The bounds `base + code · step` do not decrease with the
+    /// code (`step > 0`, and f32 rounding is monotone), so a binary search over the 256 codes
+    /// finds it in 8 steps.
     fn smallest_code_reaching(&self, x: f32) -> u8 {
-        let estimate = libm::ceilf((x - self.base_m) / self.step_m);
-        let mut code = if estimate.is_nan() || estimate <= 0.0 {
-            0u8
-        } else if estimate >= ELEVATION_BLOCKED as f32 {
-            ELEVATION_BLOCKED
-        } else {
-            estimate as u8
-        };
-        while code < ELEVATION_BLOCKED && self.upper_bound(code) < x {
-            code += 1;
+        let (mut low, mut high) = (0u8, ELEVATION_BLOCKED);
+        while low < high {
+            let mid = low + (high - low) / 2;
+            if self.upper_bound(mid) >= x {
+                high = mid;
+            } else {
+                low = mid + 1;
+            }
         }
-        while code > 0 && self.upper_bound(code - 1) >= x {
-            code -= 1;
-        }
-        code
+        low
     }
 }
 
