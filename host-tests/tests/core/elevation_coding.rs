@@ -20,6 +20,21 @@ fn coding(base_m: f32, step_m: f32) -> ElevationCoding {
     ElevationCoding { base_m, step_m }
 }
 
+/// A coding with a base of −500 to 3 000 m and a step of 0.01 to 40 m.
+fn random_coding(rng: &mut Rng) -> ElevationCoding {
+    coding(
+        rng.range(-500.0, 3000.0) as f32,
+        rng.range(0.01, 40.0) as f32,
+    )
+}
+
+/// The smallest code whose bound reaches `x`, by scanning every code (255 if none below does).
+fn scan(c: &ElevationCoding, x: f32) -> u8 {
+    (0..ELEVATION_BLOCKED)
+        .find(|&k| c.upper_bound(k) >= x)
+        .unwrap_or(ELEVATION_BLOCKED)
+}
+
 #[test]
 fn codes_decode_to_base_plus_code_steps_and_255_is_unknown() {
     let c = coding(BASE_M, STEP_M);
@@ -42,23 +57,15 @@ fn codes_decode_to_base_plus_code_steps_and_255_is_unknown() {
 fn encode_and_blocking_code_match_a_scan_over_every_code() {
     let mut rng = Rng(0xe1e7_a710);
     for _ in 0..2_000 {
-        let c = coding(
-            rng.range(-500.0, 3000.0) as f32,
-            rng.range(0.01, 40.0) as f32,
-        );
+        let c = random_coding(&mut rng);
         let top = c.upper_bound(ELEVATION_BLOCKED - 1);
         let e = rng.range(c.base_m as f64 - 50.0, top as f64 + 50.0) as f32;
-        let scan = |x: f32| {
-            (0..ELEVATION_BLOCKED)
-                .find(|&k| c.upper_bound(k) >= x)
-                .unwrap_or(ELEVATION_BLOCKED)
-        };
-        assert_eq!(c.encode(e), scan(e), "{c:?} elevation {e}");
+        assert_eq!(c.encode(e), scan(&c, e), "{c:?} elevation {e}");
         let safety = rng.range(0.0, 300.0) as f32;
         let altitude = e + safety;
         assert_eq!(
             c.blocking_code(altitude, safety),
-            scan(altitude - safety),
+            scan(&c, altitude - safety),
             "{c:?} altitude {altitude} safety {safety}"
         );
     }
@@ -79,20 +86,12 @@ fn encode_and_blocking_code_match_a_scan_over_every_code() {
 fn elevations_at_and_beside_every_bound_encode_as_the_scan_says() {
     let mut rng = Rng(0xb0_0d5);
     for _ in 0..200 {
-        let c = coding(
-            rng.range(-500.0, 3000.0) as f32,
-            rng.range(0.01, 40.0) as f32,
-        );
-        let scan = |x: f32| {
-            (0..ELEVATION_BLOCKED)
-                .find(|&k| c.upper_bound(k) >= x)
-                .unwrap_or(ELEVATION_BLOCKED)
-        };
+        let c = random_coding(&mut rng);
         for k in 0..ELEVATION_BLOCKED {
             let b = c.upper_bound(k);
             for x in [b.next_down(), b, b.next_up()] {
-                assert_eq!(c.encode(x), scan(x), "{c:?} code {k} elevation {x}");
-                assert_eq!(c.blocking_code(x + 50.0, 50.0), scan(x + 50.0 - 50.0));
+                assert_eq!(c.encode(x), scan(&c, x), "{c:?} code {k} elevation {x}");
+                assert_eq!(c.blocking_code(x + 50.0, 50.0), scan(&c, x + 50.0 - 50.0));
             }
         }
     }
