@@ -75,7 +75,13 @@ fn encode_and_blocking_code_match_a_scan_over_every_code() {
     // An invalid coding blocks everything (fail safe) and encodes every elevation as unknown.
     for bad in [coding(BASE_M, 0.0), coding(f32::NAN, STEP_M)] {
         assert_eq!(bad.blocking_code(900.0, 100.0), 0, "{bad:?}");
-        assert_eq!(bad.encode(300.0), ELEVATION_BLOCKED, "{bad:?}");
+        for elevation in [BASE_M - 100.0, BASE_M + 100.0] {
+            assert_eq!(
+                bad.encode(elevation),
+                ELEVATION_BLOCKED,
+                "{bad:?} {elevation}"
+            );
+        }
     }
 }
 
