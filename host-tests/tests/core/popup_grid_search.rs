@@ -1,7 +1,7 @@
 //! The pop-up grid search (`Planner::add_popup` through `Network::cells_overlapping`): the
-//! grid index lists each edge only in the cells its geometry's bounding box overlaps, so a
-//! pop-up within the clearance of an edge but in a neighbouring cell is found only because
-//! the pop-up's box is widened by the clearance on every side. Checked on hand-built networks
+//! grid index lists each Dubins edge only in the cells its primitives' bounding boxes
+//! overlap, so a pop-up within the clearance of an edge but in a neighbouring cell is found
+//! only because the pop-up's box is widened by the clearance on every side. Checked on hand-built networks
 //! of straight edges (Dubins words whose arcs are empty), whose exact geometry is known in
 //! f64: pop-ups just outside each of the four sides of one edge's cells, and random pop-ups
 //! near a lattice's edges against a brute force over all edges with the f64 reference

@@ -11,7 +11,7 @@
 //! the planner must find a route exactly when a walk exists, and its route must be one
 //! continuous curve (a straight shorter than its two cuts would leave a gap).
 
-use host_tests::Rng;
+use host_tests::{cases, Rng};
 use skyroute::geometry::grid::{arc_cells, primitive_cells, CellGrid};
 use skyroute::network::elevation::ElevationCoding;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, TerrainSpec};
@@ -101,7 +101,9 @@ fn case(rng: &mut Rng) -> Case {
             .collect(),
         edges,
         obstacles: Vec::new(),
-        grid_cell_m: 1000.0,
+        // Pop-up index cells of 100 m: a diagonal edge meets far fewer of them than its
+        // bounding box overlaps, so the pop-up test below checks the exact listing.
+        grid_cell_m: 100.0,
         landmark: None,
         voronoi: None,
         terrain: Some(TerrainSpec {
@@ -437,49 +439,71 @@ fn check_planner(
 }
 
 /// Pop-ups on terrain networks disable exactly the line edges that come within the clearance
-/// of the disc, compared with an f64 scan of every edge (segment–point distance), and the
-/// search never uses a disabled edge.
+/// of the disc, compared with an f64 scan of every edge (segment–point distance). Half the
+/// pop-ups are large and anywhere; half are small (1–20 m) and placed beside a random edge
+/// within 15 m of its clearance boundary, so that the pop-up's box meets only one or two index
+/// cells of 100 m: the grid index lists each edge only in the cells its segment meets, and a
+/// cell missing there leaves an edge enabled that the scan blocks.
 #[test]
 fn popups_disable_exactly_the_terrain_edges_they_reach() {
     let mut rng = Rng(5);
-    let mut blocked_total = 0;
-    for _ in 0..40 {
+    let (mut blocked_total, mut near_blocked) = (0, 0);
+    for _ in 0..cases(40, 400) {
         let c = case(&mut rng);
         let net = skyroute::Network::from_bytes(&c.bytes).unwrap();
         let mut planner: Box<Planner<'_, 128, 128, 2, 64>> = Box::new(Planner::new());
         planner.load(&c.bytes).unwrap();
-        let centre = Vec2::new(
-            rng.range(500.0, 2500.0) as f32,
-            rng.range(500.0, 2500.0) as f32,
-        );
-        let radius = rng.range(50.0, 400.0) as f32;
-        planner
-            .add_popup(skyroute::Popup::Circle { centre, radius })
-            .unwrap();
-        for e in 0..net.edge_count() {
-            let edge = net.edge(e).unwrap();
-            let (a, b) = (
-                net.vertex(edge.source).unwrap().position,
-                net.vertex(edge.target).unwrap().position,
-            );
-            // f64 distance from the centre to the segment.
-            let (ax, ay, bx, by) = (a.x as f64, a.y as f64, b.x as f64, b.y as f64);
-            let (px, py) = (centre.x as f64, centre.y as f64);
-            let (dx, dy) = (bx - ax, by - ay);
-            let t = (((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
-            let d = (ax + t * dx - px).hypot(ay + t * dy - py);
-            let limit = (radius + WIDEN) as f64;
-            if (d - limit).abs() < 1e-2 {
-                continue; // within rounding of the boundary: either answer is right
+        for k in 0..10 {
+            let (centre, radius) = if k % 2 == 0 {
+                let centre = Vec2::new(
+                    rng.range(500.0, 2500.0) as f32,
+                    rng.range(500.0, 2500.0) as f32,
+                );
+                (centre, rng.range(5.0, 400.0) as f32)
+            } else {
+                let edge = net.edge(rng.below(net.edge_count() as u64) as u32).unwrap();
+                let a = net.vertex(edge.source).unwrap().position;
+                let b = net.vertex(edge.target).unwrap().position;
+                let on = a + (b - a) * rng.unit() as f32;
+                let radius = rng.range(1.0, 20.0);
+                let (ux, uy) = rng.unit_vector();
+                let d = radius + WIDEN as f64 + rng.range(-15.0, 15.0);
+                let centre = on + Vec2::new((ux * d) as f32, (uy * d) as f32);
+                (centre, radius as f32)
+            };
+            let summary = planner
+                .add_popup(skyroute::Popup::Circle { centre, radius })
+                .unwrap();
+            for e in 0..net.edge_count() {
+                let edge = net.edge(e).unwrap();
+                let (a, b) = (
+                    net.vertex(edge.source).unwrap().position,
+                    net.vertex(edge.target).unwrap().position,
+                );
+                // f64 distance from the centre to the segment.
+                let (ax, ay, bx, by) = (a.x as f64, a.y as f64, b.x as f64, b.y as f64);
+                let (px, py) = (centre.x as f64, centre.y as f64);
+                let (dx, dy) = (bx - ax, by - ay);
+                let t = (((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy)).clamp(0.0, 1.0);
+                let d = (ax + t * dx - px).hypot(ay + t * dy - py);
+                let limit = (radius + WIDEN) as f64;
+                if (d - limit).abs() < 1e-2 {
+                    continue; // within rounding of the boundary: either answer is right
+                }
+                assert_eq!(
+                    !planner.is_edge_enabled(e),
+                    d < limit,
+                    "edge {e}: distance {d}, radius + clearance {limit}, pop-up {k}"
+                );
+                blocked_total += (d < limit) as u32;
+                near_blocked += (d < limit && k % 2 == 1) as u32;
             }
-            assert_eq!(
-                !planner.is_edge_enabled(e),
-                d < limit,
-                "edge {e}: distance {d}, radius + clearance {limit}"
-            );
-            blocked_total += (d < limit) as u32;
+            planner.remove_popup(summary.id).unwrap();
         }
     }
-    eprintln!("{blocked_total} edges disabled by pop-ups, all as the scan says");
-    assert!(blocked_total > 20);
+    eprintln!(
+        "{blocked_total} edges disabled by pop-ups, all as the scan says; {near_blocked} of them \
+         by the small pop-ups beside an edge"
+    );
+    assert!(blocked_total > 20 && near_blocked > 20);
 }

@@ -1,14 +1,17 @@
 //! The writer's grid index: each cell's edges, delta-coded as varints.
 
 use super::{count, grid_cells, EdgeSpec, NetworkSpec, WriteError};
+use crate::geometry::grid::{segment_cells, CellGrid};
 use crate::geometry::hermite::{HermiteSegment, LineElement};
-use crate::geometry::{points_bounding_box, DubinsPath, Vec2};
+use crate::geometry::{points_bounding_box, DubinsPath, Segment, Vec2};
 use std::vec;
 use std::vec::Vec;
 
-/// The uniform grid index: for each cell, the edges with a primitive whose bounding box
-/// (widened by a small margin against rounding) overlaps the cell. A superset of the edges
-/// whose geometry passes through the cell, which is what pop-up pruning needs.
+/// The uniform grid index: for each cell, the edges whose geometry, widened by a small margin
+/// against rounding, may meet the cell: a straight (terrain or Voronoi) edge's segment, a
+/// Dubins edge's primitives' bounding boxes, a landmark chain's pieces' Bernstein boxes. A
+/// superset of the edges whose geometry passes through the cell, which is what pop-up pruning
+/// needs.
 pub(super) struct GridIndex {
     pub(super) origin: Vec2,
     pub(super) nx: u32,
@@ -78,27 +81,54 @@ impl GridIndex {
                 }
             }
         }
+        // Terrain and Voronoi edges are straight lines: each is listed in the cells its segment,
+        // widened by the margin, meets (`segment_cells`: complete, and exact up to its rounding
+        // slack), far fewer than its bounding box overlaps when it runs diagonally.
+        let line_edges = spec.terrain.is_some() || spec.voronoi.is_some();
+        let index_grid = CellGrid {
+            origin,
+            cell,
+            cols: nx,
+            rows: ny,
+        };
         for (i, e) in edges.iter().enumerate() {
             if spec.landmark.is_some() {
                 break;
             }
             let mut start = spec.vertices[e.source as usize];
-            if spec.terrain.is_some() || spec.voronoi.is_some() {
-                let d = spec.vertices[e.target as usize].position - start.position;
-                start.heading = d.y.atan2(d.x);
-            }
-            let path = DubinsPath {
-                start,
-                radius: spec.turn_radius_m,
-                word: e.word,
-                lengths: e.lengths,
-            };
+            let end = spec.vertices[e.target as usize].position;
             let mut touched: Vec<u32> = Vec::new();
-            for prim in path.primitives().into_iter().flatten() {
-                let (a, b) = prim.bounding_box();
-                for y in cy(a.y - margin)..=cy(b.y + margin) {
-                    for x in cx(a.x - margin)..=cx(b.x + margin) {
+            let listed_exactly = line_edges
+                && segment_cells(
+                    &index_grid,
+                    &Segment::new(start.position, end),
+                    margin,
+                    |x, y| {
                         touched.push(y * nx + x);
+                        true
+                    },
+                )
+                .is_ok();
+            if !listed_exactly {
+                // Each primitive's bounding box, widened by the margin (also a straight edge
+                // whose traversal refuses its coordinates).
+                touched.clear();
+                if line_edges {
+                    let d = end - start.position;
+                    start.heading = d.y.atan2(d.x);
+                }
+                let path = DubinsPath {
+                    start,
+                    radius: spec.turn_radius_m,
+                    word: e.word,
+                    lengths: e.lengths,
+                };
+                for prim in path.primitives().into_iter().flatten() {
+                    let (a, b) = prim.bounding_box();
+                    for y in cy(a.y - margin)..=cy(b.y + margin) {
+                        for x in cx(a.x - margin)..=cx(b.x + margin) {
+                            touched.push(y * nx + x);
+                        }
                     }
                 }
             }
