@@ -22,7 +22,8 @@
 //! * [`geo`]: WGS-84 longitude/latitude and compass headings to the network's local frame and
 //!   back (the ground tool's transverse Mercator), for an autopilot that navigates in degrees.
 //! * [`geometry`]: poses, lines, arcs, Dubins paths and the exact collision predicates.
-//! * [`network`]: the network format v1 (see `docs/FORMAT.md`), its validating loader and accessors.
+//! * [`network`]: the network image (format version 4, `docs/FORMAT.md`), its validating loader
+//!   and accessors.
 //! * [`planner`]: the fixed-memory planner: pop-ups, endpoint connection, search, routes.
 #![no_std]
 #![forbid(unsafe_code)]
