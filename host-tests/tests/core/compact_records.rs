@@ -1,16 +1,19 @@
 //! Format v4's compact records as bad input: a grid cell's varint list that runs past its
-//! cell, is over-long or names an edge past the count, and a roadmap edge whose Dubins word
-//! cannot join its ends, each refused with its own error (checksum re-fixed so the field
-//! checks decide); the edge source the loader derives from the offsets, against a scan; and
+//! cell, is over-long or names an edge past the count, a roadmap edge whose Dubins word
+//! cannot join its ends, and one whose cost undercuts its solved length, each refused with its
+//! own error (checksum re-fixed so the field checks decide); the end check's tolerance far
+//! from the origin; the edge source the loader derives from the offsets, against a scan; and
 //! the on-demand checksum pass that finds a byte corrupted after load.
 
 use host_tests::damage::fix_crc;
 use host_tests::world::world;
+use host_tests::Rng;
 use skyroute::network::format::{
     EdgeRecord, Header, ObstacleRecord, PointRecord, U32Record, VertexRecord,
 };
+use skyroute::network::write::{encode, EdgeSpec, NetworkSpec};
 use skyroute::network::{LoadError, Section};
-use skyroute::{DubinsPath, DubinsWord, Network};
+use skyroute::{DubinsPath, DubinsWord, Network, Pose};
 
 /// Byte offsets of the cell offsets and of the cell lists of a roadmap image.
 fn grid_at(net: &Network) -> (usize, usize) {
@@ -138,6 +141,53 @@ fn a_dubins_word_that_cannot_join_its_ends_is_refused() {
     );
 }
 
+/// A roadmap edge's cost may not undercut the length of its path as the loader solves it,
+/// within the documented 10⁻⁵ (`docs/FORMAT.md`, validation step 7): each edge's cost set to
+/// exactly that length, and to 5·10⁻⁶ below it, loads; 3·10⁻⁵ below it is refused as
+/// `CostBelowLength` naming the edge (checksum re-fixed so the field check decides).
+#[test]
+fn a_roadmap_edge_cost_may_not_undercut_its_solved_length() {
+    let w = world(5, 600.0, 60.0, 10.0, 3);
+    let net = Network::from_bytes(&w.bytes).unwrap();
+    let r = net.turn_radius();
+    let v = net.vertex_count() as usize;
+    let cost_at = |e: u32| {
+        Header::SIZE
+            + v * (VertexRecord::SIZE + U32Record::SIZE)
+            + U32Record::SIZE
+            + e as usize * EdgeRecord::SIZE
+            + 3
+    };
+    let with_cost = |e: u32, cost: f32| {
+        let mut b = w.bytes.clone();
+        b[cost_at(e)..cost_at(e) + 4].copy_from_slice(&cost.to_le_bytes());
+        fix_crc(&mut b);
+        b
+    };
+    let step = (net.edge_count() / 7).max(1);
+    let mut checked = 0;
+    for e in (0..net.edge_count()).step_by(step as usize) {
+        let (a, b, word) = net.dubins_edge_ends(e).unwrap();
+        let length = DubinsPath::with_word(&a, &b, r, word).unwrap().length();
+        assert!(length > 1.0);
+        for cost in [length, length * (1.0 - 5e-6)] {
+            let bytes = with_cost(e, cost);
+            let loaded = Network::from_bytes(&bytes);
+            assert!(
+                loaded.is_ok(),
+                "edge {e} cost {cost} of {length}: {loaded:?}"
+            );
+        }
+        let bytes = with_cost(e, length * (1.0 - 3e-5));
+        assert_eq!(
+            Network::from_bytes(&bytes).unwrap_err(),
+            LoadError::CostBelowLength { edge: e }
+        );
+        checked += 1;
+    }
+    assert!(checked >= 7);
+}
+
 #[test]
 fn edge_sources_found_by_binary_search_match_a_scan_of_the_offsets() {
     let w = world(3, 700.0, 60.0, 40.0, 2);
@@ -209,4 +259,59 @@ fn an_image_corrupted_after_load_is_found_by_verify_in_bounded_steps() {
         v.step(&w.bytes[..10], crc, usize::MAX),
         VerifyStep::Corrupted(_)
     ));
+}
+
+/// A roadmap 200 km from its frame's origin, where an f32 coordinate's step is 1.6 cm: flying
+/// each solved edge from its source ends farther from the target than the 1 cm floor of the
+/// end check, and within the check's term in the coordinates' size (10⁻⁴ of radius +
+/// coordinate + length, `docs/FORMAT.md` step 7), so the image loads.
+#[test]
+fn a_roadmap_far_from_its_origin_loads_within_the_end_tolerance() {
+    let mut rng = Rng(17);
+    let radius = 50.0;
+    let vertices: Vec<Pose> = (0..12)
+        .map(|_| {
+            Pose::new(
+                200_000.0 + rng.range_f32(0.0, 2000.0),
+                -150_000.0 + rng.range_f32(0.0, 2000.0),
+                rng.range_f32(-3.1, 3.1),
+            )
+        })
+        .collect();
+    let mut edges = Vec::new();
+    let mut worst = 0f32;
+    for i in 0..vertices.len() {
+        for j in 0..vertices.len() {
+            if i == j {
+                continue;
+            }
+            let path = DubinsPath::shortest(&vertices[i], &vertices[j], radius).unwrap();
+            worst = worst.max(path.end().position.distance(vertices[j].position));
+            edges.push(EdgeSpec {
+                source: i as u32,
+                target: j as u32,
+                cost: path.length(),
+                word: path.word,
+                lengths: path.lengths,
+            });
+        }
+    }
+    let spec = NetworkSpec {
+        origin_lat_deg: 10.0,
+        origin_lon_deg: 20.0,
+        turn_radius_m: radius,
+        clearance_m: 5.0,
+        vertices,
+        edges,
+        obstacles: Vec::new(),
+        grid_cell_m: 2000.0,
+        landmark: None,
+        voronoi: None,
+        terrain: None,
+        provenance: Vec::new(),
+    };
+    let bytes = encode(&spec).unwrap();
+    println!("worst end miss {worst} m");
+    assert!(worst > 0.01, "the 1 cm floor alone would pass: {worst} m");
+    assert!(Network::from_bytes(&bytes).is_ok());
 }

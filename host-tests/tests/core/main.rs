@@ -9,8 +9,8 @@
 mod bad_input;
 /// The image checksum (CRC-32) against `crc32fast`.
 mod checksum;
-/// Format v4's compact records: damaged cell lists and Dubins words each refused by name; the
-/// in-flight checksum pass.
+/// Format v4's compact records: damaged cell lists, Dubins words and edge costs each refused
+/// by name; the end check far from the origin; the in-flight checksum pass.
 mod compact_records;
 /// The pop-up decision (Ruz et al.) against a brute force over every combination.
 mod decision;
@@ -35,7 +35,8 @@ mod obstacle_validation;
 mod offset_tables;
 /// The planner against Bellman–Ford, an edge scan for pop-ups and the work bound.
 mod planner;
-/// The pop-up grid search: neighbouring cells within the clearance, an f64 brute force.
+/// The pop-up grid search: neighbouring cells within the clearance, an f64 brute force, the
+/// predicate tests a listed edge costs.
 mod popup_grid_search;
 /// Pop-up shapes: the radius limit, simple polygons of any vertex count.
 mod popup_validation;

@@ -9,9 +9,10 @@
 
 use host_tests::reference::{dist_point_segment, dist_segment_polygon, P};
 use host_tests::{cases, Rng};
+use skyroute::network::dubins_hull;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec};
 use skyroute::planner::Popup;
-use skyroute::{DubinsWord, Network, Planner, Pose, Vec2};
+use skyroute::{DubinsPath, DubinsWord, Network, Planner, Pose, Vec2};
 
 type Sp<'n> = Planner<'n, 1024, 1024, 4, 64>;
 
@@ -249,4 +250,72 @@ fn popup_blocking_matches_an_f64_brute_force_over_all_edges() {
         "too few neighbouring-cell cases"
     );
     assert!(skipped <= n as u64, "too many ambiguous distances");
+}
+
+/// The work a pop-up charges for one listed roadmap edge: a single predicate test when the
+/// edge's hull (`dubins_hull`: the segment joining its first and last turning circles'
+/// centres, widened by the radius) is farther than the clearance, and otherwise one test per
+/// primitive of the solved path, as `Popup::conflicts` counts them. One curved edge (three
+/// non-empty pieces) in one large index cell, with a pop-up far from it and one beside it.
+#[test]
+fn a_listed_edge_costs_one_predicate_test_when_its_hull_is_far() {
+    let (a, b) = (Pose::new(0.0, 0.0, 0.0), Pose::new(60.0, 40.0, 0.0));
+    let path = DubinsPath::shortest(&a, &b, RADIUS).unwrap();
+    let prims: Vec<_> = path.primitives().into_iter().flatten().collect();
+    assert_eq!(prims.len(), 3, "{path:?}");
+    assert!(path.lengths.iter().all(|&l| l > 1.0), "{path:?}");
+    let edge = EdgeSpec {
+        source: 0,
+        target: 1,
+        cost: path.length(),
+        word: path.word,
+        lengths: path.lengths,
+    };
+    let mut s = spec(vec![a, b], vec![edge]);
+    s.grid_cell_m = 1000.0; // one cell holds the edge and both pop-ups
+    let bytes = encode(&s).unwrap();
+    let mut p = load(&bytes);
+
+    let far = Popup::Circle {
+        centre: Vec2::new(30.0, 200.0),
+        radius: 1.0,
+    };
+    let summary = p.add_popup(far).unwrap();
+    assert_eq!(summary.entries_visited, 1);
+    assert_eq!(
+        summary.predicate_tests, 1,
+        "the hull test alone: {summary:?}"
+    );
+    assert_eq!(summary.edges_blocked, 0);
+    p.remove_popup(summary.id).unwrap();
+
+    // Beside the edge: a pop-up within the clearance of the hull's band but clear of every
+    // primitive, so the hull test does not decide and each primitive is tested (the hull
+    // test itself is then not counted).
+    let (hull, reach) = dubins_hull(&a, &b, RADIUS, path.word);
+    let hull64 = (
+        (hull.start.x as f64, hull.start.y as f64),
+        (hull.end.x as f64, hull.end.y as f64),
+    );
+    let beside = (-40..100)
+        .flat_map(|x| (-40..80).map(move |y| Vec2::new(x as f32, y as f32)))
+        .map(|centre| Popup::Circle {
+            centre,
+            radius: 1.0,
+        })
+        .find(|popup| {
+            let Popup::Circle { centre, .. } = popup else {
+                unreachable!()
+            };
+            let to_hull =
+                dist_point_segment((centre.x as f64, centre.y as f64), hull64.0, hull64.1);
+            to_hull < (reach + 1.0 + CLEARANCE) as f64 - 1.0
+                && prims.iter().all(|q| !popup.conflicts(q, CLEARANCE).0)
+        })
+        .expect("a point near the hull and clear of the path");
+    let expected: u32 = prims.iter().map(|q| beside.conflicts(q, CLEARANCE).1).sum();
+    let summary = p.add_popup(beside.clone()).unwrap();
+    assert_eq!(summary.edges_blocked, 0, "{beside:?}");
+    assert_eq!(summary.predicate_tests, expected, "{beside:?}: {summary:?}");
+    assert!(expected >= 3);
 }
