@@ -432,13 +432,7 @@ pub fn build_roadmap(
                 continue;
             };
             if obstacles.path_is_clear(&path, params.clearance_m, params.check) {
-                out.push(EdgeSpec {
-                    source: s as u32,
-                    target: t as u32,
-                    cost: path.length(),
-                    word: path.word,
-                    lengths: path.lengths,
-                });
+                out.push(EdgeSpec::dubins(s as u32, t as u32, &path));
             }
         }
         out

@@ -287,13 +287,7 @@ fn a_roadmap_far_from_its_origin_loads_within_the_end_tolerance() {
             }
             let path = DubinsPath::shortest(&vertices[i], &vertices[j], radius).unwrap();
             worst = worst.max(path.end().position.distance(vertices[j].position));
-            edges.push(EdgeSpec {
-                source: i as u32,
-                target: j as u32,
-                cost: path.length(),
-                word: path.word,
-                lengths: path.lengths,
-            });
+            edges.push(EdgeSpec::dubins(i as u32, j as u32, &path));
         }
     }
     let spec = NetworkSpec {

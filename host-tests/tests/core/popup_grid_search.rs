@@ -264,13 +264,7 @@ fn a_listed_edge_costs_one_predicate_test_when_its_hull_is_far() {
     let prims: Vec<_> = path.primitives().into_iter().flatten().collect();
     assert_eq!(prims.len(), 3, "{path:?}");
     assert!(path.lengths.iter().all(|&l| l > 1.0), "{path:?}");
-    let edge = EdgeSpec {
-        source: 0,
-        target: 1,
-        cost: path.length(),
-        word: path.word,
-        lengths: path.lengths,
-    };
+    let edge = EdgeSpec::dubins(0, 1, &path);
     let mut s = spec(vec![a, b], vec![edge]);
     s.grid_cell_m = 1000.0; // one cell holds the edge and both pop-ups
     let bytes = encode(&s).unwrap();
@@ -297,22 +291,19 @@ fn a_listed_edge_costs_one_predicate_test_when_its_hull_is_far() {
         (hull.start.x as f64, hull.start.y as f64),
         (hull.end.x as f64, hull.end.y as f64),
     );
-    let beside = (-40..100)
+    let circle = |centre| Popup::Circle {
+        centre,
+        radius: 1.0,
+    };
+    let centre = (-40..100)
         .flat_map(|x| (-40..80).map(move |y| Vec2::new(x as f32, y as f32)))
-        .map(|centre| Popup::Circle {
-            centre,
-            radius: 1.0,
-        })
-        .find(|popup| {
-            let Popup::Circle { centre, .. } = popup else {
-                unreachable!()
-            };
-            let to_hull =
-                dist_point_segment((centre.x as f64, centre.y as f64), hull64.0, hull64.1);
+        .find(|&c| {
+            let to_hull = dist_point_segment((c.x as f64, c.y as f64), hull64.0, hull64.1);
             to_hull < (reach + 1.0 + CLEARANCE) as f64 - 1.0
-                && prims.iter().all(|q| !popup.conflicts(q, CLEARANCE).0)
+                && prims.iter().all(|q| !circle(c).conflicts(q, CLEARANCE).0)
         })
         .expect("a point near the hull and clear of the path");
+    let beside = circle(centre);
     let expected: u32 = prims.iter().map(|q| beside.conflicts(q, CLEARANCE).1).sum();
     let summary = p.add_popup(beside.clone()).unwrap();
     assert_eq!(summary.edges_blocked, 0, "{beside:?}");

@@ -49,13 +49,7 @@ fn lattice_spec(n: usize, spacing: f32, origin: f32, radius: f32) -> NetworkSpec
             let d = pa.position.distance(pb.position);
             if d > 0.0 && d <= 1.5 * spacing {
                 let path = DubinsPath::shortest(pa, pb, radius).unwrap();
-                edges.push(EdgeSpec {
-                    source: a as u32,
-                    target: b as u32,
-                    cost: path.length(),
-                    word: path.word,
-                    lengths: path.lengths,
-                });
+                edges.push(EdgeSpec::dubins(a as u32, b as u32, &path));
             }
         }
     }

@@ -45,6 +45,18 @@ impl EdgeSpec {
 }
 
 impl EdgeSpec {
+    /// A Dubins edge flying `path` (roadmap mode), cost = its length: the word and piece
+    /// lengths the writer checks against [`DubinsPath::with_word`] between the two poses.
+    pub fn dubins(source: u32, target: u32, path: &DubinsPath) -> Self {
+        EdgeSpec {
+            source,
+            target,
+            cost: path.length(),
+            word: path.word,
+            lengths: path.lengths,
+        }
+    }
+
     /// A chain of Hermite pieces of total `length` metres (landmark mode), cost = length; its
     /// line elements go in [`LandmarkSpec::chains`] at the same index.
     pub fn chain(source: u32, target: u32, length: f32) -> Self {

@@ -235,13 +235,7 @@ fn synthetic_network() -> Result<Vec<u8>, String> {
                     .all(|poly| !conflicts_with_polygon(&prim, poly.as_slice(), CLEARANCE))
             });
             if clear {
-                edges.push(EdgeSpec {
-                    source: i as u32,
-                    target: j as u32,
-                    cost: path.length(),
-                    word: path.word,
-                    lengths: path.lengths,
-                });
+                edges.push(EdgeSpec::dubins(i as u32, j as u32, &path));
             }
         }
     }
