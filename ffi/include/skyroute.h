@@ -248,6 +248,10 @@ enum sr_status
   // `PlanError::InvalidRange`: Landmark mode: `Planner::set_start_range` got a negative or
   // non-finite range.
   SR_STATUS_PLAN_INVALID_RANGE = 222,
+  // `PlanError::NotDubinsRoute`: Post-processing (`Planner::shortcut` and the passes beside it)
+  // applies to roadmap and terrain routes, chains of Dubins paths; a landmark route (Hermite
+  // pieces) or a Voronoi route (a smoothed spline) is left as it is.
+  SR_STATUS_PLAN_NOT_DUBINS_ROUTE = 223,
   // `PopupError::NoFreeSlot`: All `P` pop-up slots are in use.
   SR_STATUS_POPUP_NO_FREE_SLOT = 300,
   // `PopupError::NonFinite`: A coordinate or radius is NaN or infinite.

@@ -198,6 +198,10 @@ pub enum SrStatus {
     /// `PlanError::InvalidRange`: Landmark mode: `Planner::set_start_range` got a negative or
     /// non-finite range.
     PlanInvalidRange = 222,
+    /// `PlanError::NotDubinsRoute`: Post-processing (`Planner::shortcut` and the passes beside it)
+    /// applies to roadmap and terrain routes, chains of Dubins paths; a landmark route (Hermite
+    /// pieces) or a Voronoi route (a smoothed spline) is left as it is.
+    PlanNotDubinsRoute = 223,
     /// `PopupError::NoFreeSlot`: All `P` pop-up slots are in use.
     PopupNoFreeSlot = 300,
     /// `PopupError::NonFinite`: A coordinate or radius is NaN or infinite.
@@ -294,6 +298,7 @@ pub fn plan_status(e: &PlanError) -> SrStatus {
         PlanError::InvalidRosette { .. } => SrStatus::PlanInvalidRosette,
         PlanError::RosetteTableFull { .. } => SrStatus::PlanRosetteTableFull,
         PlanError::InvalidRange => SrStatus::PlanInvalidRange,
+        PlanError::NotDubinsRoute => SrStatus::PlanNotDubinsRoute,
         PlanError::Smoothing { .. } => SrStatus::PlanSmoothing,
         PlanError::TooManySearchStates { .. } => SrStatus::PlanTooManySearchStates,
         PlanError::Internal => SrStatus::PlanInternal,
@@ -383,6 +388,7 @@ impl SrStatus {
             SrStatus::PlanInvalidRosette => c"SR_STATUS_PLAN_INVALID_ROSETTE",
             SrStatus::PlanRosetteTableFull => c"SR_STATUS_PLAN_ROSETTE_TABLE_FULL",
             SrStatus::PlanInvalidRange => c"SR_STATUS_PLAN_INVALID_RANGE",
+            SrStatus::PlanNotDubinsRoute => c"SR_STATUS_PLAN_NOT_DUBINS_ROUTE",
             SrStatus::PlanSmoothing => c"SR_STATUS_PLAN_SMOOTHING",
             SrStatus::PlanTooManySearchStates => c"SR_STATUS_PLAN_TOO_MANY_SEARCH_STATES",
             SrStatus::PlanInternal => c"SR_STATUS_PLAN_INTERNAL",
@@ -419,7 +425,7 @@ impl SrStatus {
 }
 
 /// Every status, in the order of their numbers.
-const ALL: [SrStatus; 81] = [
+const ALL: [SrStatus; 82] = [
     SrStatus::Ok,
     SrStatus::NullPointer,
     SrStatus::MemoryMisaligned,
@@ -490,6 +496,7 @@ const ALL: [SrStatus; 81] = [
     SrStatus::PlanTooManySearchStates,
     SrStatus::PlanInternal,
     SrStatus::PlanInvalidRange,
+    SrStatus::PlanNotDubinsRoute,
     SrStatus::PopupNoFreeSlot,
     SrStatus::PopupNonFinite,
     SrStatus::PopupNonPositiveRadius,

@@ -126,6 +126,10 @@ pub enum PlanError {
     },
     /// An internal invariant failed (a bug; reported instead of panicking).
     Internal,
+    /// Post-processing ([`Planner::shortcut`](super::Planner::shortcut) and the passes beside
+    /// it) applies to roadmap and terrain routes, chains of Dubins paths; a landmark route (Hermite
+    /// pieces) or a Voronoi route (a smoothed spline) is left as it is.
+    NotDubinsRoute,
 }
 
 impl fmt::Display for PlanError {
@@ -159,6 +163,10 @@ impl fmt::Display for PlanError {
             }
             NotLandmarkNetwork => write!(f, "the network is not a landmark network"),
             NotTerrainNetwork => write!(f, "the network is not a terrain network"),
+            NotDubinsRoute => write!(
+                f,
+                "post-processing applies to roadmap and terrain routes only"
+            ),
             UnknownWeather { weather, count } => {
                 write!(f, "weather {weather} unknown: the network has {count}")
             }

@@ -302,3 +302,39 @@ fn bad_onboard_calls_are_refused_and_change_nothing() {
         "all-1 overrides equal babel-I-bridged's nominal rosettes"
     );
 }
+
+#[test]
+fn post_processing_refuses_a_landmark_route_and_keeps_it() {
+    let bytes = network();
+    let mut p: Box<Lp<'_>> = Box::new(Planner::new());
+    p.load(&bytes).unwrap();
+    let net = *p.network();
+    let l = net.landmark().copied().unwrap();
+    let (start, goal) = (
+        net.vertex(l.start_vertex).unwrap(),
+        net.vertex(l.goal_vertex).unwrap(),
+    );
+    let q = Query {
+        start,
+        goal: Goal {
+            position: goal.position,
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    };
+    p.plan(&q, p.worst_case_work()).unwrap();
+    let (edges, summary) = (p.route_edges().to_vec(), *p.route_summary().unwrap());
+    assert!(summary.length > 0.0);
+    assert_eq!(p.shortcut(u64::MAX), Err(PlanError::NotDubinsRoute));
+    assert_eq!(p.shortcut_best(u64::MAX), Err(PlanError::NotDubinsRoute));
+    assert_eq!(
+        p.smooth_headings(9, u64::MAX),
+        Err(PlanError::NotDubinsRoute)
+    );
+    assert_eq!(p.route_edges(), &edges[..]);
+    assert_eq!(
+        p.route_summary(),
+        Some(&summary),
+        "the summary keeps its length"
+    );
+}

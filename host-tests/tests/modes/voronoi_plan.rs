@@ -12,7 +12,7 @@ use skyroute::geometry::spline::Piece;
 use skyroute::network::format::{Header, VertexRecord};
 use skyroute::network::write::ObstacleSpec;
 use skyroute::planner::{Threat, ThreatError, VoronoiStorage, MAX_THREATS};
-use skyroute::{Goal, LoadError, Planner, Pose, Query, Search, Vec2};
+use skyroute::{Goal, LoadError, PlanError, Planner, Pose, Query, Search, Vec2};
 use skyroute_prep::build::{build, BuildOptions, Built};
 use skyroute_prep::scenario::{Mode, Scenario};
 use std::collections::BinaryHeap;
@@ -533,7 +533,6 @@ fn bad_threat_calls_are_refused_and_change_nothing() {
 #[test]
 fn random_queries_and_threats_stay_within_the_work_bound() {
     use host_tests::rng::Rng;
-    use skyroute::planner::PlanError;
     let mut rng = Rng(29);
     for name in ["ruz-popups", "voronoi-dense"] {
         let (_, b) = voronoi(name);
@@ -632,4 +631,20 @@ fn a_popup_obstacle_in_flight_is_kept_clear_of() {
             );
         }
     }
+}
+
+#[test]
+fn post_processing_refuses_a_voronoi_route_and_keeps_it() {
+    let (s, b) = voronoi("voronoi-dense");
+    let mut p = planner(&b.bytes);
+    p.plan(&query(&s, &b), p.worst_case_work()).unwrap();
+    let (route, summary) = (p.route().to_vec(), *p.route_summary().unwrap());
+    assert_eq!(p.shortcut(u64::MAX), Err(PlanError::NotDubinsRoute));
+    assert_eq!(p.shortcut_best(u64::MAX), Err(PlanError::NotDubinsRoute));
+    assert_eq!(
+        p.smooth_headings(9, u64::MAX),
+        Err(PlanError::NotDubinsRoute)
+    );
+    assert_eq!(p.route(), &route[..], "the smoothed spline stays");
+    assert_eq!(p.route_summary(), Some(&summary));
 }
