@@ -3,9 +3,11 @@
 //! paths. Both keep the route collision-free (every new path passes the same exact checks as a
 //! start or goal connection), never make it longer, and count work against a budget.
 
+use super::state::ModeState;
 use super::{Meter, PlanError, Planner, Work};
 use crate::geometry::{wrap_to_pi, DubinsPath, Pose};
 use core::f32::consts::PI;
+use heapless::Vec;
 
 /// What a post-processing pass changed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,6 +24,16 @@ pub struct SmoothSummary {
 }
 
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
+    /// Post-processing rewrites a route from its chain of Dubins paths: roadmap and terrain
+    /// routes only. A landmark route (Hermite pieces) or a Voronoi route (a spline smoothed
+    /// within the curvature limit) is refused, and stays as it is.
+    fn ensure_dubins_route(&self) -> Result<(), PlanError> {
+        match self.state {
+            ModeState::Roadmap | ModeState::Terrain(_) => Ok(()),
+            ModeState::Landmark(_) | ModeState::Voronoi(_) => Err(PlanError::NotDubinsRoute),
+        }
+    }
+
     fn route_length(&self) -> f32 {
         self.paths.iter().map(DubinsPath::length).sum()
     }
@@ -40,20 +52,65 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// every obstacle and pop-up, as in [`plan_work_bound`](super::plan_work_bound)). If the
     /// budget runs out, the route keeps the shortcuts made so far (each leaves it valid).
     pub fn shortcut(&mut self, budget: u64) -> Result<SmoothSummary, PlanError> {
+        self.ensure_dubins_route()?;
         self.cancel_plan();
         let mut meter = Meter::new(budget);
         let length_before = self.route_length();
+        let (changes, result) = self.greedy_shortcuts(&mut meter);
+        self.finish(length_before, changes, meter, result)
+    }
+
+    /// The shortest chain of shortcuts: of every chain from the start to the goal through a
+    /// subset of the route's junctions (each kept junction with its pose), where consecutive
+    /// kept junctions are joined by the route's own path between them or, further apart, by a
+    /// collision-free shortest Dubins path, the route becomes the shortest. Every chain the
+    /// greedy [`shortcut`](Self::shortcut) can make is one of these, so the result is never
+    /// longer than the greedy pass's.
+    ///
+    /// Method: a shortest path over the junctions in route order (a DAG, so one forward pass;
+    /// Niendorf et al. §V describe the greedy pass). A pair whose straight distance
+    /// ([`DubinsPath::length_lower_bound`]) cannot beat the chain already found is not solved.
+    ///
+    /// Work: at most n(n−1)/2 pairs examined for a route of n paths, each with at most one
+    /// Dubins solve and one clearance check. If the shortest chain needs more than `R`
+    /// primitives, the greedy pass runs instead, within its own bound. If the budget runs out
+    /// before the chain is known, the route is left as it was.
+    pub fn shortcut_best(&mut self, budget: u64) -> Result<SmoothSummary, PlanError> {
+        self.ensure_dubins_route()?;
+        self.cancel_plan();
+        let mut meter = Meter::new(budget);
+        let length_before = self.route_length();
+        let result = match self.shortest_chain(&mut meter) {
+            Ok(Some(chain)) => {
+                let changes = self.paths.len() - (chain.len() - 1);
+                self.write_chain(&chain);
+                Ok(changes as u32)
+            }
+            Ok(None) => {
+                let (changes, result) = self.greedy_shortcuts(&mut meter);
+                result.map(|()| changes)
+            }
+            Err(e) => Err(e),
+        };
+        match result {
+            Ok(changes) => self.finish(length_before, changes, meter, Ok(())),
+            Err(e) => self.finish(length_before, 0, meter, Err(e)),
+        }
+    }
+
+    /// The greedy pass of [`shortcut`](Self::shortcut): the junctions dropped, and the budget's
+    /// verdict.
+    fn greedy_shortcuts(&mut self, meter: &mut Meter) -> (u32, Result<(), PlanError>) {
         let mut changes = 0;
         let mut count = self.route.len();
         let mut i = 1;
-        let mut result = Ok(());
         while i < self.paths.len() {
             let (Some(a), Some(b)) = (self.paths.get(i - 1).copied(), self.paths.get(i).copied())
             else {
                 break;
             };
             let target = b.end();
-            match self.solve_clear(&a.start, &target, &mut meter) {
+            match self.solve_clear(&a.start, &target, meter) {
                 Some(joined)
                     if joined.length() < a.length() + b.length()
                         && count + pieces(&joined) <= R + pieces(&a) + pieces(&b) =>
@@ -71,11 +128,116 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 _ => i += 1,
             }
             if let Err(e) = meter.check() {
-                result = Err(e);
-                break;
+                return (changes, Err(e));
             }
         }
-        self.finish(length_before, changes, meter, result)
+        (changes, Ok(()))
+    }
+
+    /// Junction `k` of the route: the start of path `k`, or the goal for `k` = paths.
+    fn junction(&self, k: usize) -> Option<Pose> {
+        match self.paths.get(k) {
+            Some(path) => Some(path.start),
+            None => self
+                .paths
+                .last()
+                .filter(|_| k == self.paths.len())
+                .map(DubinsPath::end),
+        }
+    }
+
+    /// The kept junctions (0 first, the goal last) of the shortest chain, or `None` when it
+    /// would not fit in `R` primitives.
+    fn shortest_chain(&self, meter: &mut Meter) -> Result<Option<Vec<u32, R>>, PlanError> {
+        let n = self.paths.len();
+        // reach[k − 1]: the shortest chain to junction k found so far: its length, the junction
+        // before k, and the primitives of its last link.
+        let mut reach: Vec<(f32, u32, u8), R> = Vec::new();
+        let radius = self.network.turn_radius();
+        for k in 1..=n {
+            let (Some(to), Some(own)) = (self.junction(k), self.paths.get(k - 1)) else {
+                return Err(PlanError::Internal);
+            };
+            let before = |j: usize| {
+                if j == 0 {
+                    0.0
+                } else {
+                    reach.get(j - 1).map_or(f32::INFINITY, |r| r.0)
+                }
+            };
+            let mut best = (
+                before(k - 1) + own.length(),
+                (k - 1) as u32,
+                pieces(own) as u8,
+            );
+            for j in 0..k.saturating_sub(1) {
+                meter.work.relaxations += 1;
+                meter.check()?;
+                let Some(from) = self.junction(j) else {
+                    return Err(PlanError::Internal);
+                };
+                let so_far = before(j);
+                if so_far + DubinsPath::length_lower_bound(from.position, to.position, radius)
+                    >= best.0
+                {
+                    continue;
+                }
+                meter.work.dubins_solves += 1;
+                let Some(path) = DubinsPath::shortest(&from, &to, radius) else {
+                    continue;
+                };
+                if so_far + path.length() < best.0 && self.path_is_clear(&path, meter) {
+                    best = (so_far + path.length(), j as u32, pieces(&path) as u8);
+                }
+            }
+            meter.check()?;
+            reach.push(best).map_err(|_| PlanError::Internal)?;
+        }
+        // Walk back from the goal.
+        let mut chain: Vec<u32, R> = Vec::new();
+        let (mut k, mut primitives) = (n, 0usize);
+        while k > 0 {
+            let Some(&(_, j, p)) = reach.get(k - 1) else {
+                return Err(PlanError::Internal);
+            };
+            chain.push(k as u32).map_err(|_| PlanError::Internal)?;
+            primitives += p as usize;
+            k = j as usize;
+        }
+        if primitives > R || chain.push(0).is_err() {
+            return Ok(None);
+        }
+        chain.reverse();
+        Ok(Some(chain))
+    }
+
+    /// Replaces the route's paths by the links of `chain` (kept junctions, 0 first): the
+    /// route's own path between neighbours, the shortest Dubins path otherwise (the same solve
+    /// that [`shortest_chain`](Self::shortest_chain) checked).
+    fn write_chain(&mut self, chain: &[u32]) {
+        let radius = self.network.turn_radius();
+        // Link t is written to slot t after reading junctions ≥ t, so nothing is read after
+        // it is overwritten; the goal's pose is read first, since the last slot may go.
+        let links = chain.len().saturating_sub(1);
+        for t in 0..links {
+            let (Some(&j), Some(&k)) = (chain.get(t), chain.get(t + 1)) else {
+                break;
+            };
+            let (j, k) = (j as usize, k as usize);
+            let link = if k == j + 1 {
+                self.paths.get(j).copied()
+            } else {
+                match (self.junction(j), self.junction(k)) {
+                    (Some(from), Some(to)) => DubinsPath::shortest(&from, &to, radius),
+                    _ => None,
+                }
+            };
+            match (link, self.paths.get_mut(t)) {
+                (Some(link), Some(slot)) => *slot = link,
+                _ => return self.clear_route(),
+            }
+        }
+        self.paths.truncate(links);
     }
 
     /// Heading smoothing: for each junction between two paths (not the start, not the goal),
@@ -91,6 +253,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         candidates: u16,
         budget: u64,
     ) -> Result<SmoothSummary, PlanError> {
+        self.ensure_dubins_route()?;
         self.cancel_plan();
         let mut meter = Meter::new(budget);
         let length_before = self.route_length();

@@ -581,3 +581,121 @@ fn post_processing_keeps_routes_valid_and_never_longer() {
     assert!(improved > 0, "post-processing never shortened a route");
     println!("post-processing shortened {improved} routes by more than 1 m");
 }
+
+/// The shortest chain through a subset of `junctions` (the first and last kept), by trying every
+/// subset: neighbours joined by the route's own path, others by the shortest Dubins path when no
+/// primitive of it comes within the clearance of an obstacle. The clearance predicate is the
+/// core's (not under test here); the choice of chain is independent of the planner's.
+fn brute_force_chain(p: &TestPlanner<'_>, w: &World, paths: &[DubinsPath]) -> f32 {
+    let n = paths.len();
+    let junction = |k: usize| {
+        if k < n {
+            paths[k].start
+        } else {
+            paths[n - 1].end()
+        }
+    };
+    let clearance = p.network().clearance();
+    let link = |j: usize, k: usize| -> f32 {
+        if k == j + 1 {
+            return paths[j].length();
+        }
+        match DubinsPath::shortest(&junction(j), &junction(k), p.network().turn_radius()) {
+            Some(d)
+                if d.primitives().into_iter().flatten().all(|prim| {
+                    w.obstacles
+                        .iter()
+                        .all(|o| !skyroute_prep::roadmap::primitive_conflicts(&prim, o, clearance))
+                }) =>
+            {
+                d.length()
+            }
+            _ => f32::INFINITY,
+        }
+    };
+    let links: Vec<Vec<f32>> = (0..=n)
+        .map(|j| {
+            (0..=n)
+                .map(|k| if k > j { link(j, k) } else { f32::INFINITY })
+                .collect()
+        })
+        .collect();
+    let mut best = f32::INFINITY;
+    for mask in 0u32..1 << (n - 1) {
+        // Bit i − 1 keeps interior junction i.
+        let mut at = 0;
+        let mut length = 0.0;
+        for k in (1..n).filter(|i| mask >> (i - 1) & 1 == 1).chain([n]) {
+            length += links[at][k];
+            at = k;
+        }
+        best = best.min(length);
+    }
+    best
+}
+
+#[test]
+fn the_best_shortcut_chain_matches_every_subset_of_junctions_and_the_greedy_pass() {
+    let (mut compared, mut beats_greedy) = (0, 0);
+    let (mut greedy_work, mut best_work) = (0u64, 0u64);
+    for seed in 0..3u64 {
+        let w = world(60 + seed, 1500.0, 50.0, 40.0, 6);
+        let mut p = planner(&w.bytes);
+        let mut rng = Rng(300 + seed);
+        for _ in 0..20 {
+            let q = Query {
+                start: free_pose(&mut rng, &w, 10.0),
+                goal: Goal {
+                    position: free_pose(&mut rng, &w, 10.0).position,
+                    heading: None,
+                },
+                search: Search::AStar,
+            };
+            if p.plan(&q, u64::MAX).is_err() || p.route_paths().len() > 14 {
+                continue;
+            }
+            let paths = p.route_paths().to_vec();
+            let greedy = p.shortcut(u64::MAX).unwrap();
+            p.plan(&q, u64::MAX).unwrap();
+            let best = p.shortcut_best(u64::MAX).unwrap();
+            let reference = brute_force_chain(&p, &w, &paths);
+            assert!(
+                (best.length_after - reference).abs() <= 1e-3 * reference,
+                "best chain {} m, every subset's best {reference} m ({} paths)",
+                best.length_after,
+                paths.len()
+            );
+            assert!(best.length_after <= greedy.length_after + 1e-2);
+            // The documented bound: n(n−1)/2 pairs, each one examination, at most one solve
+            // and one check of ≤ 3 primitives against every obstacle and pop-up.
+            let n = p.work_bound_inputs(true);
+            let per_check =
+                3 * (2 * n.obstacles + n.obstacle_points + n.popups * (n.popup_vertices + 1));
+            let pairs = (paths.len() * (paths.len() - 1) / 2) as u64;
+            assert!(best.work.total() <= pairs * (2 + per_check));
+            let end = paths.last().unwrap().end();
+            check_continuous(
+                p.route(),
+                &Query {
+                    goal: Goal {
+                        position: end.position,
+                        heading: Some(end.heading),
+                    },
+                    ..q
+                },
+            );
+            compared += 1;
+            (greedy_work, best_work) = (
+                greedy_work + greedy.work.total(),
+                best_work + best.work.total(),
+            );
+            if best.length_after < greedy.length_after - 1e-2 {
+                beats_greedy += 1;
+            }
+        }
+    }
+    assert!(compared >= 20, "only {compared} routes compared");
+    println!(
+        "{compared} routes: the best chain is shorter than the greedy pass's on {beats_greedy}"
+    );
+}
