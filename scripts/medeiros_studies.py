@@ -11,13 +11,16 @@ a Markdown table for docs/PAPERS.md:
    cells each turn-arc check visits (the paper's Table 4 counts these for its grid search).
 4. The visibility graph's longest edge: every pair of nodes (the paper's graph, our default)
    against `build --max-edge` 10 km and 5 km.
+5. Post-processing: the greedy shortcut pass (`plan --shortcuts greedy`) against the best chain of
+   shortcuts (the default), each followed by heading smoothing, at several flight altitudes, on
+   the graph of every pair and on the 10 km one.
 
 Each variant is medeiros-jacksboro.geojson with only the fields named changed (the turn radius is
 v_nominal² / a_lat_max, so a_lat_max = v_nominal² / r_c), written to a temporary folder with the
 DEM's absolute path, built with `skyroute build` and planned P -> Q with `skyroute plan` (the
 paper's turn rule, the default, unless a row says otherwise).
 
-    python3 scripts/medeiros_studies.py [--skyroute PATH] [--only 1,2,3,4]
+    python3 scripts/medeiros_studies.py [--skyroute PATH] [--only 1,2,3,4,5]
 """
 
 import argparse
@@ -208,10 +211,32 @@ def study_max_edge(sk, tmp):
               f"{route_cell(got, why)} | {work} |")
 
 
+def study_shortcuts(sk, tmp):
+    print("\n### Post-processing: the greedy shortcut pass against the best chain (r_c 300 m)\n")
+    print("| altitude | edges tried | route P → Q as searched | greedy shortcuts, then smoothing "
+          "(plan time) | best chain, then smoothing (plan time) |")
+    print("|---:|---|---:|---:|---:|")
+    for alt in ALTITUDES_M:
+        for label, extra in [("every pair", []), ("`--max-edge 10000`", ["--max-edge", "10000"])]:
+            sc = variant(tmp, altitude_m=alt)
+            net, out = os.path.join(tmp, "jb.bin"), os.path.join(tmp, "r.json")
+            m, why = build(sk, sc, net, *extra)
+            if m is None:
+                print(f"| {alt:.0f} m | {label}: not built: {why} | | | |")
+                continue
+            greedy, why_g = plan(sk, sc, net, out, "--shortcuts", "greedy")
+            best, why_b = plan(sk, sc, net, out, "--shortcuts", "best")
+            if greedy is None or best is None:
+                print(f"| {alt:.0f} m | {label} | {why_g or why_b} | | |")
+                continue
+            print(f"| {alt:.0f} m | {label} | {best[1]:.1f} m | {greedy[0]:.1f} m ({greedy[3]:.1f} s) | "
+                  f"{best[0]:.1f} m ({best[3]:.1f} s) |")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--skyroute", default=os.path.join(ROOT, "target", "release", "skyroute"))
-    ap.add_argument("--only", default="1,2,3,4")
+    ap.add_argument("--only", default="1,2,3,4,5")
     a = ap.parse_args()
     only = {int(x) for x in a.only.split(",")}
     with tempfile.TemporaryDirectory() as tmp:
@@ -223,6 +248,8 @@ def main():
             study_grid(a.skyroute, tmp)
         if 4 in only:
             study_max_edge(a.skyroute, tmp)
+        if 5 in only:
+            study_shortcuts(a.skyroute, tmp)
 
 
 if __name__ == "__main__":

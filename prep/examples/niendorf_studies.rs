@@ -11,14 +11,15 @@
 //!    time (180 s), and what the density buys in length, up to the host planner's capacity.
 //!
 //! Every mission is planned as `skyroute plan NETWORK --scenario SCENARIO` plans it (start,
-//! waypoints and goal through the onboard core, free headings by the default rule). Times are
+//! waypoints and goal through the onboard core, free headings by the default rule), and again
+//! with `--shortcuts greedy` for the second length. Times are
 //! wall clock on the machine it runs on.
 //!
 //! `cargo run --release -p skyroute-prep --example niendorf_studies -- scenarios/niendorf-urban.geojson [spacings...]`
 use skyroute::network::Network;
 use skyroute::DubinsWord;
 use skyroute_prep::build::{build, BuildOptions};
-use skyroute_prep::mission::{plan_mission_with, MissionOptions, PLANNER_STACK};
+use skyroute_prep::mission::{plan_mission_with, MissionOptions, Shortcuts, PLANNER_STACK};
 use skyroute_prep::scenario::{self, Scenario};
 use std::time::Instant;
 
@@ -34,9 +35,11 @@ struct Run {
     vertices: u32,
     edges: u32,
     bytes: usize,
-    /// The mission's length after post-processing and as planned (the sum of its legs' searched
-    /// lengths); `None` when it could not be planned (the reason is printed).
-    length_m: Option<(f64, f64)>,
+    /// The mission's length after post-processing with the best chain of shortcuts (the
+    /// default), with the greedy pass, and as planned (the sum of its legs' searched lengths);
+    /// `None` when it could not be planned (the reason is printed).
+    length_m: Option<(f64, f64, f64)>,
+    /// Seconds to plan the mission with the default post-processing.
     plan_s: f64,
 }
 
@@ -48,21 +51,27 @@ fn run(s: &Scenario, options: &BuildOptions) -> Result<(Run, Vec<u8>), String> {
     let (vertices, edges) = (net.vertex_count(), net.edge_count());
     let frame = s.local_frame();
     let t = Instant::now();
-    let length_m = if edges <= HOST_EDGES {
-        match plan_mission_with(&built.bytes, s, &frame, &[], &MissionOptions::default()) {
-            Ok(m) => Some((
-                m.length,
-                m.legs.iter().map(|l| l.planned_length as f64).sum(),
-            )),
-            Err(e) => {
-                eprintln!("mission not planned: {e}");
-                None
-            }
-        }
-    } else {
-        None
+    let mission = |shortcuts| {
+        let options = MissionOptions {
+            shortcuts,
+            ..MissionOptions::default()
+        };
+        plan_mission_with(&built.bytes, s, &frame, &[], &options)
     };
+    let best = (edges <= HOST_EDGES).then(|| mission(Shortcuts::Best));
     let plan_s = t.elapsed().as_secs_f64();
+    let length_m = match best {
+        Some(Ok(m)) => {
+            let greedy = mission(Shortcuts::Greedy).map_or(f64::NAN, |g| g.length);
+            let planned = m.legs.iter().map(|l| l.planned_length as f64).sum();
+            Some((m.length, greedy, planned))
+        }
+        Some(Err(e)) => {
+            eprintln!("mission not planned: {e}");
+            None
+        }
+        None => None,
+    };
     let r = Run {
         build_s,
         vertices,
@@ -75,8 +84,8 @@ fn run(s: &Scenario, options: &BuildOptions) -> Result<(Run, Vec<u8>), String> {
 }
 
 fn length(r: &Run) -> String {
-    r.length_m.map_or("—".into(), |(l, planned)| {
-        format!("{l:.1} ({planned:.1})")
+    r.length_m.map_or("—".into(), |(best, greedy, planned)| {
+        format!("{best:.1} / {greedy:.1} ({planned:.1})")
     })
 }
 
@@ -104,7 +113,7 @@ fn pct(part: u32, whole: u32) -> f64 {
 
 fn ccc_study(s: &Scenario) {
     println!("\n### CCC words\n");
-    println!("| network | edges | CCC edges | CCC share at 0–1 / 1–2 / 2–3 / over 3 r_min apart (edges in the band) | mission length, m (as planned) | build (s) |");
+    println!("| network | edges | CCC edges | CCC share at 0–1 / 1–2 / 2–3 / over 3 r_min apart (edges in the band) | mission length, m: best shortcuts / greedy (as planned) | build (s) |");
     println!("|---|---:|---:|---|---:|---:|");
     for allow in [true, false] {
         let mut s = s.clone();
@@ -135,7 +144,7 @@ fn ccc_study(s: &Scenario) {
 fn radius_study(s: &Scenario, r_min: f64) {
     println!("\n### Neighbour radius (figures 12–13)\n");
     println!(
-        "| radius | vertices | edges | build (s) | mission length, m (as planned) | mission planned in (s) |"
+        "| radius | vertices | edges | build (s) | mission length, m: best shortcuts / greedy (as planned) | mission planned in (s) |"
     );
     println!("|---|---:|---:|---:|---:|---:|");
     for k in [1.0, 1.5, 2.0, 2.5, 3.0, 3.5] {
@@ -160,7 +169,7 @@ fn radius_study(s: &Scenario, r_min: f64) {
 
 fn spacing_study(s: &Scenario, r_min: f64, spacings: &[f32]) {
     println!("\n### Sample spacing at 3 r_min, within the paper's {PAPER_BUILD_S:.0} s\n");
-    println!("| spacing (m) | vertices | edges | image (bytes) | build (s) | mission length, m (as planned) | mission planned in (s) |");
+    println!("| spacing (m) | vertices | edges | image (bytes) | build (s) | mission length, m: best shortcuts / greedy (as planned) | mission planned in (s) |");
     println!("|---:|---:|---:|---:|---:|---:|---:|");
     for &spacing in spacings {
         let options = BuildOptions {

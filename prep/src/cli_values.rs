@@ -190,6 +190,15 @@ pub fn parse_area(s: &str) -> Result<(f64, f64, f64, f64), String> {
     }
 }
 
+/// A shortcut pass by name: best or greedy.
+pub fn parse_shortcuts(s: &str) -> Result<crate::mission::Shortcuts, String> {
+    match s.trim() {
+        "best" => Ok(crate::mission::Shortcuts::Best),
+        "greedy" => Ok(crate::mission::Shortcuts::Greedy),
+        _ => Err(format!("expected best or greedy, got {s:?}")),
+    }
+}
+
 /// A free-heading rule by name: cheapest or paper.
 pub fn parse_free_headings(s: &str) -> Result<crate::mission::FreeHeadingRule, String> {
     match s.trim() {

@@ -104,6 +104,14 @@ struct PlanArgs {
     /// before the legs are planned).
     #[arg(long, value_parser = parse_free_headings, default_value = "cheapest")]
     free_headings: skyroute_prep::mission::FreeHeadingRule,
+    /// Roadmap and terrain networks: the shortcut pass that post-processes each leg, before
+    /// heading smoothing. `best` (the default): the shortest chain through any subset of the
+    /// leg's junctions, whose shortcuts are never longer than the greedy pass's; n(n-1)/2 pairs
+    /// examined for a leg of n paths. `greedy`: Niendorf et al.'s forward pass, one pair per
+    /// junction; the default with `--popup-appears`, since the stored alternatives were
+    /// planned with it.
+    #[arg(long, value_parser = parse_shortcuts)]
+    shortcuts: Option<skyroute_prep::mission::Shortcuts>,
     /// Weather for landmark networks, a name from the scenario's `weather` (default: its
     /// first); roadmap and terrain networks have none.
     #[arg(long)]
@@ -529,6 +537,7 @@ fn demo_command(dir: &Path) -> CliResult {
         connect_radius_m: None,
         turn_rule: None,
         free_headings: Default::default(),
+        shortcuts: None,
         weather: None,
         hull_repair: false,
         output: &route,
@@ -574,6 +583,7 @@ fn plan(a: PlanArgs) -> CliResult {
         connect_radius,
         turn_rule,
         free_headings,
+        shortcuts,
         weather,
         hull_repair,
         output,
@@ -598,6 +608,7 @@ fn plan(a: PlanArgs) -> CliResult {
         connect_radius_m: connect_radius,
         turn_rule,
         free_headings,
+        shortcuts,
         weather: weather.as_deref(),
         hull_repair,
         output: &output,

@@ -184,6 +184,21 @@ pub struct MissionOptions {
     pub turn_rule: Option<TurnRule>,
     /// How a waypoint without a heading gets one.
     pub free_headings: FreeHeadingRule,
+    /// Which shortcut pass post-processes each leg.
+    pub shortcuts: Shortcuts,
+}
+
+/// The shortcut pass that post-processes each leg, before heading smoothing.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Shortcuts {
+    /// The shortest chain through any subset of the leg's junctions
+    /// ([`Planner::shortcut_best`](skyroute::Planner::shortcut_best)): never longer than the
+    /// greedy pass, n(n−1)/2 pairs examined for n paths (the default).
+    #[default]
+    Best,
+    /// Niendorf et al.'s greedy forward pass ([`Planner::shortcut`](skyroute::Planner::shortcut)):
+    /// one pair per junction.
+    Greedy,
 }
 
 /// Plans `q`, and when `adaptive` and an end did not connect, plans it again with the connect
@@ -687,7 +702,11 @@ fn plan_legs(
         let planned = planned.map_err(unreachable)?;
         let arc_checks = p.arc_check_stats();
         // Post-processing (Niendorf et al. §V): both passes keep the route collision-free.
-        p.shortcut(budget).map_err(unreachable)?;
+        match options.shortcuts {
+            Shortcuts::Best => p.shortcut_best(budget),
+            Shortcuts::Greedy => p.shortcut(budget),
+        }
+        .map_err(unreachable)?;
         p.smooth_headings(SMOOTHING_HEADINGS, budget)
             .map_err(unreachable)?;
         let summary = *p.route_summary().ok_or(unreachable(PlanError::Internal))?;

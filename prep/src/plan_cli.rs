@@ -52,6 +52,9 @@ pub struct PlanRequest<'a> {
     pub turn_rule: Option<skyroute::TurnRule>,
     /// How a waypoint without a heading gets one (roadmap and terrain missions).
     pub free_headings: crate::mission::FreeHeadingRule,
+    /// `--shortcuts`: the shortcut pass of post-processing (`None`: the best chain for a
+    /// mission, the greedy pass with `--popup-appears`).
+    pub shortcuts: Option<crate::mission::Shortcuts>,
     pub weather: Option<&'a str>,
     pub hull_repair: bool,
     pub output: &'a Path,
@@ -316,6 +319,7 @@ fn plan_mission_route(
         connect_radius_m: req.connect_radius_m,
         turn_rule: req.turn_rule,
         free_headings: req.free_headings,
+        shortcuts: req.shortcuts.unwrap_or_default(),
     };
     let m = plan_mission_with(bytes, s, frame, popups, &options)
         .map_err(|e| planning_error(req.scenario, &e, e.is_bad_input()))?;

@@ -671,3 +671,61 @@ fn landmark_networks_export_their_chains_and_prove_an_impossible_weather() {
         ],
     );
 }
+
+#[test]
+fn the_best_chain_of_shortcuts_is_the_default_and_the_greedy_pass_an_option() {
+    let dir = TempDir::new("terrain-shortcuts");
+    let (_, mut s) = jacksboro_in(&dir);
+    // At 850 m the greedy pass keeps most of the searched route's detours (docs/PAPERS.md).
+    s["terrain"]["altitude_m"] = json!(850.0);
+    let sc = dir.file("jb.geojson");
+    write_json(&sc, &s);
+    let net = dir.file("jb.bin");
+    ok(skyroute(&["build", &sc, "-o", &net]), "build terrain");
+    let out = dir.file("route.json");
+    let mut routes = Vec::new();
+    for extra in [
+        &[][..],
+        &["--shortcuts", "greedy"],
+        &["--shortcuts", "best"],
+    ] {
+        let mut args = vec![
+            "plan",
+            net.as_str(),
+            "--scenario",
+            sc.as_str(),
+            "-o",
+            out.as_str(),
+        ];
+        args.extend(extra);
+        ok(skyroute(&args), "plan terrain");
+        let route = read_json(&out);
+        routes.push((
+            route["length_m"].as_f64().unwrap(),
+            route["legs"][0]["planned_length_m"].as_f64().unwrap(),
+        ));
+    }
+    let (default, greedy, best) = (routes[0], routes[1], routes[2]);
+    assert_eq!(default, best, "best is the default");
+    assert_eq!(default.1, greedy.1, "the same searched route");
+    assert!(
+        default.0 < 0.8 * greedy.0,
+        "best chain {default:?}, greedy {greedy:?}"
+    );
+    std::fs::remove_file(&out).unwrap();
+    refused(
+        &[
+            "plan",
+            &net,
+            "--scenario",
+            &sc,
+            "--shortcuts",
+            "sideways",
+            "-o",
+            &out,
+        ],
+        &out,
+        2,
+        &["--shortcuts", "expected best or greedy"],
+    );
+}

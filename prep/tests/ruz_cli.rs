@@ -142,7 +142,7 @@ fn with_ruz_popups(tag: &str, f: impl FnOnce(&Planning, &skyroute::Network)) {
         bytes: &bytes,
         scenario: &s,
         frame: &frame,
-        options: Default::default(),
+        options: skyroute_prep::ruz::alternatives_options(),
     };
     f(&planning, &network);
 }

@@ -13,7 +13,7 @@
 use super::alternatives::{Planning, PopupAlternatives, ScoredRoute, Study};
 use super::risk_params;
 use super::stored::study;
-use crate::mission::MissionOptions;
+use crate::mission::{MissionOptions, Shortcuts};
 use crate::output::refuse_overwriting_inputs;
 use crate::plan_checks::{check_query, gather_popups, PopupInput};
 use crate::plan_cli::{load_scenario, popups_json, CliResult, NoRoute, PlanRequest};
@@ -365,6 +365,7 @@ pub fn plan_decided_command(req: &PlanRequest) -> CliResult {
             connect_radius_m: req.connect_radius_m,
             turn_rule: req.turn_rule,
             free_headings: req.free_headings,
+            shortcuts: req.shortcuts.unwrap_or(Shortcuts::Greedy),
         },
     };
     let (mut json, flown) = plan_decided(&planning, &which, &req.limits).map_err(

@@ -14,6 +14,7 @@ pub mod static_plan;
 pub mod stored;
 pub mod study_cli;
 
+use crate::mission::{MissionOptions, Shortcuts};
 use crate::scenario::Scenario;
 use skyroute::planner::decision::DecisionLimits;
 use skyroute::planner::risk::{Airframe, RadarModel, RiskParams};
@@ -74,5 +75,15 @@ pub fn risk_params(s: &Scenario) -> RiskParams {
         speed_mps: v,
         kill_per_step: KILL_PER_STEP,
         max_turn_rate: s.vehicle.a_lat_max_mps2 as f32 / v,
+    }
+}
+
+/// The mission options the pop-up alternatives are planned with, stored by `build` and flown by
+/// `plan --popup-appears` and the firmware's `ruz` binary: the defaults but the greedy shortcut
+/// pass, the one `docs/RUZ.md`'s figures were measured with.
+pub fn alternatives_options() -> MissionOptions {
+    MissionOptions {
+        shortcuts: Shortcuts::Greedy,
+        ..MissionOptions::default()
     }
 }

@@ -9,7 +9,7 @@
 use super::alternatives::{plan_study, study_with, Planning, ScoredRoute, Study};
 use super::{risk_params, LIMITS};
 use crate::frame::LocalFrame;
-use crate::mission::{LocalPopup, MissionOptions};
+use crate::mission::LocalPopup;
 use crate::scenario::Scenario;
 use skyroute::network::write::{
     encode_with_alternatives, AlternativeSpec, AlternativesSpec, NetworkSpec, PopupSpec,
@@ -67,7 +67,7 @@ pub fn with_alternatives(
         bytes,
         scenario: s,
         frame,
-        options: MissionOptions::default(),
+        options: super::alternatives_options(),
     };
     let all: Vec<usize> = (0..s.popups.len()).collect();
     let study = plan_study(&planning, &risk_params(s), &all)

@@ -6,7 +6,7 @@ use super::histogram::{histogram_svg, Histogram};
 use super::montecarlo::{expected, run, setup, Tally};
 use super::risk_params;
 use super::stored::study;
-use crate::mission::MissionOptions;
+
 use crate::output::{refuse_overwriting_inputs, write_atomically};
 use crate::plan_cli::{load_scenario, CliResult};
 use crate::provenance::check_binding;
@@ -91,7 +91,7 @@ pub fn montecarlo_command(req: &MonteCarloRequest) -> CliResult {
         bytes: &bytes,
         scenario: &s,
         frame: &frame,
-        options: MissionOptions::default(),
+        options: super::alternatives_options(),
     };
     let t0 = Instant::now();
     let all: Vec<usize> = (0..s.popups.len()).collect();
