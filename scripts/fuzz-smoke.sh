@@ -9,6 +9,8 @@
 #   LOAD_RUNS=10000000 scripts/fuzz-smoke.sh load   (the loader's long run: the small images'
 #                                                    corpus, fuzz/corpus/load-small/, until that
 #                                                    many executions)
+#   FUZZ_RUNS=10000000 scripts/fuzz-smoke.sh decision   (a long run of any target: its usual
+#                                                    corpus, until that many executions)
 #
 # Without a nightly toolchain it says so and exits 0: the fuzz run is skipped, not failed.
 set -euo pipefail
@@ -92,7 +94,10 @@ for t in "${targets[@]}"; do
         # The long run: the small images only, until LOAD_RUNS executions.
         extra=(-runs="$LOAD_RUNS" -max_len=32768)
         corpus=(corpus/load-small)
-    elif [[ $t == load ]]; then
+    elif [[ -n ${FUZZ_RUNS:-} ]]; then
+        extra=(-runs="$FUZZ_RUNS")
+    fi
+    if [[ $t == load && -z ${LOAD_RUNS:-} ]]; then
         extra+=(-max_len=400000)
     fi
     log=target/fuzz-logs/$t.log

@@ -71,6 +71,11 @@ enum Op {
         astar: bool,
         budget: Option<u64>,
     },
+    PostProcess {
+        best: bool,
+        headings: u16,
+        budget: Option<u64>,
+    },
 }
 
 #[derive(Arbitrary, Debug)]
@@ -297,6 +302,27 @@ fuzz_target!(|input: Input| {
                         s.work.total()
                     );
                     assert!(s.length.is_finite());
+                }
+            }
+            Op::PostProcess {
+                best,
+                headings,
+                budget,
+            } => {
+                let budget = budget.unwrap_or(u64::MAX);
+                let before = p.route_summary().map(|s| s.length);
+                let cut = match best {
+                    true => p.shortcut_best(budget),
+                    false => p.shortcut(budget),
+                };
+                let smooth = p.smooth_headings(headings % 64, budget);
+                for s in [cut, smooth].into_iter().flatten() {
+                    assert!(s.work.total() <= budget, "post-processing over its budget");
+                    assert!(s.length_after <= s.length_before + 1e-2 * (1.0 + s.length_before));
+                    assert!(s.length_after.is_finite());
+                }
+                if let (Some(before), Some(after)) = (before, p.route_summary().map(|s| s.length)) {
+                    assert!(after <= before + 1e-2 * (1.0 + before), "{before} -> {after}");
                 }
             }
         }
