@@ -681,6 +681,11 @@ fn the_best_shortcut_chain_matches_every_subset_of_junctions_and_the_greedy_pass
                 3 * (2 * n.obstacles + n.obstacle_points + n.popups * (n.popup_vertices + 1));
             let pairs = (paths.len() * (paths.len() - 1) / 2) as u64;
             assert!(best.work.total() <= pairs * (2 + per_check));
+            // Every pair is examined once; every link that is not the route's own was solved.
+            assert_eq!(best.work.relaxations, pairs);
+            let links = p.route_paths().len() as u64;
+            let own = p.route_paths().iter().filter(|r| paths.contains(r)).count() as u64;
+            assert!(best.work.dubins_solves >= links - own);
             let end = paths.last().unwrap().end();
             check_continuous(
                 p.route(),
