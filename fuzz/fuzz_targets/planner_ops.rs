@@ -322,7 +322,10 @@ fuzz_target!(|input: Input| {
                     assert!(s.length_after.is_finite());
                 }
                 if let (Some(before), Some(after)) = (before, p.route_summary().map(|s| s.length)) {
-                    assert!(after <= before + 1e-2 * (1.0 + before), "{before} -> {after}");
+                    assert!(
+                        after <= before + 1e-2 * (1.0 + before),
+                        "{before} -> {after}"
+                    );
                 }
             }
         }
