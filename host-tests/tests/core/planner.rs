@@ -713,3 +713,55 @@ fn the_best_shortcut_chain_matches_every_subset_of_junctions_and_the_greedy_pass
          work {best_work} against {greedy_work}"
     );
 }
+
+#[test]
+fn the_best_chain_keeps_a_whole_route_within_a_small_route_capacity() {
+    // R = 12 primitives: every route after the pass fits, reaches the goal and matches its
+    // summary. (A best chain with more primitives than R, which falls back to the greedy pass,
+    // does not occur on these worlds: it needs one-primitive paths replaced by a longer word.)
+    let (mut planned, mut shortened) = (0, 0);
+    for seed in 0..3u64 {
+        let w = world(60 + seed, 1500.0, 50.0, 40.0, 6);
+        let mut p: Box<Planner<'_, 4096, 65536, 16, 12>> = Box::new(Planner::new());
+        p.load(&w.bytes).unwrap();
+        let mut rng = Rng(400 + seed);
+        for _ in 0..40 {
+            let q = Query {
+                start: free_pose(&mut rng, &w, 10.0),
+                goal: Goal {
+                    position: free_pose(&mut rng, &w, 10.0).position,
+                    heading: None,
+                },
+                search: Search::AStar,
+            };
+            let Ok(before) = p.plan(&q, u64::MAX) else {
+                continue;
+            };
+            let end = p.route_paths().last().unwrap().end();
+            let best = p.shortcut_best(u64::MAX).unwrap();
+            planned += 1;
+            shortened += (best.length_after < before.length - 1e-2) as u32;
+            assert!(p.route().len() <= 12);
+            assert_eq!(
+                p.route_summary().unwrap().primitives as usize,
+                p.route().len()
+            );
+            let total: f32 = p.route().iter().map(Primitive::length).sum();
+            assert!((total - best.length_after).abs() < 1e-2);
+            check_continuous(
+                p.route(),
+                &Query {
+                    goal: Goal {
+                        position: end.position,
+                        heading: Some(end.heading),
+                    },
+                    ..q
+                },
+            );
+        }
+    }
+    assert!(
+        planned >= 20 && shortened > 0,
+        "{planned} planned, {shortened} shortened"
+    );
+}
