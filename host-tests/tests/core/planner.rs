@@ -116,6 +116,16 @@ fn bellman_ford(p: &TestPlanner<'_>, w: &World, q: &Query) -> Option<f32> {
     best.is_finite().then_some(best as f32)
 }
 
+/// [`check_continuous`] for a route post-processed from `q`'s, which ends at `end` (the pose
+/// the planned route arrived with).
+fn check_continuous_to_pose(route: &[Primitive], q: &Query, end: Pose) {
+    let goal = Goal {
+        position: end.position,
+        heading: Some(end.heading),
+    };
+    check_continuous(route, &Query { goal, ..*q });
+}
+
 fn check_continuous(route: &[Primitive], q: &Query) {
     let first = route.first().expect("non-empty route");
     assert!(
@@ -551,16 +561,7 @@ fn post_processing_keeps_routes_valid_and_never_longer() {
             assert!(smooth.length_after <= smooth.length_before + 1e-3);
             let after: f32 = p.route().iter().map(Primitive::length).sum();
             assert!((after - smooth.length_after).abs() < 1e-2);
-            check_continuous(
-                p.route(),
-                &Query {
-                    goal: Goal {
-                        position: end.position,
-                        heading: Some(end.heading),
-                    },
-                    ..q
-                },
-            );
+            check_continuous_to_pose(p.route(), &q, end);
             for prim in p.route() {
                 for o in &w.obstacles {
                     assert!(
@@ -687,16 +688,7 @@ fn the_best_shortcut_chain_matches_every_subset_of_junctions_and_the_greedy_pass
             let own = p.route_paths().iter().filter(|r| paths.contains(r)).count() as u64;
             assert!(best.work.dubins_solves >= links - own);
             let end = paths.last().unwrap().end();
-            check_continuous(
-                p.route(),
-                &Query {
-                    goal: Goal {
-                        position: end.position,
-                        heading: Some(end.heading),
-                    },
-                    ..q
-                },
-            );
+            check_continuous_to_pose(p.route(), &q, end);
             compared += 1;
             (greedy_work, best_work) = (
                 greedy_work + greedy.work.total(),
@@ -748,16 +740,7 @@ fn the_best_chain_keeps_a_whole_route_within_a_small_route_capacity() {
             );
             let total: f32 = p.route().iter().map(Primitive::length).sum();
             assert!((total - best.length_after).abs() < 1e-2);
-            check_continuous(
-                p.route(),
-                &Query {
-                    goal: Goal {
-                        position: end.position,
-                        heading: Some(end.heading),
-                    },
-                    ..q
-                },
-            );
+            check_continuous_to_pose(p.route(), &q, end);
         }
     }
     assert!(

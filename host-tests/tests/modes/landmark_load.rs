@@ -146,6 +146,20 @@ fn each_landmark_damage_has_its_own_error() {
 }
 
 /// Loads `bytes` and, when accepted, plans in every weather with a pop-up and a lost landmark.
+/// The query from the landmark network's stored start to its stored goal (any arrival heading).
+fn stored_query(net: &Network) -> Option<Query> {
+    let l = net.landmark()?;
+    let (start, goal) = (net.vertex(l.start_vertex)?, net.vertex(l.goal_vertex)?);
+    Some(Query {
+        start,
+        goal: Goal {
+            position: goal.position,
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    })
+}
+
 fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
     let mut planner: Box<Lp<'_>> = Box::new(Planner::new());
     planner.load(bytes)?;
@@ -163,15 +177,7 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
     let _ = planner.update_rosette(rng.below(12) as u32, &[0.0; 12]);
     for w in 0..l.weather_count.min(4) {
         let _ = planner.set_weather(w);
-        if let (Some(start), Some(goal)) = (net.vertex(l.start_vertex), net.vertex(l.goal_vertex)) {
-            let q = Query {
-                start,
-                goal: Goal {
-                    position: goal.position,
-                    heading: None,
-                },
-                search: Search::Dijkstra,
-            };
+        if let Some(q) = stored_query(&net) {
             if planner.plan(&q, planner.worst_case_work()).is_ok() {
                 for &e in planner.route_edges() {
                     for k in 0..net.chain_piece_count(e) {
@@ -308,20 +314,7 @@ fn post_processing_refuses_a_landmark_route_and_keeps_it() {
     let bytes = network();
     let mut p: Box<Lp<'_>> = Box::new(Planner::new());
     p.load(&bytes).unwrap();
-    let net = *p.network();
-    let l = net.landmark().copied().unwrap();
-    let (start, goal) = (
-        net.vertex(l.start_vertex).unwrap(),
-        net.vertex(l.goal_vertex).unwrap(),
-    );
-    let q = Query {
-        start,
-        goal: Goal {
-            position: goal.position,
-            heading: None,
-        },
-        search: Search::Dijkstra,
-    };
+    let q = stored_query(p.network()).unwrap();
     p.plan(&q, p.worst_case_work()).unwrap();
     let (edges, summary) = (p.route_edges().to_vec(), *p.route_summary().unwrap());
     assert!(summary.length > 0.0);
