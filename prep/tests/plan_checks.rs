@@ -40,6 +40,20 @@ fn jacksboro_in(dir: &TempDir) -> (String, Value) {
     (dem, s)
 }
 
+/// medeiros-jacksboro flown at `altitude_m`, written to `dir` and built: (scenario, network).
+fn jacksboro_built_at(dir: &TempDir, altitude_m: f64) -> (String, String) {
+    let (_, mut s) = jacksboro_in(dir);
+    s["terrain"]["altitude_m"] = json!(altitude_m);
+    let sc = dir.file("jb.geojson");
+    write_json(&sc, &s);
+    let net = dir.file("jb.bin");
+    ok(
+        skyroute(&["build", &sc, "-o", &net]),
+        &format!("build terrain at {altitude_m} m"),
+    );
+    (sc, net)
+}
+
 fn square(lon: f64, lat: f64, d: f64) -> Value {
     json!([[
         [lon - d, lat - d],
@@ -382,15 +396,7 @@ fn anything_off_the_map_is_refused_by_name() {
 #[test]
 fn a_terrain_goal_on_the_dem_but_far_from_every_node_is_planned() {
     let dir = TempDir::new("terrain-high");
-    let (_, mut s) = jacksboro_in(&dir);
-    s["terrain"]["altitude_m"] = json!(1000.0);
-    let sc = dir.file("high.geojson");
-    write_json(&sc, &s);
-    let net = dir.file("high.bin");
-    ok(
-        skyroute(&["build", &sc, "-o", &net]),
-        "build terrain at 1000 m",
-    );
+    let (sc, net) = jacksboro_built_at(&dir, 1000.0);
     let out = dir.file("route.json");
     ok(
         skyroute(&["plan", &net, "--scenario", &sc, "-o", &out]),
@@ -402,6 +408,7 @@ fn a_terrain_goal_on_the_dem_but_far_from_every_node_is_planned() {
     assert!((20_000.0..30_000.0).contains(&length), "{length}");
     std::fs::remove_file(&out).unwrap();
     // A goal off the DEM is still refused by name.
+    let mut s = read_json(&sc);
     for f in s["features"].as_array_mut().unwrap() {
         if f["properties"]["kind"] == "goal" {
             f["geometry"]["coordinates"][0] = json!(-83.0);
@@ -675,13 +682,8 @@ fn landmark_networks_export_their_chains_and_prove_an_impossible_weather() {
 #[test]
 fn the_best_chain_of_shortcuts_is_the_default_and_the_greedy_pass_an_option() {
     let dir = TempDir::new("terrain-shortcuts");
-    let (_, mut s) = jacksboro_in(&dir);
     // At 850 m the greedy pass keeps most of the searched route's detours (docs/PAPERS.md).
-    s["terrain"]["altitude_m"] = json!(850.0);
-    let sc = dir.file("jb.geojson");
-    write_json(&sc, &s);
-    let net = dir.file("jb.bin");
-    ok(skyroute(&["build", &sc, "-o", &net]), "build terrain");
+    let (sc, net) = jacksboro_built_at(&dir, 850.0);
     let out = dir.file("route.json");
     let mut routes = Vec::new();
     for extra in [

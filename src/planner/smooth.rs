@@ -80,22 +80,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.cancel_plan();
         let mut meter = Meter::new(budget);
         let length_before = self.route_length();
-        let result = match self.shortest_chain(&mut meter) {
+        let (changes, result) = match self.shortest_chain(&mut meter) {
             Ok(Some(chain)) => {
                 let changes = self.paths.len() - (chain.len() - 1);
                 self.write_chain(&chain);
-                Ok(changes as u32)
+                (changes as u32, Ok(()))
             }
-            Ok(None) => {
-                let (changes, result) = self.greedy_shortcuts(&mut meter);
-                result.map(|()| changes)
-            }
-            Err(e) => Err(e),
+            Ok(None) => self.greedy_shortcuts(&mut meter),
+            Err(e) => (0, Err(e)),
         };
-        match result {
-            Ok(changes) => self.finish(length_before, changes, meter, Ok(())),
-            Err(e) => self.finish(length_before, 0, meter, Err(e)),
-        }
+        self.finish(length_before, changes, meter, result)
     }
 
     /// The greedy pass of [`shortcut`](Self::shortcut): the junctions dropped, and the budget's

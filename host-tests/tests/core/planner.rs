@@ -583,6 +583,18 @@ fn post_processing_keeps_routes_valid_and_never_longer() {
     println!("post-processing shortened {improved} routes by more than 1 m");
 }
 
+/// An A* query between two random free poses, the goal's heading free.
+fn free_goal_query(rng: &mut Rng, w: &World) -> Query {
+    Query {
+        start: free_pose(rng, w, 10.0),
+        goal: Goal {
+            position: free_pose(rng, w, 10.0).position,
+            heading: None,
+        },
+        search: Search::AStar,
+    }
+}
+
 /// The shortest chain through a subset of `junctions` (the first and last kept), by trying every
 /// subset: neighbours joined by the route's own path, others by the shortest Dubins path when no
 /// primitive of it comes within the clearance of an obstacle. The clearance predicate is the
@@ -644,14 +656,7 @@ fn the_best_shortcut_chain_matches_every_subset_of_junctions_and_the_greedy_pass
         let mut p = planner(&w.bytes);
         let mut rng = Rng(300 + seed);
         for _ in 0..20 {
-            let q = Query {
-                start: free_pose(&mut rng, &w, 10.0),
-                goal: Goal {
-                    position: free_pose(&mut rng, &w, 10.0).position,
-                    heading: None,
-                },
-                search: Search::AStar,
-            };
+            let q = free_goal_query(&mut rng, &w);
             if p.plan(&q, u64::MAX).is_err() || p.route_paths().len() > 14 {
                 continue;
             }
@@ -718,14 +723,7 @@ fn the_best_chain_keeps_a_whole_route_within_a_small_route_capacity() {
         p.load(&w.bytes).unwrap();
         let mut rng = Rng(400 + seed);
         for _ in 0..40 {
-            let q = Query {
-                start: free_pose(&mut rng, &w, 10.0),
-                goal: Goal {
-                    position: free_pose(&mut rng, &w, 10.0).position,
-                    heading: None,
-                },
-                search: Search::AStar,
-            };
+            let q = free_goal_query(&mut rng, &w);
             let Ok(before) = p.plan(&q, u64::MAX) else {
                 continue;
             };
