@@ -2,9 +2,10 @@
 //! with the ground tool's real roadmap builder and encoded.
 
 use crate::Rng;
-use skyroute::network::write::{encode, NetworkSpec, ObstacleSpec};
-use skyroute::{Pose, Vec2};
+use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec};
+use skyroute::{DubinsPath, Pose, Vec2};
 use skyroute_prep::roadmap::{build_roadmap, CollisionCheck, RoadmapInput, RoadmapParams};
+use std::f32::consts::{FRAC_PI_2, PI};
 
 /// An axis-aligned rectangle as a polygon.
 pub fn rect(x0: f32, y0: f32, x1: f32, y1: f32) -> Vec<Vec2> {
@@ -108,5 +109,48 @@ pub fn free_pose(rng: &mut Rng, w: &World, margin: f32) -> Pose {
                 heading: rng.range_f32(-std::f32::consts::PI, std::f32::consts::PI),
             };
         }
+    }
+}
+
+/// A lattice roadmap: `n × n` positions `spacing` apart from `origin`, four headings each,
+/// an edge (the shortest Dubins path) from every vertex to every vertex at a neighbouring
+/// position (8-neighbourhood).
+pub fn lattice_spec(n: usize, spacing: f32, origin: f32, radius: f32) -> NetworkSpec {
+    let headings = [0.0, FRAC_PI_2, PI, -FRAC_PI_2];
+    let mut vertices = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            for h in headings {
+                vertices.push(Pose::new(
+                    origin + i as f32 * spacing,
+                    origin + j as f32 * spacing,
+                    h,
+                ));
+            }
+        }
+    }
+    let mut edges = Vec::new();
+    for (a, pa) in vertices.iter().enumerate() {
+        for (b, pb) in vertices.iter().enumerate() {
+            let d = pa.position.distance(pb.position);
+            if d > 0.0 && d <= 1.5 * spacing {
+                let path = DubinsPath::shortest(pa, pb, radius).unwrap();
+                edges.push(EdgeSpec::dubins(a as u32, b as u32, &path));
+            }
+        }
+    }
+    NetworkSpec {
+        origin_lat_deg: 48.0,
+        origin_lon_deg: 11.6,
+        turn_radius_m: radius,
+        clearance_m: 5.0,
+        vertices,
+        edges,
+        obstacles: Vec::new(),
+        grid_cell_m: 2.0 * radius,
+        landmark: None,
+        voronoi: None,
+        terrain: None,
+        provenance: Vec::new(),
     }
 }

@@ -31,6 +31,8 @@ mod hermite;
 mod network_load;
 /// The loader's obstacle checks: each bad obstacle record refused with its own error.
 mod obstacle_validation;
+/// An endpoint's obstacle window keeps the 32 nearest obstacles in any listing order.
+mod obstacle_window;
 /// The loader's offset-table checks: first 0, never decreasing, last the total.
 mod offset_tables;
 /// The planner against Bellman–Ford, an edge scan for pop-ups and the work bound.

@@ -154,11 +154,14 @@ fn check_continuous(route: &[Primitive], q: &Query) {
     }
 }
 
+/// Six worlds of 6 obstacles and three of 60: more than the 32 an endpoint's obstacle window
+/// keeps, so the window fills, replaces its farthest and leaves some out.
 #[test]
 fn dijkstra_and_astar_match_bellman_ford() {
-    let mut compared = 0;
-    for seed in 0..6u64 {
-        let w = world(10 + seed, 1200.0, 55.0, 35.0, 6);
+    let (mut compared, mut dense_compared) = (0, 0);
+    let worlds = (0..6u64).map(|s| (s, 6)).chain((6..9u64).map(|s| (s, 60)));
+    for (seed, obstacles) in worlds {
+        let w = world(10 + seed, 1200.0, 55.0, 35.0, obstacles);
         let mut p = planner(&w.bytes);
         p.set_config(PlannerConfig {
             connect_radius_m: 300.0,
@@ -214,6 +217,7 @@ fn dijkstra_and_astar_match_bellman_ford() {
                         "A* should not relax more than Dijkstra"
                     );
                     compared += 1;
+                    dense_compared += (obstacles > 32) as u32;
                 }
                 (
                     Err(
@@ -229,7 +233,11 @@ fn dijkstra_and_astar_match_bellman_ford() {
             }
         }
     }
-    assert!(compared >= 40, "only {compared} queries had routes");
+    println!("{compared} queries compared, {dense_compared} of them among 60 obstacles");
+    assert!(
+        compared >= 40 && dense_compared >= 10,
+        "only {compared} queries had routes, {dense_compared} among 60 obstacles"
+    );
 }
 
 /// The edges a pop-up blocks, by testing every edge of the network.

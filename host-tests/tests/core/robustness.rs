@@ -7,6 +7,7 @@
 //! Each test pins a behaviour the core must keep (its comment names the failure it rules out);
 //! the others are edge cases not covered elsewhere (marked `EDGE CASE`).
 
+use host_tests::world::lattice_spec;
 use host_tests::{cases, Rng};
 
 use skyroute::network::format::{EdgeRecord, Header, ObstacleRecord, U32Record, VertexRecord};
@@ -24,49 +25,6 @@ fn boxed<'n, const V: usize, const E: usize, const P: usize, const R: usize>(
     let mut p: Box<Planner<'n, V, E, P, R>> = Box::new(Planner::new());
     p.load(bytes).expect("test network loads");
     p
-}
-
-/// A lattice roadmap: `n × n` positions `spacing` apart from `origin`, four headings each,
-/// an edge (the shortest Dubins path) from every vertex to every vertex at a neighbouring
-/// position (8-neighbourhood).
-fn lattice_spec(n: usize, spacing: f32, origin: f32, radius: f32) -> NetworkSpec {
-    let headings = [0.0, FRAC_PI_2, PI, -FRAC_PI_2];
-    let mut vertices = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            for h in headings {
-                vertices.push(Pose::new(
-                    origin + i as f32 * spacing,
-                    origin + j as f32 * spacing,
-                    h,
-                ));
-            }
-        }
-    }
-    let mut edges = Vec::new();
-    for (a, pa) in vertices.iter().enumerate() {
-        for (b, pb) in vertices.iter().enumerate() {
-            let d = pa.position.distance(pb.position);
-            if d > 0.0 && d <= 1.5 * spacing {
-                let path = DubinsPath::shortest(pa, pb, radius).unwrap();
-                edges.push(EdgeSpec::dubins(a as u32, b as u32, &path));
-            }
-        }
-    }
-    NetworkSpec {
-        origin_lat_deg: 48.0,
-        origin_lon_deg: 11.6,
-        turn_radius_m: radius,
-        clearance_m: 5.0,
-        vertices,
-        edges,
-        obstacles: Vec::new(),
-        grid_cell_m: 2.0 * radius,
-        landmark: None,
-        voronoi: None,
-        terrain: None,
-        provenance: Vec::new(),
-    }
 }
 
 fn put_u32(b: &mut [u8], at: usize, v: u32) {
