@@ -2,7 +2,8 @@
 //! `base + code · step` with 255 unknown (docs/FORMAT.md), encoding rounds up and the blocking
 //! code splits the codes exactly as Medeiros & da Silva's rule does, checked by a scan over all
 //! 256 codes in f64; and the loader refuses an image whose coding is not finite with a positive
-//! step, or whose top code's bound overflows.
+//! step or whose top code's bound overflows, whose widening, altitude or safety height is not
+//! a finite number in range, or whose widening takes an edge's band beyond the grid.
 
 use host_tests::damage::fix_crc;
 use host_tests::Rng;
@@ -15,6 +16,10 @@ use skyroute::{LoadError, Network, Pose, Vec2};
 /// A coding whose two numbers are unlikely to appear elsewhere in the image.
 const BASE_M: f32 = 236.265_62;
 const STEP_M: f32 = 3.312_5;
+/// The terrain record's widening, altitude and safety height (stored side by side).
+const WIDEN_M: f32 = 20.0;
+const ALTITUDE_M: f32 = 900.0;
+const SAFETY_M: f32 = 100.0;
 
 fn coding(base_m: f32, step_m: f32) -> ElevationCoding {
     ElevationCoding { base_m, step_m }
@@ -136,29 +141,34 @@ fn terrain_image() -> Vec<u8> {
             grid,
             coding: coding(BASE_M, STEP_M),
             codes: vec![10; 100],
-            widen_m: 20.0,
-            altitude_m: 900.0,
-            safety_height_m: 100.0,
+            widen_m: WIDEN_M,
+            altitude_m: ALTITUDE_M,
+            safety_height_m: SAFETY_M,
         }),
         provenance: Vec::new(),
     };
     encode(&spec).expect("a valid terrain spec encodes")
 }
 
-/// `bytes` with the coding's two numbers (stored side by side as little-endian f32) replaced
-/// and the checksum fixed, so that the loader's field checks decide.
-fn with_coding(bytes: &[u8], base_m: f32, step_m: f32) -> Vec<u8> {
-    let mut stored = BASE_M.to_le_bytes().to_vec();
-    stored.extend(STEP_M.to_le_bytes());
-    let at: Vec<usize> = (0..bytes.len() - 8)
-        .filter(|&i| bytes[i..i + 8] == stored[..])
+/// `bytes` with the consecutive little-endian f32 fields `stored` (found once in the image)
+/// replaced by `new` and the checksum fixed, so that the loader's field checks decide.
+fn with_fields(bytes: &[u8], stored: &[f32], new: &[f32]) -> Vec<u8> {
+    let le = |v: &[f32]| -> Vec<u8> { v.iter().flat_map(|x| x.to_le_bytes()).collect() };
+    let (stored, new) = (le(stored), le(new));
+    let n = stored.len();
+    let at: Vec<usize> = (0..bytes.len() - n)
+        .filter(|&i| bytes[i..i + n] == stored[..])
         .collect();
-    assert_eq!(at.len(), 1, "the coding is stored once: {at:?}");
+    assert_eq!(at.len(), 1, "the fields are stored once: {at:?}");
     let mut out = bytes.to_vec();
-    out[at[0]..at[0] + 4].copy_from_slice(&base_m.to_le_bytes());
-    out[at[0] + 4..at[0] + 8].copy_from_slice(&step_m.to_le_bytes());
+    out[at[0]..at[0] + n].copy_from_slice(&new);
     fix_crc(&mut out);
     out
+}
+
+/// `bytes` with the coding's two numbers (stored side by side) replaced.
+fn with_coding(bytes: &[u8], base_m: f32, step_m: f32) -> Vec<u8> {
+    with_fields(bytes, &[BASE_M, STEP_M], &[base_m, step_m])
 }
 
 #[test]
@@ -189,4 +199,50 @@ fn a_terrain_image_with_a_bad_coding_is_refused_at_load() {
             "base {base}, step {step}"
         );
     }
+}
+
+/// The terrain record's other numbers: a widening, altitude or safety height that is not
+/// finite, and a negative widening or safety height, are refused; zero widening and safety
+/// height and a negative altitude (below the datum) load; a widening that takes an edge's band
+/// beyond the elevation grid is refused naming the edge.
+#[test]
+fn a_terrain_image_with_bad_heights_or_widening_is_refused_at_load() {
+    let bytes = terrain_image();
+    let stored = [WIDEN_M, ALTITUDE_M, SAFETY_M];
+    for ok in [
+        [0.0, ALTITUDE_M, 0.0],
+        [WIDEN_M, -50.0, SAFETY_M],
+        [150.0, 0.0, 1e4],
+    ] {
+        let patched = with_fields(&bytes, &stored, &ok);
+        let net = Network::from_bytes(&patched).unwrap_or_else(|e| panic!("{ok:?}: {e:?}"));
+        let t = net.terrain().unwrap();
+        assert_eq!([t.widen_m, t.altitude_m, t.safety_height_m], ok);
+    }
+    let refused = Some(LoadError::InvalidParameter {
+        parameter: Parameter::Terrain,
+    });
+    for bad in [
+        [f32::NAN, ALTITUDE_M, SAFETY_M],
+        [f32::INFINITY, ALTITUDE_M, SAFETY_M],
+        [-1.0, ALTITUDE_M, SAFETY_M],
+        [WIDEN_M, f32::NAN, SAFETY_M],
+        [WIDEN_M, f32::INFINITY, SAFETY_M],
+        [WIDEN_M, f32::NEG_INFINITY, SAFETY_M],
+        [WIDEN_M, ALTITUDE_M, f32::NAN],
+        [WIDEN_M, ALTITUDE_M, f32::INFINITY],
+        [WIDEN_M, ALTITUDE_M, -1.0],
+    ] {
+        let damaged = with_fields(&bytes, &stored, &bad);
+        assert_eq!(Network::from_bytes(&damaged).err(), refused, "{bad:?}");
+    }
+    // The edges run from (200, 200) to (800, 700) in a 1 km grid: a band of 201 m crosses
+    // the grid's edge at 0 m, one of 199 m does not.
+    let near = with_fields(&bytes, &stored, &[199.0, ALTITUDE_M, SAFETY_M]);
+    assert!(Network::from_bytes(&near).is_ok());
+    let beyond = with_fields(&bytes, &stored, &[201.0, ALTITUDE_M, SAFETY_M]);
+    assert_eq!(
+        Network::from_bytes(&beyond).err(),
+        Some(LoadError::EdgeOutsideTerrain { edge: 0 })
+    );
 }

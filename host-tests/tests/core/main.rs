@@ -19,7 +19,7 @@ mod drift_exit;
 /// Dubins paths against OMPL's CSV and an f64 brute force.
 mod dubins;
 /// Terrain elevation codes: decoding, rounding up and the blocking code against a scan over
-/// every code; a bad coding refused at load.
+/// every code; a bad coding, widening, altitude or safety height refused at load.
 mod elevation_coding;
 /// `skyroute::geo` (WGS-84 to the local frame) against PROJ's CSV; its refusals by name.
 mod geo;
