@@ -83,8 +83,9 @@ impl CornerBound for CornerTable<'_> {
 impl<'a> Network<'a> {
     /// Voronoi mode's numbers: a weight in [0, 1], a finite positive curvature limit, a finite
     /// box of positive size, the corner table of this build's dimensions, valid
-    /// ([`table_is_valid`]) and no node below its piece's midpoint curvature, polygons only among the static obstacles, and every threat site finite, inside
-    /// the box, with a finite positive radius. Work: the sites and the table.
+    /// ([`table_is_valid`]) and no node below its piece's midpoint curvature, polygons only
+    /// among the static obstacles, and every threat site finite, inside the box, with a finite
+    /// positive radius. Work: the sites and the table.
     pub(super) fn validate_voronoi_parameters(&self, v: &VoronoiRecord) -> Result<(), LoadError> {
         let [w, s, e, n] = v.bounds;
         let numbers_ok = (0.0..=1.0).contains(&v.threat_weight)

@@ -61,5 +61,7 @@ mod trig;
 mod voronoi;
 /// Judd & McLain's three-point exposure rule against an adaptive f64 integral.
 mod voronoi_exposure;
+/// The loader's checks of a Voronoi network's record, threat sites, corner table and edges.
+mod voronoi_record;
 /// Counted work never below independently recomputed lower bounds.
 mod work_lower_bounds;

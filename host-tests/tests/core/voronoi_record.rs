@@ -1,0 +1,233 @@
+//! The loader's checks of a Voronoi network's own numbers (`network/voronoi.rs`): each bad
+//! field of the Voronoi record, of a threat site, of the corner table and of an edge is refused
+//! by name, even with a valid checksum, and the values at the edge of each range load.
+
+use host_tests::damage::fix_crc;
+use skyroute::geometry::spline::table::{build_corner_table, TABLE_ANGLES, TABLE_RATIOS};
+use skyroute::network::write::{
+    encode, EdgeSpec, NetworkSpec, ObstacleSpec, VoronoiSpec, WriteError,
+};
+use skyroute::network::{Parameter, Section};
+use skyroute::{LoadError, Network, Pose, Vec2};
+
+/// Numbers unlikely to appear elsewhere in the image, so each is found once by its bytes.
+const WEIGHT: f32 = 0.437_5;
+const KAPPA: f32 = 0.003_906_25;
+const BOUNDS: [f32; 4] = [-1_003.5, -2_007.25, 5_011.75, 4_013.125];
+const SITE: (f32, f32, f32) = (1_517.375, 1_021.625, 733.812_5);
+
+/// Two vertices joined both ways, one polygon obstacle, one threat site, and the corner table.
+fn spec() -> NetworkSpec {
+    let (a, b) = (Vec2::new(0.0, 0.0), Vec2::new(3_000.0, 2_000.0));
+    let length = a.distance(b);
+    NetworkSpec {
+        origin_lat_deg: 36.5,
+        origin_lon_deg: -84.2,
+        turn_radius_m: 1.0 / KAPPA,
+        clearance_m: 20.0,
+        vertices: vec![Pose::new(a.x, a.y, 0.0), Pose::new(b.x, b.y, 0.0)],
+        edges: vec![EdgeSpec::line(0, 1, length), EdgeSpec::line(1, 0, length)],
+        obstacles: vec![ObstacleSpec::Polygon(vec![
+            Vec2::new(2_000.0, -500.0),
+            Vec2::new(2_500.0, -500.0),
+            Vec2::new(2_500.0, 0.0),
+        ])],
+        grid_cell_m: 1_000.0,
+        landmark: None,
+        voronoi: Some(VoronoiSpec {
+            threats: vec![(Vec2::new(SITE.0, SITE.1), SITE.2)],
+            threat_weight: WEIGHT,
+            kappa_max: KAPPA,
+            bounds: (
+                Vec2::new(BOUNDS[0], BOUNDS[1]),
+                Vec2::new(BOUNDS[2], BOUNDS[3]),
+            ),
+            corner_table: build_corner_table().to_vec(),
+        }),
+        terrain: None,
+        provenance: Vec::new(),
+    }
+}
+
+fn le(values: &[f32]) -> Vec<u8> {
+    values.iter().flat_map(|x| x.to_le_bytes()).collect()
+}
+
+/// `bytes` with the bytes `stored` (found exactly once) replaced by `new`, checksum fixed.
+fn patched(bytes: &[u8], stored: &[u8], new: &[u8]) -> Vec<u8> {
+    let n = stored.len();
+    let at: Vec<usize> = (0..=bytes.len() - n)
+        .filter(|&i| bytes[i..i + n] == *stored)
+        .collect();
+    assert_eq!(at.len(), 1, "stored once: {at:?}");
+    let mut out = bytes.to_vec();
+    out[at[0]..at[0] + n].copy_from_slice(new);
+    fix_crc(&mut out);
+    out
+}
+
+/// The record's weight, curvature limit and box, stored side by side, replaced.
+fn with_record(bytes: &[u8], weight: f32, kappa: f32, bounds: [f32; 4]) -> Vec<u8> {
+    let stored = le(&[&[WEIGHT, KAPPA][..], &BOUNDS[..]].concat());
+    let new = le(&[&[weight, kappa][..], &bounds[..]].concat());
+    patched(bytes, &stored, &new)
+}
+
+const REFUSED: LoadError = LoadError::InvalidParameter {
+    parameter: Parameter::Voronoi,
+};
+
+#[test]
+fn a_voronoi_record_out_of_range_is_refused_at_load() {
+    let bytes = encode(&spec()).expect("the Voronoi spec encodes");
+    let v = *Network::from_bytes(&bytes)
+        .expect("the valid image loads")
+        .voronoi()
+        .unwrap();
+    assert_eq!(
+        (v.threat_weight, v.kappa_max, v.bounds),
+        (WEIGHT, KAPPA, BOUNDS)
+    );
+    // The ends of the weight's range load (the edge costs, k · length, stay above the bound).
+    for weight in [0.0, 1.0] {
+        let ok = with_record(&bytes, weight, KAPPA, BOUNDS);
+        assert!(Network::from_bytes(&ok).is_ok(), "weight {weight}");
+    }
+    let [w, s, e, n] = BOUNDS;
+    for (weight, kappa, bounds) in [
+        (-1e-3, KAPPA, BOUNDS),
+        (1.001, KAPPA, BOUNDS),
+        (f32::NAN, KAPPA, BOUNDS),
+        (WEIGHT, 0.0, BOUNDS),
+        (WEIGHT, -KAPPA, BOUNDS),
+        (WEIGHT, f32::INFINITY, BOUNDS),
+        (WEIGHT, f32::NAN, BOUNDS),
+        (WEIGHT, KAPPA, [f32::NAN, s, e, n]),
+        (WEIGHT, KAPPA, [w, f32::NEG_INFINITY, e, n]),
+        (WEIGHT, KAPPA, [w, s, f32::INFINITY, n]),
+        (WEIGHT, KAPPA, [w, s, e, f32::NAN]),
+        (WEIGHT, KAPPA, [e, s, e, n]),
+        (WEIGHT, KAPPA, [w, n, e, n]),
+        (WEIGHT, KAPPA, [e, n, w, s]),
+    ] {
+        let damaged = with_record(&bytes, weight, kappa, bounds);
+        assert_eq!(
+            Network::from_bytes(&damaged).err(),
+            Some(REFUSED),
+            "weight {weight}, kappa {kappa}, bounds {bounds:?}"
+        );
+    }
+    // The table's dimensions, stored after the box, size the table: other dimensions in the
+    // same image disagree with its length.
+    for (angles, ratios) in [
+        (TABLE_ANGLES - 1, TABLE_RATIOS),
+        (TABLE_ANGLES, TABLE_RATIOS + 1),
+    ] {
+        let dims = |a: usize, r: usize| [a as u32, r as u32].map(u32::to_le_bytes).concat();
+        let stored = [le(&BOUNDS[2..]), dims(TABLE_ANGLES, TABLE_RATIOS)].concat();
+        let new = [le(&BOUNDS[2..]), dims(angles, ratios)].concat();
+        let damaged = patched(&bytes, &stored, &new);
+        let err = Network::from_bytes(&damaged).err();
+        assert!(
+            matches!(err, Some(LoadError::BodyLengthMismatch { .. })),
+            "a {angles} × {ratios} table: {err:?}"
+        );
+    }
+}
+
+#[test]
+fn a_bad_corner_table_node_is_refused_at_load() {
+    let bytes = encode(&spec()).unwrap();
+    let table = build_corner_table();
+    // Each node found by its row of nodes. Far below its piece's midpoint curvature (a node in
+    // the middle of the table, and the last), negative, not finite, and non-zero on the
+    // zero-angle row (a straight piece has no curvature).
+    let (mid, last) = (
+        (TABLE_ANGLES / 2, TABLE_RATIOS / 2),
+        (TABLE_ANGLES - 1, TABLE_RATIOS - 1),
+    );
+    for ((angle, ratio), value) in [
+        (mid, Some(1e-6)),
+        (last, Some(1e-6)),
+        (mid, Some(-1.0)),
+        (mid, Some(f32::NAN)),
+        (last, Some(f32::INFINITY)),
+        ((0, 3), Some(0.5)),
+        (mid, None),
+    ] {
+        // The zero-angle row is all zeros: found with the row after it.
+        let end = (angle + 1 + (angle == 0) as usize) * TABLE_RATIOS;
+        let row = &table[angle * TABLE_RATIOS..end];
+        let mut changed = row.to_vec();
+        // None: the node raised, which keeps the table a bound.
+        changed[ratio] = value.unwrap_or(row[ratio] * 2.0);
+        let damaged = patched(&bytes, &le(row), &le(&changed));
+        let want = value.map(|_| REFUSED);
+        let got = Network::from_bytes(&damaged).err();
+        assert_eq!(got, want, "node ({angle}, {ratio}) = {value:?}");
+    }
+}
+
+#[test]
+fn a_bad_threat_site_circle_obstacle_or_edge_is_refused_at_load() {
+    let bytes = encode(&spec()).unwrap();
+    let [w, s, e, n] = BOUNDS;
+    // On the box's edges: loads.
+    for (x, y) in [(w, s), (e, n)] {
+        let ok = patched(&bytes, &le(&[SITE.0, SITE.1]), &le(&[x, y]));
+        assert!(Network::from_bytes(&ok).is_ok(), "site at ({x}, {y})");
+    }
+    let bad_site = Some(LoadError::BadThreat { threat: 0 });
+    for (x, y, r) in [
+        (w - 1.0, SITE.1, SITE.2),
+        (e + 1.0, SITE.1, SITE.2),
+        (SITE.0, s - 1.0, SITE.2),
+        (SITE.0, n + 1.0, SITE.2),
+        (f32::NAN, SITE.1, SITE.2),
+        (SITE.0, SITE.1, 0.0),
+        (SITE.0, SITE.1, -SITE.2),
+        (SITE.0, SITE.1, f32::INFINITY),
+        (SITE.0, SITE.1, f32::NAN),
+    ] {
+        let damaged = patched(&bytes, &le(&[SITE.0, SITE.1, SITE.2]), &le(&[x, y, r]));
+        let got = Network::from_bytes(&damaged).err();
+        assert_eq!(got, bad_site, "site ({x}, {y}) radius {r}");
+    }
+
+    // The writer validates what it writes with the loader, so these reach the loader's
+    // checks through it. A circle among the static obstacles (the Voronoi search's clearance
+    // is polygons only):
+    let mut with_circle = spec();
+    with_circle.obstacles.push(ObstacleSpec::Circle {
+        centre: Vec2::new(-500.0, 1_000.0),
+        radius: 100.0,
+    });
+    assert_eq!(
+        encode(&with_circle).err(),
+        Some(WriteError::Invalid(REFUSED))
+    );
+
+    // An edge whose cost is below k times its length (at k times it: loads), and one between
+    // coincident vertices.
+    let mut cheap = spec();
+    let length = cheap.edges[1].cost;
+    cheap.edges[1].cost = WEIGHT * length * 0.999;
+    assert_eq!(
+        encode(&cheap).err(),
+        Some(WriteError::Invalid(LoadError::CostBelowLength { edge: 1 }))
+    );
+    let mut exact = spec();
+    exact.edges[1].cost = WEIGHT * length;
+    assert!(Network::from_bytes(&encode(&exact).unwrap()).is_ok());
+    let mut coincident = spec();
+    coincident.vertices[1] = coincident.vertices[0];
+    coincident.edges = vec![EdgeSpec::line(0, 1, 0.0)];
+    let malformed = LoadError::Malformed {
+        section: Section::Edges,
+        index: 0,
+    };
+    assert_eq!(
+        encode(&coincident).err(),
+        Some(WriteError::Invalid(malformed))
+    );
+}
