@@ -9,8 +9,8 @@ use host_tests::damage::fix_crc;
 use host_tests::Rng;
 use skyroute::geometry::grid::CellGrid;
 use skyroute::network::elevation::{ElevationCoding, ELEVATION_BLOCKED};
-use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, TerrainSpec};
-use skyroute::network::Parameter;
+use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, TerrainSpec, WriteError};
+use skyroute::network::{Parameter, Section};
 use skyroute::{LoadError, Network, Pose, Vec2};
 
 /// A coding whose two numbers are unlikely to appear elsewhere in the image.
@@ -110,6 +110,11 @@ fn elevations_at_and_beside_every_bound_encode_as_the_scan_says() {
 
 /// A two-node terrain image with the coding above.
 fn terrain_image() -> Vec<u8> {
+    encode(&terrain_spec()).expect("a valid terrain spec encodes")
+}
+
+/// The two-node terrain network of [`terrain_image`].
+fn terrain_spec() -> NetworkSpec {
     let grid = CellGrid {
         origin: Vec2::new(0.0, 0.0),
         cell: 100.0,
@@ -117,7 +122,7 @@ fn terrain_image() -> Vec<u8> {
         rows: 10,
     };
     let (a, b) = (Vec2::new(200.0, 200.0), Vec2::new(800.0, 700.0));
-    let spec = NetworkSpec {
+    NetworkSpec {
         origin_lat_deg: 36.5,
         origin_lon_deg: -84.2,
         turn_radius_m: 50.0,
@@ -146,8 +151,7 @@ fn terrain_image() -> Vec<u8> {
             safety_height_m: SAFETY_M,
         }),
         provenance: Vec::new(),
-    };
-    encode(&spec).expect("a valid terrain spec encodes")
+    }
 }
 
 /// `bytes` with the consecutive little-endian f32 fields `stored` (found once in the image)
@@ -245,4 +249,43 @@ fn a_terrain_image_with_bad_heights_or_widening_is_refused_at_load() {
         Network::from_bytes(&beyond).err(),
         Some(LoadError::EdgeOutsideTerrain { edge: 0 })
     );
+}
+
+/// A terrain edge's own checks (the writer validates what it writes with the loader and
+/// returns its verdict): a cost below the distance between the nodes (beyond the 10⁻⁵
+/// rounding allowance) is refused naming the edge, and so is a line between nodes closer than
+/// 10⁻³ turn radii (5 cm here), which has no direction to turn from.
+#[test]
+fn a_terrain_edge_below_its_length_or_between_nodes_too_close_is_refused() {
+    let length = terrain_spec().edges[1].cost;
+    let mut cheap = terrain_spec();
+    cheap.edges[1].cost = length * (1.0 - 1e-4);
+    assert_eq!(
+        encode(&cheap).err(),
+        Some(WriteError::Invalid(LoadError::CostBelowLength { edge: 1 }))
+    );
+    let mut rounded = terrain_spec();
+    rounded.edges[1].cost = length * (1.0 - 1e-6);
+    assert!(encode(&rounded).is_ok(), "within the rounding allowance");
+
+    for (gap, loads) in [(0.049, false), (0.0, false), (0.06, true)] {
+        let mut close = terrain_spec();
+        let a = close.vertices[0].position;
+        close.vertices[1].position = a + Vec2::new(gap, 0.0);
+        close.edges = vec![EdgeSpec::line(0, 1, gap)];
+        let malformed = LoadError::Malformed {
+            section: Section::Edges,
+            index: 0,
+        };
+        let got = encode(&close).err();
+        if loads {
+            assert_eq!(got, None, "nodes {gap} m apart");
+        } else {
+            assert_eq!(
+                got,
+                Some(WriteError::Invalid(malformed)),
+                "nodes {gap} m apart"
+            );
+        }
+    }
 }
