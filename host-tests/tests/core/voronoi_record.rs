@@ -3,7 +3,9 @@
 //! by name, even with a valid checksum, and the values at the edge of each range load.
 
 use host_tests::damage::fix_crc;
-use skyroute::geometry::spline::table::{build_corner_table, TABLE_ANGLES, TABLE_RATIOS};
+use skyroute::geometry::spline::table::{
+    build_corner_table, table_angle, table_ratio, TABLE_ANGLES, TABLE_RATIOS,
+};
 use skyroute::network::write::{
     encode, EdgeSpec, NetworkSpec, ObstacleSpec, VoronoiSpec, WriteError,
 };
@@ -165,6 +167,41 @@ fn a_bad_corner_table_node_is_refused_at_load() {
         let want = value.map(|_| REFUSED);
         let got = Network::from_bytes(&damaged).err();
         assert_eq!(got, want, "node ({angle}, {ratio}) = {value:?}");
+    }
+}
+
+/// The curvature at its parameter midpoint of the corner piece a table node bounds: the cubic
+/// Bézier with control points (−1, 0), the corner (0, 0) twice, and ρ·(cos θ, sin θ). At
+/// t = ½, B′ = ¾ (a + b) and B″ = 3 (b − a) with a = (1, 0), b = ρ (cos θ, sin θ), so
+/// B′ × B″ = 4.5 ρ sin θ and κ = 4.5 ρ sin θ / (¾ |a + b|)³. In f64, from the closed form.
+fn midpoint_curvature(theta: f64, rho: f64) -> f64 {
+    let speed = 0.75 * (1.0 + 2.0 * rho * theta.cos() + rho * rho).sqrt();
+    4.5 * rho * theta.sin() / speed.powi(3)
+}
+
+#[test]
+fn a_corner_table_node_within_the_stated_tolerance_of_its_midpoint_curvature_loads() {
+    let bytes = encode(&spec()).unwrap();
+    let table = build_corner_table();
+    // The loader allows a node 10⁻³ below its piece's midpoint curvature (f32 rounding of
+    // the curvature): half of that loads, twice that is refused.
+    for (angle, ratio) in [(TABLE_ANGLES / 2, TABLE_RATIOS / 2), (TABLE_ANGLES - 1, 0)] {
+        let theta = table_angle(angle).unwrap() as f64;
+        let rho = table_ratio(ratio).unwrap() as f64;
+        let kappa = midpoint_curvature(theta, rho);
+        let row = &table[angle * TABLE_RATIOS..(angle + 1) * TABLE_RATIOS];
+        assert!(
+            row[ratio] as f64 >= kappa,
+            "the built node bounds its midpoint"
+        );
+        for (factor, loads) in [(1.0 - 5e-4, true), (1.0 - 2e-3, false)] {
+            let mut changed = row.to_vec();
+            changed[ratio] = (kappa * factor) as f32;
+            let damaged = patched(&bytes, &le(row), &le(&changed));
+            let got = Network::from_bytes(&damaged).err();
+            let want = (!loads).then_some(REFUSED);
+            assert_eq!(got, want, "node ({angle}, {ratio}) at {factor} of {kappa}");
+        }
     }
 }
 
