@@ -11,6 +11,26 @@ pub fn fix_crc(bytes: &mut [u8]) {
     bytes[Header::CHECKED_SIZE..Header::SIZE].copy_from_slice(&crc.to_le_bytes());
 }
 
+/// Little-endian bytes of consecutive f32 fields, as an image stores them.
+pub fn f32_bytes(values: &[f32]) -> Vec<u8> {
+    values.iter().flat_map(|x| x.to_le_bytes()).collect()
+}
+
+/// `bytes` with the run `stored` (which must occur exactly once) replaced by `new` and the
+/// checksum re-fixed, so that the loader's field checks decide.
+pub fn replace_unique(bytes: &[u8], stored: &[u8], new: &[u8]) -> Vec<u8> {
+    let n = stored.len();
+    assert_eq!(n, new.len(), "a replacement of the same length");
+    let at: Vec<usize> = (0..=bytes.len().saturating_sub(n))
+        .filter(|&i| bytes[i..i + n] == *stored)
+        .collect();
+    assert_eq!(at.len(), 1, "the run is stored once: {at:?}");
+    let mut out = bytes.to_vec();
+    out[at[0]..at[0] + n].copy_from_slice(new);
+    fix_crc(&mut out);
+    out
+}
+
 fn get_u32(b: &[u8], at: usize) -> u32 {
     u32::from_le_bytes(b[at..at + 4].try_into().unwrap())
 }

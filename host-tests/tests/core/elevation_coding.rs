@@ -5,7 +5,7 @@
 //! step or whose top code's bound overflows, whose widening, altitude or safety height is not
 //! a finite number in range, or whose widening takes an edge's band beyond the grid.
 
-use host_tests::damage::fix_crc;
+use host_tests::damage::{f32_bytes, replace_unique};
 use host_tests::Rng;
 use skyroute::geometry::grid::CellGrid;
 use skyroute::network::elevation::{ElevationCoding, ELEVATION_BLOCKED};
@@ -154,20 +154,10 @@ fn terrain_spec() -> NetworkSpec {
     }
 }
 
-/// `bytes` with the consecutive little-endian f32 fields `stored` (found once in the image)
-/// replaced by `new` and the checksum fixed, so that the loader's field checks decide.
+/// `bytes` with the consecutive f32 fields `stored` (found once in the image) replaced by
+/// `new`, checksum re-fixed.
 fn with_fields(bytes: &[u8], stored: &[f32], new: &[f32]) -> Vec<u8> {
-    let le = |v: &[f32]| -> Vec<u8> { v.iter().flat_map(|x| x.to_le_bytes()).collect() };
-    let (stored, new) = (le(stored), le(new));
-    let n = stored.len();
-    let at: Vec<usize> = (0..bytes.len() - n)
-        .filter(|&i| bytes[i..i + n] == stored[..])
-        .collect();
-    assert_eq!(at.len(), 1, "the fields are stored once: {at:?}");
-    let mut out = bytes.to_vec();
-    out[at[0]..at[0] + n].copy_from_slice(&new);
-    fix_crc(&mut out);
-    out
+    replace_unique(bytes, &f32_bytes(stored), &f32_bytes(new))
 }
 
 /// `bytes` with the coding's two numbers (stored side by side) replaced.

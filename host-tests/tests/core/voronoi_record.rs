@@ -2,7 +2,7 @@
 //! field of the Voronoi record, of a threat site, of the corner table and of an edge is refused
 //! by name, even with a valid checksum, and the values at the edge of each range load.
 
-use host_tests::damage::fix_crc;
+use host_tests::damage::{f32_bytes, replace_unique};
 use skyroute::geometry::spline::table::{
     build_corner_table, table_angle, table_ratio, TABLE_ANGLES, TABLE_RATIOS,
 };
@@ -51,28 +51,11 @@ fn spec() -> NetworkSpec {
     }
 }
 
-fn le(values: &[f32]) -> Vec<u8> {
-    values.iter().flat_map(|x| x.to_le_bytes()).collect()
-}
-
-/// `bytes` with the bytes `stored` (found exactly once) replaced by `new`, checksum fixed.
-fn patched(bytes: &[u8], stored: &[u8], new: &[u8]) -> Vec<u8> {
-    let n = stored.len();
-    let at: Vec<usize> = (0..=bytes.len() - n)
-        .filter(|&i| bytes[i..i + n] == *stored)
-        .collect();
-    assert_eq!(at.len(), 1, "stored once: {at:?}");
-    let mut out = bytes.to_vec();
-    out[at[0]..at[0] + n].copy_from_slice(new);
-    fix_crc(&mut out);
-    out
-}
-
 /// The record's weight, curvature limit and box, stored side by side, replaced.
 fn with_record(bytes: &[u8], weight: f32, kappa: f32, bounds: [f32; 4]) -> Vec<u8> {
-    let stored = le(&[&[WEIGHT, KAPPA][..], &BOUNDS[..]].concat());
-    let new = le(&[&[weight, kappa][..], &bounds[..]].concat());
-    patched(bytes, &stored, &new)
+    let stored = f32_bytes(&[&[WEIGHT, KAPPA][..], &BOUNDS[..]].concat());
+    let new = f32_bytes(&[&[weight, kappa][..], &bounds[..]].concat());
+    replace_unique(bytes, &stored, &new)
 }
 
 const REFUSED: LoadError = LoadError::InvalidParameter {
@@ -126,9 +109,9 @@ fn a_voronoi_record_out_of_range_is_refused_at_load() {
         (TABLE_ANGLES, TABLE_RATIOS + 1),
     ] {
         let dims = |a: usize, r: usize| [a as u32, r as u32].map(u32::to_le_bytes).concat();
-        let stored = [le(&BOUNDS[2..]), dims(TABLE_ANGLES, TABLE_RATIOS)].concat();
-        let new = [le(&BOUNDS[2..]), dims(angles, ratios)].concat();
-        let damaged = patched(&bytes, &stored, &new);
+        let stored = [f32_bytes(&BOUNDS[2..]), dims(TABLE_ANGLES, TABLE_RATIOS)].concat();
+        let new = [f32_bytes(&BOUNDS[2..]), dims(angles, ratios)].concat();
+        let damaged = replace_unique(&bytes, &stored, &new);
         let err = Network::from_bytes(&damaged).err();
         assert!(
             matches!(err, Some(LoadError::BodyLengthMismatch { .. })),
@@ -163,7 +146,7 @@ fn a_bad_corner_table_node_is_refused_at_load() {
         let mut changed = row.to_vec();
         // None: the node raised, which keeps the table a bound.
         changed[ratio] = value.unwrap_or(row[ratio] * 2.0);
-        let damaged = patched(&bytes, &le(row), &le(&changed));
+        let damaged = replace_unique(&bytes, &f32_bytes(row), &f32_bytes(&changed));
         let want = value.map(|_| REFUSED);
         let got = Network::from_bytes(&damaged).err();
         assert_eq!(got, want, "node ({angle}, {ratio}) = {value:?}");
@@ -197,7 +180,7 @@ fn a_corner_table_node_within_the_stated_tolerance_of_its_midpoint_curvature_loa
         for (factor, loads) in [(1.0 - 5e-4, true), (1.0 - 2e-3, false)] {
             let mut changed = row.to_vec();
             changed[ratio] = (kappa * factor) as f32;
-            let damaged = patched(&bytes, &le(row), &le(&changed));
+            let damaged = replace_unique(&bytes, &f32_bytes(row), &f32_bytes(&changed));
             let got = Network::from_bytes(&damaged).err();
             let want = (!loads).then_some(REFUSED);
             assert_eq!(got, want, "node ({angle}, {ratio}) at {factor} of {kappa}");
@@ -211,7 +194,7 @@ fn a_bad_threat_site_circle_obstacle_or_edge_is_refused_at_load() {
     let [w, s, e, n] = BOUNDS;
     // On the box's edges: loads.
     for (x, y) in [(w, s), (e, n)] {
-        let ok = patched(&bytes, &le(&[SITE.0, SITE.1]), &le(&[x, y]));
+        let ok = replace_unique(&bytes, &f32_bytes(&[SITE.0, SITE.1]), &f32_bytes(&[x, y]));
         assert!(Network::from_bytes(&ok).is_ok(), "site at ({x}, {y})");
     }
     let bad_site = Some(LoadError::BadThreat { threat: 0 });
@@ -226,7 +209,11 @@ fn a_bad_threat_site_circle_obstacle_or_edge_is_refused_at_load() {
         (SITE.0, SITE.1, f32::INFINITY),
         (SITE.0, SITE.1, f32::NAN),
     ] {
-        let damaged = patched(&bytes, &le(&[SITE.0, SITE.1, SITE.2]), &le(&[x, y, r]));
+        let damaged = replace_unique(
+            &bytes,
+            &f32_bytes(&[SITE.0, SITE.1, SITE.2]),
+            &f32_bytes(&[x, y, r]),
+        );
         let got = Network::from_bytes(&damaged).err();
         assert_eq!(got, bad_site, "site ({x}, {y}) radius {r}");
     }
