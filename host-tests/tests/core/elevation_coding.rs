@@ -9,7 +9,9 @@ use host_tests::damage::{f32_bytes, replace_unique};
 use host_tests::Rng;
 use skyroute::geometry::grid::CellGrid;
 use skyroute::network::elevation::{ElevationCoding, ELEVATION_BLOCKED};
-use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, TerrainSpec, WriteError};
+use skyroute::network::write::{
+    encode, EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec, WriteError,
+};
 use skyroute::network::{Parameter, Section};
 use skyroute::{LoadError, Network, Pose, Vec2};
 
@@ -278,4 +280,120 @@ fn a_terrain_edge_below_its_length_or_between_nodes_too_close_is_refused() {
             );
         }
     }
+}
+
+/// [`terrain_spec`] with its two nodes at `a` and `b`.
+fn terrain_spec_between(a: Vec2, b: Vec2) -> NetworkSpec {
+    let mut spec = terrain_spec();
+    spec.vertices[0].position = a;
+    spec.vertices[1].position = b;
+    spec.edges = vec![
+        EdgeSpec::line(0, 1, a.distance(b)),
+        EdgeSpec::line(1, 0, a.distance(b)),
+    ];
+    spec
+}
+
+/// The band of an edge (the segment widened by the record's widening) must lie inside the
+/// elevation grid on each of its four sides: with the nodes 100 m from one side of the 1 km
+/// grid and at least 300 m from the others, a widening of 99 m loads and one of 101 m is
+/// refused naming the edge.
+#[test]
+fn a_terrain_edge_band_beyond_any_one_side_of_the_grid_is_refused() {
+    let sides = [
+        ("west", Vec2::new(100.0, 400.0), Vec2::new(600.0, 600.0)),
+        ("east", Vec2::new(400.0, 400.0), Vec2::new(900.0, 600.0)),
+        ("south", Vec2::new(400.0, 100.0), Vec2::new(600.0, 600.0)),
+        ("north", Vec2::new(400.0, 400.0), Vec2::new(600.0, 900.0)),
+    ];
+    let stored = [WIDEN_M, ALTITUDE_M, SAFETY_M];
+    for (side, a, b) in sides {
+        let bytes = encode(&terrain_spec_between(a, b)).expect("a valid terrain spec encodes");
+        let inside = with_fields(&bytes, &stored, &[99.0, ALTITUDE_M, SAFETY_M]);
+        assert!(Network::from_bytes(&inside).is_ok(), "{side}: 99 m");
+        let beyond = with_fields(&bytes, &stored, &[101.0, ALTITUDE_M, SAFETY_M]);
+        assert_eq!(
+            Network::from_bytes(&beyond).err(),
+            Some(LoadError::EdgeOutsideTerrain { edge: 0 }),
+            "{side}: 101 m"
+        );
+    }
+}
+
+/// An edge's stored highest code (`aux`) may not understate the cells under its band: one
+/// cell raised above it in the table is refused naming the edge and both codes. Every cell
+/// lowered below it loads (an overstated code is conservative: the edge is only blocked at
+/// more altitudes).
+#[test]
+fn a_terrain_edge_code_below_its_cells_is_refused_and_one_above_loads() {
+    let bytes = terrain_image();
+    let net = Network::from_bytes(&bytes).expect("loads");
+    let t = *net.terrain().expect("terrain record");
+    assert_eq!(net.edge_highest_code(0), Some(10));
+    let grid = net.terrain_grid().expect("grid");
+    // With no provenance records the elevation table closes the image.
+    let table = bytes.len() - (t.cols * t.rows) as usize;
+    let (c, r) = grid
+        .cell_of(Vec2::new(500.0, 450.0))
+        .expect("the edge's middle");
+    let mut raised = bytes.clone();
+    raised[table + (r * t.cols + c) as usize] = 11;
+    host_tests::damage::fix_crc(&mut raised);
+    assert_eq!(
+        Network::from_bytes(&raised).err(),
+        Some(LoadError::EdgeElevationUnderstated {
+            edge: 0,
+            stored: 10,
+            computed: 11
+        })
+    );
+    let mut lowered = bytes.clone();
+    lowered[table..].fill(9);
+    host_tests::damage::fix_crc(&mut lowered);
+    let net = Network::from_bytes(&lowered).expect("an overstated code loads");
+    assert_eq!(net.edge_highest_code(0), Some(10));
+    assert_eq!(net.elevation_code(c, r), 9);
+}
+
+/// A terrain network has no static obstacles (its search checks terrain cells and pop-ups,
+/// and its work bound has no obstacle term): a circle obstacle, which has no polygon points,
+/// is refused as well as a polygon.
+#[test]
+fn a_terrain_network_with_a_static_obstacle_is_refused() {
+    let refused = Some(WriteError::Invalid(LoadError::InvalidParameter {
+        parameter: Parameter::Terrain,
+    }));
+    let mut circle = terrain_spec();
+    circle.obstacles.push(ObstacleSpec::Circle {
+        centre: Vec2::new(500.0, 200.0),
+        radius: 20.0,
+    });
+    assert_eq!(encode(&circle).err(), refused, "a circle");
+    let mut polygon = terrain_spec();
+    polygon.obstacles.push(ObstacleSpec::Polygon(vec![
+        Vec2::new(500.0, 100.0),
+        Vec2::new(600.0, 100.0),
+        Vec2::new(550.0, 150.0),
+    ]));
+    assert_eq!(encode(&polygon).err(), refused, "a polygon");
+}
+
+/// Coincident nodes are refused even with a turn radius so small (10⁻⁴⁴ m, a subnormal f32)
+/// that 10⁻³ of it rounds to zero, so the minimum length between nodes is no guard.
+#[test]
+fn coincident_terrain_nodes_are_refused_at_any_turn_radius() {
+    let mut tiny = terrain_spec();
+    tiny.turn_radius_m = 1e-44;
+    assert_eq!(1e-3 * tiny.turn_radius_m, 0.0);
+    assert!(encode(&tiny).is_ok(), "distinct nodes load at any radius");
+    let a = tiny.vertices[0].position;
+    tiny.vertices[1].position = a;
+    tiny.edges = vec![EdgeSpec::line(0, 1, 0.0)];
+    assert_eq!(
+        encode(&tiny).err(),
+        Some(WriteError::Invalid(LoadError::Malformed {
+            section: Section::Edges,
+            index: 0
+        }))
+    );
 }
