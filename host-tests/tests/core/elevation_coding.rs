@@ -3,7 +3,9 @@
 //! code splits the codes exactly as Medeiros & da Silva's rule does, checked by a scan over all
 //! 256 codes in f64; and the loader refuses an image whose coding is not finite with a positive
 //! step or whose top code's bound overflows, whose widening, altitude or safety height is not
-//! a finite number in range, or whose widening takes an edge's band beyond the grid.
+//! a finite number in range, whose widening takes an edge's band beyond any side of the grid,
+//! whose edge understates the highest code under its band, which has a static obstacle, or
+//! whose edge joins coincident nodes.
 
 use host_tests::damage::{f32_bytes, replace_unique};
 use host_tests::Rng;
