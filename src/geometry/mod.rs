@@ -141,6 +141,17 @@ pub fn points_bounding_box(points: impl IntoIterator<Item = Vec2>) -> (Vec2, Vec
     (lo, hi)
 }
 
+/// The Euclidean distance from `p` to the axis-aligned box `(lo, hi)`: 0 inside it or on its
+/// edge, else the distance to its nearest point. Per axis, the gap is `lo − p` left of the box,
+/// `p − hi` right of it and 0 between (at most one of the two differences is positive when
+/// `lo ≤ hi`); the distance is the hypotenuse of the two gaps. Meant for finite inputs: `max`
+/// skips a NaN operand, so a NaN coordinate need not give NaN.
+pub fn point_box_distance(p: Vec2, lo: Vec2, hi: Vec2) -> f32 {
+    let dx = (lo.x - p.x).max(p.x - hi.x).max(0.0);
+    let dy = (lo.y - p.y).max(p.y - hi.y).max(0.0);
+    libm::sqrtf(dx * dx + dy * dy)
+}
+
 /// `libm::fmodf(a, τ)`, exactly: `a` itself when |a| < τ (what `fmodf` returns then), so
 /// that the common case costs one comparison instead of a call.
 fn fmod_tau(a: f32) -> f32 {

@@ -11,7 +11,7 @@
 //! all of them would.
 
 use super::Meter;
-use crate::geometry::{DubinsPath, Vec2};
+use crate::geometry::{point_box_distance, DubinsPath, Vec2};
 use crate::network::{Network, Obstacle};
 
 /// Obstacles an [`ObstacleWindow`] keeps.
@@ -102,9 +102,7 @@ impl<'n> ObstacleWindow<'n> {
                 (window.len, window.reach) = (0, f32::NEG_INFINITY);
                 return;
             };
-            let dx = (lo.x - centre.x).max(centre.x - hi.x).max(0.0);
-            let dy = (lo.y - centre.y).max(centre.y - hi.y).max(0.0);
-            let d = libm::sqrtf(dx * dx + dy * dy);
+            let d = point_box_distance(centre, lo, hi);
             if !(d >= 0.0) {
                 // Not finite: validation rules it out.
                 (window.len, window.reach) = (0, f32::NEG_INFINITY);
