@@ -255,8 +255,9 @@ fn popup_blocking_matches_an_f64_brute_force_over_all_edges() {
 /// The work a pop-up charges for one listed roadmap edge: a single predicate test when the
 /// edge's hull (`dubins_hull`: the segment joining its first and last turning circles'
 /// centres, widened by the radius) is farther than the clearance, and otherwise one test per
-/// primitive of the solved path, as `Popup::conflicts` counts them. One curved edge (three
-/// non-empty pieces) in one large index cell, with a pop-up far from it and one beside it.
+/// primitive of the solved path, as `Popup::conflicts` counts them: one for a circle, one per
+/// edge and one for containment for a polygon. One curved edge (three non-empty pieces) in one
+/// large index cell, with a pop-up far from it and pop-ups beside it.
 #[test]
 fn a_listed_edge_costs_one_predicate_test_when_its_hull_is_far() {
     let (a, b) = (Pose::new(0.0, 0.0, 0.0), Pose::new(60.0, 40.0, 0.0));
@@ -303,10 +304,28 @@ fn a_listed_edge_costs_one_predicate_test_when_its_hull_is_far() {
                 && prims.iter().all(|q| !circle(c).conflicts(q, CLEARANCE).0)
         })
         .expect("a point near the hull and clear of the path");
+    // A circle costs one test per primitive; a polygon of n vertices (here inscribed in that
+    // circle, so just as clear) one per edge and one for containment, per primitive.
     let beside = circle(centre);
-    let expected: u32 = prims.iter().map(|q| beside.conflicts(q, CLEARANCE).1).sum();
     let summary = p.add_popup(beside.clone()).unwrap();
     assert_eq!(summary.edges_blocked, 0, "{beside:?}");
-    assert_eq!(summary.predicate_tests, expected, "{beside:?}: {summary:?}");
-    assert!(expected >= 3);
+    assert_eq!(summary.predicate_tests, 3, "{beside:?}: {summary:?}");
+    p.remove_popup(summary.id).unwrap();
+    for n in [3u32, 4, 7, 16] {
+        let points: Vec<Vec2> = (0..n)
+            .map(|k| {
+                let a = k as f32 * std::f32::consts::TAU / n as f32;
+                centre + Vec2::new(a.cos(), a.sin())
+            })
+            .collect();
+        let polygon = Popup::Polygon(heapless::Vec::from_slice(&points).unwrap());
+        let summary = p.add_popup(polygon).unwrap();
+        assert_eq!(summary.edges_blocked, 0, "{n} vertices");
+        assert_eq!(
+            summary.predicate_tests,
+            3 * (n + 1),
+            "{n} vertices: {summary:?}"
+        );
+        p.remove_popup(summary.id).unwrap();
+    }
 }
