@@ -203,9 +203,9 @@ fn sampled_gap(path: &DubinsPath, centre: Vec2, radius: f32) -> f64 {
 /// side: the window's reach (the left-out obstacle's distance) is below the connection's
 /// extent plus the clearance, so the connection must be checked against every obstacle and
 /// refused. Once at the start (the connection runs from the window's centre) and once at the
-/// goal (it runs to the centre, from 100 m away). Each query is routed, along the lattice line
-/// the refused connection would join, and its first or last path keeps the clearance from
-/// every obstacle (sampled in f64).
+/// goal (it runs to the centre, from 100 m away), on a lattice at the origin and one 5 km
+/// away. Each query is routed, along the lattice line the refused connection would join, and
+/// its first or last path keeps the clearance from every obstacle (sampled in f64).
 #[test]
 fn a_connection_within_the_clearance_of_the_nearest_obstacle_left_out_is_refused() {
     let circle = |x: f32, y: f32, radius: f32| ObstacleSpec::Circle {
@@ -251,40 +251,47 @@ fn a_connection_within_the_clearance_of_the_nearest_obstacle_left_out_is_refused
             false,
         ),
     ];
-    for (name, from, to, (cx, cy, r), centre, towards, first) in cases {
-        let mut obstacles = decoys(centre, towards);
-        obstacles.push(circle(cx, cy, r));
-        let spec = skyroute::network::write::NetworkSpec {
-            obstacles,
-            grid_cell_m: 500.0,
-            ..lattice_spec(4, 150.0, 0.0, 30.0)
-        };
-        let bytes = encode(&spec).expect("the lattice encodes");
-        let mut p: Box<WindowPlanner<'_>> = Box::new(Planner::new());
-        p.load(&bytes).expect("the lattice loads");
-        p.set_config(PlannerConfig {
-            connect_radius_m: 200.0,
-            ..PlannerConfig::DEFAULT
-        });
-        let q = Query {
-            start: Pose {
-                position: from,
-                heading: 0.0,
-            },
-            goal: Goal {
-                position: to,
-                heading: Some(0.0),
-            },
-            search: Search::Dijkstra,
-        };
-        p.plan(&q, u64::MAX)
-            .unwrap_or_else(|e| panic!("{name}: {e:?}"));
-        let paths = p.route_paths();
-        let link = if first { paths.first() } else { paths.last() };
-        let gap = sampled_gap(link.expect("a route"), Vec2::new(cx, cy), r);
-        assert!(
+    // The lattice at the origin, and 5 km from it on both axes, where the window's margin
+    // against rounding (1 m plus 10⁻³ of the extent and of the centre's coordinates) is 11 m.
+    for shift in [0.0f32, 5_000.0] {
+        let o = Vec2::new(shift, shift);
+        for (name, from, to, (cx, cy, r), centre, towards, first) in cases {
+            let (from, to, centre) = (from + o, to + o, centre + o);
+            let (cx, cy) = (cx + shift, cy + shift);
+            let mut obstacles = decoys(centre, towards);
+            obstacles.push(circle(cx, cy, r));
+            let spec = skyroute::network::write::NetworkSpec {
+                obstacles,
+                grid_cell_m: 500.0,
+                ..lattice_spec(4, 150.0, shift, 30.0)
+            };
+            let bytes = encode(&spec).expect("the lattice encodes");
+            let mut p: Box<WindowPlanner<'_>> = Box::new(Planner::new());
+            p.load(&bytes).expect("the lattice loads");
+            p.set_config(PlannerConfig {
+                connect_radius_m: 200.0,
+                ..PlannerConfig::DEFAULT
+            });
+            let q = Query {
+                start: Pose {
+                    position: from,
+                    heading: 0.0,
+                },
+                goal: Goal {
+                    position: to,
+                    heading: Some(0.0),
+                },
+                search: Search::Dijkstra,
+            };
+            p.plan(&q, u64::MAX)
+                .unwrap_or_else(|e| panic!("{name}: {e:?}"));
+            let paths = p.route_paths();
+            let link = if first { paths.first() } else { paths.last() };
+            let gap = sampled_gap(link.expect("a route"), Vec2::new(cx, cy), r);
+            assert!(
             gap >= 5.0 - 0.01,
-            "{name}: the connection comes {gap:.2} m from the circle left out of the window"
+            "{name} at {shift} m: the connection comes {gap:.2} m from the circle left out of the window"
         );
+        }
     }
 }
