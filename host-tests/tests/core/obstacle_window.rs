@@ -31,24 +31,35 @@ fn circle_at(distance: f32, angle: f32) -> ObstacleSpec {
     }
 }
 
+/// The 4 × 4 lattice with its south-west corner at (`origin`, `origin`) and `obstacles`.
+fn lattice_image(obstacles: Vec<ObstacleSpec>, origin: f32) -> Vec<u8> {
+    let spec = skyroute::network::write::NetworkSpec {
+        obstacles,
+        grid_cell_m: 500.0,
+        ..lattice_spec(4, 150.0, origin, 30.0)
+    };
+    encode(&spec).expect("the lattice encodes")
+}
+
+/// A planner on a lattice image, connecting endpoints within 200 m: to the nearest few
+/// lattice points only, so most routes use the network.
+fn lattice_planner(bytes: &[u8]) -> Box<WindowPlanner<'_>> {
+    let mut p: Box<WindowPlanner<'_>> = Box::new(Planner::new());
+    p.load(bytes).expect("the lattice loads");
+    p.set_config(PlannerConfig {
+        connect_radius_m: 200.0,
+        ..PlannerConfig::DEFAULT
+    });
+    p
+}
+
 /// Every query's result on the network with `obstacles` in this order.
 fn plan_all(
     obstacles: Vec<ObstacleSpec>,
     queries: &[Query],
 ) -> Vec<Result<RouteSummary, PlanError>> {
-    let spec = skyroute::network::write::NetworkSpec {
-        obstacles,
-        grid_cell_m: 500.0,
-        ..lattice_spec(4, 150.0, 0.0, 30.0)
-    };
-    let bytes = encode(&spec).expect("the lattice encodes");
-    let mut p: Box<WindowPlanner<'_>> = Box::new(Planner::new());
-    p.load(&bytes).expect("the lattice loads");
-    // Connections reach the nearest few lattice points only: most routes use the network.
-    p.set_config(PlannerConfig {
-        connect_radius_m: 200.0,
-        ..PlannerConfig::DEFAULT
-    });
+    let bytes = lattice_image(obstacles, 0.0);
+    let mut p = lattice_planner(&bytes);
     queries.iter().map(|q| p.plan(q, u64::MAX)).collect()
 }
 
@@ -260,18 +271,8 @@ fn a_connection_within_the_clearance_of_the_nearest_obstacle_left_out_is_refused
             let (cx, cy) = (cx + shift, cy + shift);
             let mut obstacles = decoys(centre, towards);
             obstacles.push(circle(cx, cy, r));
-            let spec = skyroute::network::write::NetworkSpec {
-                obstacles,
-                grid_cell_m: 500.0,
-                ..lattice_spec(4, 150.0, shift, 30.0)
-            };
-            let bytes = encode(&spec).expect("the lattice encodes");
-            let mut p: Box<WindowPlanner<'_>> = Box::new(Planner::new());
-            p.load(&bytes).expect("the lattice loads");
-            p.set_config(PlannerConfig {
-                connect_radius_m: 200.0,
-                ..PlannerConfig::DEFAULT
-            });
+            let bytes = lattice_image(obstacles, shift);
+            let mut p = lattice_planner(&bytes);
             let q = Query {
                 start: Pose {
                     position: from,
