@@ -8,6 +8,7 @@
 //! that test's module, beside what they check.
 
 use skyroute::geometry::hermite::HermiteSegment;
+use skyroute::{Primitive, Vec2};
 
 /// A point or vector in f64.
 pub type P = (f64, f64);
@@ -141,4 +142,21 @@ pub fn obstacle_polygons(obstacles: &[skyroute::network::write::ObstacleSpec]) -
             _ => None,
         })
         .collect()
+}
+
+/// The least f64 distance from `c` to the lines and arcs of `route`, sampled every 0.5 m
+/// along each (the points are the route's own, from `Primitive::pose_at`: what is flown).
+/// Sampling can only overstate the least distance, by at most the square of 0.25 m over
+/// twice the distance.
+pub fn route_distance(route: &[Primitive], c: Vec2) -> f64 {
+    let mut least = f64::INFINITY;
+    for q in route {
+        let n = (2.0 * q.length() as f64).ceil().max(1.0) as usize;
+        for i in 0..=n {
+            let t = q.length() * i as f32 / n as f32;
+            let at = q.pose_at(t).position;
+            least = least.min((at.x as f64 - c.x as f64).hypot(at.y as f64 - c.y as f64));
+        }
+    }
+    least
 }

@@ -5,6 +5,7 @@
 //! route keeps clear of them (f64 distances), and a switch that does not fit adds nothing.
 
 use host_tests::damage::fix_crc;
+use host_tests::reference::route_distance;
 use host_tests::rng::Rng;
 use host_tests::world::world;
 use skyroute::network::format::{
@@ -18,7 +19,7 @@ use skyroute::network::{Parameter, Section};
 use skyroute::planner::alternatives::{decide_stored, Announced, SwitchError};
 use skyroute::planner::decision::{DecisionError, DecisionLimits};
 use skyroute::planner::{PlanStep, PopupError};
-use skyroute::{Goal, LoadError, Network, Planner, Popup, Pose, Primitive, Query, Search, Vec2};
+use skyroute::{Goal, LoadError, Network, Planner, Popup, Pose, Query, Search, Vec2};
 
 /// A random table over a `size` × `size` world: 1 to 8 pop-ups of 1 to 4 alternatives of 0 to
 /// 8 blocking discs, every figure in its domain.
@@ -406,20 +407,6 @@ fn bad_announcements_and_choices_are_refused_by_name() {
         Err(SwitchError::BadChoice)
     );
     assert_eq!(p.popups().count(), 0);
-}
-
-/// The least f64 distance from `c` to the route's lines and arcs, sampled every 0.5 m.
-fn route_distance(route: &[Primitive], c: Vec2) -> f64 {
-    let mut least = f64::INFINITY;
-    for q in route {
-        let n = (2.0 * q.length() as f64).ceil().max(1.0) as usize;
-        for i in 0..=n {
-            let t = q.length() * i as f32 / n as f32;
-            let at = q.pose_at(t).position;
-            least = least.min((at.x as f64 - c.x as f64).hypot(at.y as f64 - c.y as f64));
-        }
-    }
-    least
 }
 
 #[test]
