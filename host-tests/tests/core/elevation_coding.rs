@@ -7,7 +7,7 @@
 //! whose edge understates the highest code under its band, which has a static obstacle, or
 //! whose edge joins coincident nodes.
 
-use host_tests::damage::{f32_bytes, replace_unique};
+use host_tests::damage::{f32_bytes, fix_crc, replace_unique};
 use host_tests::Rng;
 use skyroute::geometry::grid::CellGrid;
 use skyroute::network::elevation::{ElevationCoding, ELEVATION_BLOCKED};
@@ -119,13 +119,18 @@ fn terrain_image() -> Vec<u8> {
 
 /// The two-node terrain network of [`terrain_image`].
 fn terrain_spec() -> NetworkSpec {
+    terrain_spec_between(Vec2::new(200.0, 200.0), Vec2::new(800.0, 700.0))
+}
+
+/// A terrain network over a 1 km grid of 100 m cells, all at code 10, with two nodes at `a`
+/// and `b` joined both ways.
+fn terrain_spec_between(a: Vec2, b: Vec2) -> NetworkSpec {
     let grid = CellGrid {
         origin: Vec2::new(0.0, 0.0),
         cell: 100.0,
         cols: 10,
         rows: 10,
     };
-    let (a, b) = (Vec2::new(200.0, 200.0), Vec2::new(800.0, 700.0));
     NetworkSpec {
         origin_lat_deg: 36.5,
         origin_lon_deg: -84.2,
@@ -284,18 +289,6 @@ fn a_terrain_edge_below_its_length_or_between_nodes_too_close_is_refused() {
     }
 }
 
-/// [`terrain_spec`] with its two nodes at `a` and `b`.
-fn terrain_spec_between(a: Vec2, b: Vec2) -> NetworkSpec {
-    let mut spec = terrain_spec();
-    spec.vertices[0].position = a;
-    spec.vertices[1].position = b;
-    spec.edges = vec![
-        EdgeSpec::line(0, 1, a.distance(b)),
-        EdgeSpec::line(1, 0, a.distance(b)),
-    ];
-    spec
-}
-
 /// The band of an edge (the segment widened by the record's widening) must lie inside the
 /// elevation grid on each of its four sides: with the nodes 100 m from one side of the 1 km
 /// grid and at least 300 m from the others, a widening of 99 m loads and one of 101 m is
@@ -340,7 +333,7 @@ fn a_terrain_edge_code_below_its_cells_is_refused_and_one_above_loads() {
         .expect("the edge's middle");
     let mut raised = bytes.clone();
     raised[table + (r * t.cols + c) as usize] = 11;
-    host_tests::damage::fix_crc(&mut raised);
+    fix_crc(&mut raised);
     assert_eq!(
         Network::from_bytes(&raised).err(),
         Some(LoadError::EdgeElevationUnderstated {
@@ -351,7 +344,7 @@ fn a_terrain_edge_code_below_its_cells_is_refused_and_one_above_loads() {
     );
     let mut lowered = bytes.clone();
     lowered[table..].fill(9);
-    host_tests::damage::fix_crc(&mut lowered);
+    fix_crc(&mut lowered);
     let net = Network::from_bytes(&lowered).expect("an overstated code loads");
     assert_eq!(net.edge_highest_code(0), Some(10));
     assert_eq!(net.elevation_code(c, r), 9);
