@@ -194,6 +194,10 @@ scipy_voronoi_reference() {
     python3 scripts/voronoi_reference.py
 }
 
+scipy_vertical_reference() {
+    python3 scripts/vertical_reference.py
+}
+
 # Builds the niendorf-urban network with the ground tool and writes the firmware's fixture
 # (FIXTURE_SYNTHETIC=1: a small synthetic grid network instead, for debugging the firmware alone).
 fixture() {
@@ -344,6 +348,7 @@ step "core docs (cargo doc, warnings denied)" \
     env RUSTDOCFLAGS="-D warnings" cargo doc -p skyroute --no-deps
 step "OMPL Dubins reference" ompl_reference
 step "SciPy Voronoi reference" scipy_voronoi_reference
+step "SciPy vertical-profile reference (LP)" scipy_vertical_reference
 step "cargo test --workspace (full tier)" \
     env SKYROUTE_TIER=full cargo test --workspace --features skyroute-prep/milp
 step "C ABI (header vs cbindgen, C program vs Rust API, thumbv7em library)" scripts/ffi-check.sh

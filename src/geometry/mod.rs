@@ -11,6 +11,7 @@ pub mod line_cover;
 pub mod predicates;
 pub mod spline;
 pub mod trig;
+pub mod vertical;
 pub mod voronoi;
 
 pub use dubins::{DubinsEnd, DubinsPath, DubinsWord, WordSet};
@@ -411,6 +412,26 @@ impl Primitive {
             }
             Primitive::Arc(a) => a.pose_at(s),
         }
+    }
+
+    /// The part of the primitive between arc lengths `first` and `last` from its start (clamped
+    /// to it), flown the same way; `None` when the interval misses it (or a bound is NaN).
+    pub fn trimmed(&self, first: f32, last: f32) -> Option<Primitive> {
+        let len = self.length();
+        let (first, last) = (first.max(0.0), last.min(len));
+        if !(first <= last) {
+            return None;
+        }
+        Some(match self {
+            Primitive::Line(seg) => {
+                Primitive::Line(Segment::new(seg.point_at(first), seg.point_at(last)))
+            }
+            Primitive::Arc(a) => Primitive::Arc(Arc {
+                start_angle: a.start_angle + a.turn().sign() * first / a.radius,
+                sweep: a.turn().sign() * (last - first) / a.radius,
+                ..*a
+            }),
+        })
     }
 
     /// First point.

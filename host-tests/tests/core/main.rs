@@ -56,6 +56,9 @@ mod spline;
 mod stored_alternatives;
 /// The core's f32 sine and cosine against f64.
 mod trig;
+/// The vertical profile of Niendorf et al.'s aircraft: the limits, an LP reference, the span
+/// below a ceiling against an f64 profile, and buildings of finite height against sampling.
+mod vertical_profile;
 /// The Voronoi diagram of threat sites against an exact brute force, SciPy's CSV and closed
 /// forms for degenerate inputs; its work bound and the clipped graph's shape.
 mod voronoi;
