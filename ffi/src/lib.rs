@@ -69,7 +69,7 @@ pub const SR_MAX_ROUTE_PRIMITIVES: usize = 128;
 pub const SR_MAX_POPUP_VERTICES: usize = 16;
 /// Bytes that suffice for a planner on every target this library builds for (at least
 /// `sr_planner_size()`; checked at compile time).
-pub const SR_PLANNER_STORAGE_SIZE: usize = 85752;
+pub const SR_PLANNER_STORAGE_SIZE: usize = 85760;
 /// An alignment that suffices for a planner on every target this library builds for (a
 /// multiple of `sr_planner_align()`; checked at compile time).
 pub const SR_PLANNER_STORAGE_ALIGN: usize = 8;

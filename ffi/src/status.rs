@@ -143,6 +143,12 @@ pub enum SrStatus {
     /// `LoadError::BadPopupAlternatives`: a stored pop-up, bypass alternative or blocking disc is
     /// out of its domain, or the alternatives tables' counts do not add up to their record's.
     LoadBadPopupAlternatives = 141,
+    /// `LoadError::BadAltitude`: a three-dimensional roadmap's vertex altitude is not finite or
+    /// beyond 100 km, or an obstacle height is NaN or not positive.
+    LoadBadAltitude = 142,
+    /// `LoadError::EdgeTooSteep`: a three-dimensional roadmap's edge climbs or descends more
+    /// than the vertical limits allow over its length.
+    LoadEdgeTooSteep = 143,
     /// `PlanError::NonFinite`: A position or heading is NaN or infinite.
     PlanNonFinite = 200,
     /// `PlanError::OutOfRange`: A position lies beyond `MAX_COORDINATE_M` of the network's origin.
@@ -274,6 +280,8 @@ pub fn load_status(e: &LoadError) -> SrStatus {
         LoadError::ChainShorterThanChords { .. } => SrStatus::LoadChainShorterThanChords,
         LoadError::EdgeOutsideGrid { .. } => SrStatus::LoadEdgeOutsideGrid,
         LoadError::BadPopupAlternatives { .. } => SrStatus::LoadBadPopupAlternatives,
+        LoadError::BadAltitude { .. } => SrStatus::LoadBadAltitude,
+        LoadError::EdgeTooSteep { .. } => SrStatus::LoadEdgeTooSteep,
     }
 }
 
@@ -370,6 +378,8 @@ impl SrStatus {
             SrStatus::LoadChainShorterThanChords => c"SR_STATUS_LOAD_CHAIN_SHORTER_THAN_CHORDS",
             SrStatus::LoadEdgeOutsideGrid => c"SR_STATUS_LOAD_EDGE_OUTSIDE_GRID",
             SrStatus::LoadBadPopupAlternatives => c"SR_STATUS_LOAD_BAD_POPUP_ALTERNATIVES",
+            SrStatus::LoadBadAltitude => c"SR_STATUS_LOAD_BAD_ALTITUDE",
+            SrStatus::LoadEdgeTooSteep => c"SR_STATUS_LOAD_EDGE_TOO_STEEP",
             SrStatus::PlanNonFinite => c"SR_STATUS_PLAN_NON_FINITE",
             SrStatus::PlanOutOfRange => c"SR_STATUS_PLAN_OUT_OF_RANGE",
             SrStatus::PlanInsideObstacle => c"SR_STATUS_PLAN_INSIDE_OBSTACLE",
@@ -425,7 +435,7 @@ impl SrStatus {
 }
 
 /// Every status, in the order of their numbers.
-const ALL: [SrStatus; 82] = [
+const ALL: [SrStatus; 84] = [
     SrStatus::Ok,
     SrStatus::NullPointer,
     SrStatus::MemoryMisaligned,
@@ -475,6 +485,8 @@ const ALL: [SrStatus; 82] = [
     SrStatus::LoadChainShorterThanChords,
     SrStatus::LoadEdgeOutsideGrid,
     SrStatus::LoadBadPopupAlternatives,
+    SrStatus::LoadBadAltitude,
+    SrStatus::LoadEdgeTooSteep,
     SrStatus::PlanNonFinite,
     SrStatus::PlanOutOfRange,
     SrStatus::PlanInsideObstacle,

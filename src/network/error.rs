@@ -50,6 +50,12 @@ pub enum Section {
     StoredAlternatives,
     /// The alternatives' blocking discs.
     BlockingDiscs,
+    /// A three-dimensional roadmap's vertical limits.
+    Vertical,
+    /// A three-dimensional roadmap's vertex altitudes.
+    Altitudes,
+    /// A three-dimensional roadmap's obstacle heights.
+    ObstacleHeights,
 }
 
 /// A scalar header parameter, named in [`LoadError::InvalidParameter`].
@@ -69,8 +75,11 @@ pub enum Parameter {
     /// The grid must have at least one cell along each axis.
     GridDimensions,
     /// The flags must be zero but for
-    /// [`FLAG_POPUP_ALTERNATIVES`](super::format::FLAG_POPUP_ALTERNATIVES).
+    /// [`FLAG_POPUP_ALTERNATIVES`](super::format::FLAG_POPUP_ALTERNATIVES) and, in roadmap
+    /// mode, [`FLAG_VERTICAL`](super::format::FLAG_VERTICAL).
     Flags,
+    /// A three-dimensional roadmap's vertical limits must be finite and positive.
+    Vertical,
     /// The pop-up alternatives' record must store 1 to
     /// [`MAX_STORED_POPUPS`](super::format::MAX_STORED_POPUPS) pop-ups, a nominal route of at
     /// least one step and finite limits of magnitude at most 10⁶.
@@ -239,6 +248,21 @@ pub enum LoadError {
     },
     /// An edge costs less than the length of its geometry.
     CostBelowLength {
+        /// Edge index.
+        edge: u32,
+    },
+    /// A three-dimensional roadmap: a vertex altitude that is not finite or beyond
+    /// [`MAX_ALTITUDE_M`](super::format::MAX_ALTITUDE_M), or an obstacle height that is NaN
+    /// or not positive.
+    BadAltitude {
+        /// [`Section::Altitudes`] or [`Section::ObstacleHeights`].
+        section: Section,
+        /// Vertex or obstacle index.
+        index: u32,
+    },
+    /// A three-dimensional roadmap: an edge's altitude change is more than a rest-to-rest move
+    /// within the vertical limits makes over its length.
+    EdgeTooSteep {
         /// Edge index.
         edge: u32,
     },
@@ -480,6 +504,16 @@ impl fmt::Display for LoadError {
                 )
             }
             CostBelowLength { edge } => write!(f, "edge {edge} costs less than its length"),
+            BadAltitude { section, index } => {
+                write!(
+                    f,
+                    "{section:?} record {index} is not a valid altitude or height"
+                )
+            }
+            EdgeTooSteep { edge } => write!(
+                f,
+                "edge {edge} climbs or descends more than the vertical limits allow over its length"
+            ),
             BadObstacle { obstacle } => write!(f, "obstacle {obstacle} is malformed"),
             GridTooSmall { vertex } => {
                 write!(f, "grid index does not cover the reach of vertex {vertex}")

@@ -179,8 +179,35 @@ impl EdgeRecord {
 }
 
 /// Header flag: the body holds the pop-up alternatives section ([`AlternativesRecord`]) after
-/// the mode's section, before the provenance records. No other flag is defined.
+/// the mode's section (and the vertical section), before the provenance records.
 pub const FLAG_POPUP_ALTERNATIVES: u8 = 1;
+
+/// Header flag, roadmap mode only: the network is three-dimensional (Niendorf et al.'s Dubins
+/// car with a vertical double integrator). The body holds the vertical section after the mode's
+/// section: a [`VerticalRecord`], one [`F32Record`] altitude per vertex, then one
+/// [`F32Record`] height per obstacle.
+pub const FLAG_VERTICAL: u8 = 2;
+
+/// The largest magnitude of a vertex altitude or a start or goal altitude, metres (100 km).
+pub const MAX_ALTITUDE_M: f32 = 1e5;
+
+/// The aircraft's vertical limits in a three-dimensional roadmap ([`FLAG_VERTICAL`]): every
+/// edge's altitude change is a rest-to-rest move within them over the edge's length
+/// ([`crate::geometry::vertical::VerticalProfile`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct VerticalRecord {
+    /// Horizontal airspeed, m/s (finite, > 0).
+    pub airspeed: f32,
+    /// Largest climb or sink rate, m/s (finite, > 0).
+    pub climb_rate: f32,
+    /// Largest vertical acceleration, m/s² (finite, > 0).
+    pub vertical_accel: f32,
+}
+
+impl VerticalRecord {
+    /// Encoded size.
+    pub const SIZE: usize = 12;
+}
 
 /// The most pop-ups the alternatives section stores (the decision's
 /// [`MAX_DECISION_POPUPS`](crate::planner::decision::MAX_DECISION_POPUPS)).
@@ -480,7 +507,10 @@ impl U16Record {
     pub const SIZE: usize = 2;
 }
 
-/// An `f32` (a rosette quality) as a fixed-width record.
+/// An `f32` as a fixed-width record: a rosette quality, a Voronoi corner-table value, or in a
+/// three-dimensional roadmap a vertex's altitude (metres, finite, at most [`MAX_ALTITUDE_M`] in
+/// magnitude) or an obstacle's height (metres above the altitudes' datum, positive, `+∞` for an
+/// obstacle no altitude clears).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct F32Record(pub f32);
 

@@ -30,6 +30,9 @@ pub(super) struct Layout {
     pub(super) voronoi: usize,
     pub(super) threats: usize,
     pub(super) corner_table: usize,
+    /// A three-dimensional roadmap's vertical record, followed by its vertex altitudes and
+    /// obstacle heights, when the header's flag says so (0 otherwise).
+    pub(super) vertical: usize,
     /// The pop-up alternatives' record and tables, when the header's flag says so (0
     /// otherwise).
     pub(super) alternatives: usize,
@@ -63,6 +66,7 @@ impl Layout {
         voronoi: 0,
         threats: 0,
         corner_table: 0,
+        vertical: 0,
         alternatives: 0,
         stored_popups: 0,
         stored_alternatives: 0,

@@ -19,6 +19,7 @@ pub use roadmap::dubins_hull;
 mod terrain;
 mod validate;
 mod verify;
+mod vertical;
 mod voronoi;
 pub use verify::{ImageVerifier, VerifyStep};
 #[cfg(feature = "std")]
@@ -27,8 +28,8 @@ pub mod write;
 pub use alternatives::{AlternativesSummary, StoredAlternative, StoredPopup};
 pub use crc::{crc32, crc32_parts};
 pub use error::{LoadError, Parameter, Section};
-pub use mode::Mode;
 use layout::Layout;
+pub use mode::Mode;
 use mode::ModeSection;
 pub use voronoi::CornerTable;
 
@@ -229,6 +230,10 @@ impl<'a> Network<'a> {
             Mode::Voronoi => voronoi::read_section(bytes, layout)?,
             Mode::Unknown(mode) => return Err(LoadError::UnknownMode { mode }),
         };
+        let layout = match header.flags & FLAG_VERTICAL {
+            0 => layout,
+            _ => vertical::read_section(bytes, layout, &header)?,
+        };
         let layout = match header.flags & FLAG_POPUP_ALTERNATIVES {
             0 => layout,
             _ => alternatives::read_section(bytes, layout)?,
@@ -269,6 +274,7 @@ impl<'a> Network<'a> {
         };
         net.validate_parameters()?;
         net.validate_vertices()?;
+        net.validate_vertical()?;
         // The mode's own tables come before the edges that index them.
         net.section = match section {
             ModeSection::Roadmap | ModeSection::Terrain(_) | ModeSection::Voronoi(_) => section,

@@ -51,7 +51,7 @@ impl<'a> Network<'a> {
         if !(r.cost >= length * (1.0 - 1e-5)) {
             return Err(LoadError::CostBelowLength { edge: i });
         }
-        Ok(())
+        self.validate_edge_climb(i, ends, length)
     }
 
     /// Roadmap mode: edge `e`'s end poses and word, what its path is solved from.

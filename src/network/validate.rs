@@ -10,7 +10,11 @@ impl<'a> Network<'a> {
     pub(super) fn validate_parameters(&self) -> Result<(), LoadError> {
         let h = &self.header;
         let bad = |parameter| Err(LoadError::InvalidParameter { parameter });
-        if h.flags & !FLAG_POPUP_ALTERNATIVES != 0 {
+        let allowed = match self.section {
+            ModeSection::Roadmap => FLAG_POPUP_ALTERNATIVES | FLAG_VERTICAL,
+            _ => FLAG_POPUP_ALTERNATIVES,
+        };
+        if h.flags & !allowed != 0 {
             return bad(Parameter::Flags);
         }
         if !(h.turn_radius_m.is_finite() && h.turn_radius_m > 0.0) {

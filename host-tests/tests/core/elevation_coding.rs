@@ -392,3 +392,28 @@ fn coincident_terrain_nodes_are_refused_at_any_turn_radius() {
         }))
     );
 }
+
+/// Only a roadmap may be three-dimensional: a terrain network is neither written with the
+/// vertical section nor loaded with its flag.
+#[test]
+fn a_terrain_network_with_the_vertical_flag_is_refused() {
+    let mut flagged = terrain_image();
+    flagged[7] |= skyroute::network::format::FLAG_VERTICAL;
+    fix_crc(&mut flagged);
+    assert_eq!(
+        Network::from_bytes(&flagged).unwrap_err(),
+        LoadError::InvalidParameter {
+            parameter: Parameter::Flags
+        }
+    );
+    let spec = terrain_spec();
+    let vertical = skyroute::network::write::VerticalSpec {
+        limits: skyroute::geometry::vertical::VerticalLimits::niendorf(25.0),
+        altitudes: vec![0.0; spec.vertices.len()],
+        heights: Vec::new(),
+    };
+    assert!(matches!(
+        skyroute::network::write::encode_three_dimensional(&spec, &vertical, None),
+        Err(skyroute::network::write::WriteError::BadVertical(_))
+    ));
+}

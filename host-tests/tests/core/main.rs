@@ -56,6 +56,9 @@ mod spline;
 mod stored_alternatives;
 /// The core's f32 sine and cosine against f64.
 mod trig;
+/// A three-dimensional roadmap's vertical section: written and read back, bad limits,
+/// altitudes and heights refused by name, an edge's climb at the limits' boundary.
+mod vertical_network;
 /// The vertical profile of Niendorf et al.'s aircraft: the limits, an LP reference, the span
 /// below a ceiling against an f64 profile, and buildings of finite height against sampling.
 mod vertical_profile;

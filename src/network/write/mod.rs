@@ -11,10 +11,13 @@ use std::vec::Vec;
 mod alternatives;
 mod grid;
 mod landmark;
+mod vertical;
 use alternatives::write_alternatives_section;
 pub use alternatives::{AlternativeSpec, AlternativesSpec, PopupSpec};
 use grid::GridIndex;
 use landmark::{check_landmark, write_landmark_section};
+use vertical::write_vertical_section;
+pub use vertical::VerticalSpec;
 
 /// A directed edge to write.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -204,6 +207,9 @@ pub enum WriteError {
     BadTerrain(&'static str),
     /// Voronoi mode: an edge is not a straight line.
     BadVoronoi(&'static str),
+    /// A three-dimensional roadmap: the vertical tables do not match the vertices or the
+    /// obstacles, or the network is not a roadmap.
+    BadVertical(&'static str),
     /// Roadmap mode: an edge's lengths are not those of its word's path between its end
     /// poses ([`DubinsPath::with_word`]), which is what the image keeps and the aircraft flies.
     EdgeGeometry {
@@ -250,6 +256,7 @@ impl core::fmt::Display for WriteError {
             WriteError::BadTerrain(what) => write!(f, "terrain network: {what}"),
             WriteError::BadLandmark(what) => write!(f, "landmark network: {what}"),
             WriteError::BadVoronoi(what) => write!(f, "Voronoi network: {what}"),
+            WriteError::BadVertical(what) => write!(f, "three-dimensional roadmap: {what}"),
             WriteError::EdgeGeometry { edge } => write!(
                 f,
                 "edge {edge}'s lengths are not its Dubins word's between its two poses"
@@ -302,7 +309,23 @@ fn push<T: serde::Serialize>(out: &mut Vec<u8>, record: &T) {
 
 /// Encodes a network and validates the result with [`Network::from_bytes`].
 pub fn encode(spec: &NetworkSpec) -> Result<Vec<u8>, WriteError> {
-    encode_image(spec, None)
+    encode_image(spec, None, None)
+}
+
+/// Encodes a three-dimensional roadmap (header flag [`FLAG_VERTICAL`]), with the pop-up
+/// alternatives section too when `alternatives` is given, and validates the result with
+/// [`Network::from_bytes`].
+pub fn encode_three_dimensional(
+    spec: &NetworkSpec,
+    vertical: &VerticalSpec,
+    alternatives: Option<&AlternativesSpec>,
+) -> Result<Vec<u8>, WriteError> {
+    if spec.terrain.is_some() || spec.landmark.is_some() || spec.voronoi.is_some() {
+        return Err(WriteError::BadVertical(
+            "only a roadmap can be three-dimensional",
+        ));
+    }
+    encode_image(spec, alternatives, Some(vertical))
 }
 
 /// Encodes a network with the pop-up alternatives section (header flag
@@ -311,12 +334,13 @@ pub fn encode_with_alternatives(
     spec: &NetworkSpec,
     alternatives: &AlternativesSpec,
 ) -> Result<Vec<u8>, WriteError> {
-    encode_image(spec, Some(alternatives))
+    encode_image(spec, Some(alternatives), None)
 }
 
 fn encode_image(
     spec: &NetworkSpec,
     alternatives: Option<&AlternativesSpec>,
+    vertical: Option<&VerticalSpec>,
 ) -> Result<Vec<u8>, WriteError> {
     if spec.vertices.len() as u64 > MAX_VERTICES as u64 {
         return Err(WriteError::TooLarge(
@@ -418,6 +442,9 @@ fn encode_image(
     if let Some(v) = &spec.voronoi {
         write_voronoi_section(&mut body, v);
     }
+    if let Some(v) = vertical {
+        write_vertical_section(&mut body, v, spec.vertices.len(), spec.obstacles.len())?;
+    }
     if let Some(a) = alternatives {
         write_alternatives_section(&mut body, a)?;
     }
@@ -429,7 +456,8 @@ fn encode_image(
         magic: MAGIC,
         version: FORMAT_VERSION,
         mode,
-        flags: alternatives.map_or(0, |_| FLAG_POPUP_ALTERNATIVES),
+        flags: alternatives.map_or(0, |_| FLAG_POPUP_ALTERNATIVES)
+            | vertical.map_or(0, |_| FLAG_VERTICAL),
         origin_lat_deg: spec.origin_lat_deg,
         origin_lon_deg: spec.origin_lon_deg,
         turn_radius_m: spec.turn_radius_m,
