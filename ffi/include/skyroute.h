@@ -27,7 +27,7 @@
 
 // Bytes that suffice for a planner on every target this library builds for (at least
 // `sr_planner_size()`; checked at compile time).
-#define SR_PLANNER_STORAGE_SIZE 85752
+#define SR_PLANNER_STORAGE_SIZE 85760
 
 // An alignment that suffices for a planner on every target this library builds for (a
 // multiple of `sr_planner_align()`; checked at compile time).
@@ -193,6 +193,12 @@ enum sr_status
   // `LoadError::BadPopupAlternatives`: a stored pop-up, bypass alternative or blocking disc is
   // out of its domain, or the alternatives tables' counts do not add up to their record's.
   SR_STATUS_LOAD_BAD_POPUP_ALTERNATIVES = 141,
+  // `LoadError::BadAltitude`: a three-dimensional roadmap's vertex altitude is not finite or
+  // beyond 100 km, or an obstacle height is NaN or not positive.
+  SR_STATUS_LOAD_BAD_ALTITUDE = 142,
+  // `LoadError::EdgeTooSteep`: a three-dimensional roadmap's edge climbs or descends more
+  // than the vertical limits allow over its length.
+  SR_STATUS_LOAD_EDGE_TOO_STEEP = 143,
   // `PlanError::NonFinite`: A position or heading is NaN or infinite.
   SR_STATUS_PLAN_NON_FINITE = 200,
   // `PlanError::OutOfRange`: A position lies beyond `MAX_COORDINATE_M` of the network's origin.
