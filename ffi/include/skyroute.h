@@ -258,6 +258,11 @@ enum sr_status
   // applies to roadmap and terrain routes, chains of Dubins paths; a landmark route (Hermite
   // pieces) or a Voronoi route (a smoothed spline) is left as it is.
   SR_STATUS_PLAN_NOT_DUBINS_ROUTE = 223,
+  // `PlanError::NotThreeDimensional`: the operation needs a three-dimensional roadmap.
+  SR_STATUS_PLAN_NOT_THREE_DIMENSIONAL = 224,
+  // `PlanError::AltitudesNeeded`: a three-dimensional roadmap's query needs the start's and
+  // goal's altitudes (`Planner::set_query_altitudes`).
+  SR_STATUS_PLAN_ALTITUDES_NEEDED = 225,
   // `PopupError::NoFreeSlot`: All `P` pop-up slots are in use.
   SR_STATUS_POPUP_NO_FREE_SLOT = 300,
   // `PopupError::NonFinite`: A coordinate or radius is NaN or infinite.

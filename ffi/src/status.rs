@@ -208,6 +208,11 @@ pub enum SrStatus {
     /// applies to roadmap and terrain routes, chains of Dubins paths; a landmark route (Hermite
     /// pieces) or a Voronoi route (a smoothed spline) is left as it is.
     PlanNotDubinsRoute = 223,
+    /// `PlanError::NotThreeDimensional`: the operation needs a three-dimensional roadmap.
+    PlanNotThreeDimensional = 224,
+    /// `PlanError::AltitudesNeeded`: a three-dimensional roadmap's query needs the start's and
+    /// goal's altitudes (`Planner::set_query_altitudes`).
+    PlanAltitudesNeeded = 225,
     /// `PopupError::NoFreeSlot`: All `P` pop-up slots are in use.
     PopupNoFreeSlot = 300,
     /// `PopupError::NonFinite`: A coordinate or radius is NaN or infinite.
@@ -307,6 +312,8 @@ pub fn plan_status(e: &PlanError) -> SrStatus {
         PlanError::RosetteTableFull { .. } => SrStatus::PlanRosetteTableFull,
         PlanError::InvalidRange => SrStatus::PlanInvalidRange,
         PlanError::NotDubinsRoute => SrStatus::PlanNotDubinsRoute,
+        PlanError::NotThreeDimensional => SrStatus::PlanNotThreeDimensional,
+        PlanError::AltitudesNeeded => SrStatus::PlanAltitudesNeeded,
         PlanError::Smoothing { .. } => SrStatus::PlanSmoothing,
         PlanError::TooManySearchStates { .. } => SrStatus::PlanTooManySearchStates,
         PlanError::Internal => SrStatus::PlanInternal,
@@ -399,6 +406,8 @@ impl SrStatus {
             SrStatus::PlanRosetteTableFull => c"SR_STATUS_PLAN_ROSETTE_TABLE_FULL",
             SrStatus::PlanInvalidRange => c"SR_STATUS_PLAN_INVALID_RANGE",
             SrStatus::PlanNotDubinsRoute => c"SR_STATUS_PLAN_NOT_DUBINS_ROUTE",
+            SrStatus::PlanNotThreeDimensional => c"SR_STATUS_PLAN_NOT_THREE_DIMENSIONAL",
+            SrStatus::PlanAltitudesNeeded => c"SR_STATUS_PLAN_ALTITUDES_NEEDED",
             SrStatus::PlanSmoothing => c"SR_STATUS_PLAN_SMOOTHING",
             SrStatus::PlanTooManySearchStates => c"SR_STATUS_PLAN_TOO_MANY_SEARCH_STATES",
             SrStatus::PlanInternal => c"SR_STATUS_PLAN_INTERNAL",
@@ -435,7 +444,7 @@ impl SrStatus {
 }
 
 /// Every status, in the order of their numbers.
-const ALL: [SrStatus; 84] = [
+const ALL: [SrStatus; 86] = [
     SrStatus::Ok,
     SrStatus::NullPointer,
     SrStatus::MemoryMisaligned,
@@ -509,6 +518,8 @@ const ALL: [SrStatus; 84] = [
     SrStatus::PlanInternal,
     SrStatus::PlanInvalidRange,
     SrStatus::PlanNotDubinsRoute,
+    SrStatus::PlanNotThreeDimensional,
+    SrStatus::PlanAltitudesNeeded,
     SrStatus::PopupNoFreeSlot,
     SrStatus::PopupNonFinite,
     SrStatus::PopupNonPositiveRadius,

@@ -8,6 +8,7 @@
 //! that test's module, beside what they check.
 
 use skyroute::geometry::hermite::HermiteSegment;
+use skyroute::geometry::vertical::{VerticalLimits, VerticalProfile};
 use skyroute::{Primitive, Vec2};
 
 /// A point or vector in f64.
@@ -159,4 +160,37 @@ pub fn route_distance(route: &[Primitive], c: Vec2) -> f64 {
         }
     }
     least
+}
+
+/// The altitude `s` metres along an edge with profile `p`, from the definitions in f64 (never
+/// calling `skyroute`'s arithmetic): a rest-to-rest move of `d = |to − from|` in the least
+/// distance, the gradient ramping at `k = a_z/v²` up to at most `g = v_c/v` and back; a climb
+/// flown at once, a descent as late as it can be.
+pub fn vertical_altitude(p: &VerticalProfile, limits: &VerticalLimits, s: f64) -> f64 {
+    let v = limits.airspeed as f64;
+    let (g, k) = (
+        limits.climb_rate as f64 / v,
+        limits.vertical_accel as f64 / (v * v),
+    );
+    let (from, to, length) = (p.from as f64, p.to as f64, p.length as f64);
+    let d = (to - from).abs();
+    let (ease, ramp) = if d >= g * g / k {
+        (g / k, d / g + g / k)
+    } else {
+        ((d / k).sqrt(), 2.0 * (d / k).sqrt())
+    };
+    let start = if to >= from { 0.0 } else { length - ramp };
+    let u = (s.clamp(0.0, length) - start).clamp(0.0, ramp);
+    let moved = if u <= ease {
+        0.5 * k * u * u
+    } else if u >= ramp - ease {
+        d - 0.5 * k * (ramp - u).powi(2)
+    } else {
+        0.5 * k * ease * ease + k * ease * (u - ease)
+    };
+    if to >= from {
+        from + moved
+    } else {
+        from - moved
+    }
 }

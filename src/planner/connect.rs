@@ -1,6 +1,6 @@
 //! Connecting the start and the goal to the network with collision-checked Dubins paths.
 
-use super::state::ModeState;
+use super::state::{LinkEnd, ModeState};
 use super::window::{ObstacleWindow, Slot};
 use super::{Goal, Link, Meter, PlanError, Planner, QueryField, MAX_CANDIDATES, MAX_GOAL_HEADINGS};
 use crate::geometry::predicates::{
@@ -30,6 +30,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             };
             meter.work.collision_tests += 1;
             if p.x < lo.x || p.y < lo.y || p.x > hi.x || p.y > hi.y {
+                continue;
+            }
+            let end = match field {
+                QueryField::Start => LinkEnd::Start,
+                QueryField::Goal => LinkEnd::Goal,
+            };
+            if self.end_is_above(end, i, 0.0) {
                 continue;
             }
             let inside = match obstacle {
@@ -141,6 +148,23 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
+    /// Whether a link's `path` is clear: in a three-dimensional roadmap (`altitudes` given,
+    /// in the direction of flight) flyable and clear in 3-D ([`Planner::path_is_clear_climbing`],
+    /// against every obstacle), otherwise clear of the obstacles `window` keeps where it covers
+    /// the path.
+    fn link_is_clear(
+        &self,
+        path: &DubinsPath,
+        altitudes: Option<(f32, f32)>,
+        window: &ObstacleWindow<'n>,
+        meter: &mut Meter,
+    ) -> bool {
+        match altitudes {
+            Some(ends) => self.path_is_clear_climbing(path, ends, meter),
+            None => self.path_is_clear_near(path, window, meter),
+        }
+    }
+
     /// [`Planner::path_is_clear`] against the `count` obstacles `obstacle` gives (with their
     /// bounding boxes; `None`: unreadable, so not clear).
     fn path_clear_of(
@@ -151,7 +175,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         meter: &mut Meter,
     ) -> bool {
         let over_terrain = match self.state {
-            ModeState::Roadmap | ModeState::Landmark(_) | ModeState::Voronoi(_) => true,
+            ModeState::Roadmap(_) | ModeState::Landmark(_) | ModeState::Voronoi(_) => true,
             ModeState::Terrain(_) => path
                 .primitives()
                 .into_iter()
@@ -177,12 +201,21 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     return false;
                 }
             }
-            for (_, popup) in self.popups() {
-                let (conflict, tests) = popup.conflicts(&prim, clearance);
-                meter.work.collision_tests += tests as u64;
-                if conflict {
-                    return false;
-                }
+            if !self.primitive_clear_of_popups(&prim, meter) {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// Whether `prim` keeps the clearance from every active pop-up (exact predicates).
+    pub(super) fn primitive_clear_of_popups(&self, prim: &Primitive, meter: &mut Meter) -> bool {
+        let clearance = self.network.clearance();
+        for (_, popup) in self.popups() {
+            let (conflict, tests) = popup.conflicts(prim, clearance);
+            meter.work.collision_tests += tests as u64;
+            if conflict {
+                return false;
             }
         }
         true
@@ -240,7 +273,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let Some(path) = path else {
             return Ok(());
         };
-        if self.path_is_clear_near(&path, self.start_window(), meter) {
+        let altitudes = self.link_altitudes(LinkEnd::Start, v);
+        if self.link_is_clear(&path, altitudes, self.start_window(), meter) {
             let _ = self.start_links.push(Link {
                 vertex: v,
                 path,
@@ -292,8 +326,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             return Err(PlanError::Internal);
         };
         let window = self.goal_window().ok_or(PlanError::Internal)?;
+        let altitudes = self.link_altitudes(LinkEnd::Goal, v);
         if self.config().headings(goal) > 1 {
-            if let Some(path) = self.probe_goal_path(&from, goal, window, meter) {
+            if let Some(path) = self.probe_goal_path(&from, goal, altitudes, window, meter) {
                 let radius = self.network.turn_radius();
                 let bound = DubinsPath::length_lower_bound(from.position, goal.position, radius);
                 let _ = self.goal_links.push(Link {
@@ -305,7 +340,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 return meter.check();
             }
         }
-        if let Some(path) = self.best_clear_path_to_goal(&from, goal, window, meter)? {
+        if let Some(path) = self.best_clear_path_to_goal(&from, goal, altitudes, window, meter)? {
             let _ = self.goal_links.push(Link {
                 vertex: v,
                 path,
@@ -322,6 +357,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &self,
         from: &Pose,
         goal: &Goal,
+        altitudes: Option<(f32, f32)>,
         window: &ObstacleWindow<'n>,
         meter: &mut Meter,
     ) -> Option<DubinsPath> {
@@ -335,7 +371,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         );
         let path =
             DubinsPath::shortest_between(&from, &to, self.network.turn_radius(), WordSet::ALL)?;
-        self.path_is_clear_near(&path, window, meter)
+        self.link_is_clear(&path, altitudes, window, meter)
             .then_some(path)
     }
 
@@ -361,8 +397,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             .ok_or(PlanError::Internal)?;
         self.read_goal_window_once(goal.position, meter);
         let window = self.goal_window().ok_or(PlanError::Internal)?;
+        let altitudes = self.link_altitudes(LinkEnd::Goal, link.vertex);
         let path = self
-            .best_clear_path_to_goal(&from, goal, window, meter)?
+            .best_clear_path_to_goal(&from, goal, altitudes, window, meter)?
             .ok_or(PlanError::Internal)?;
         let exact = Link {
             path,
@@ -387,6 +424,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         &self,
         from: &Pose,
         goal: &Goal,
+        altitudes: Option<(f32, f32)>,
         window: &ObstacleWindow<'n>,
         meter: &mut Meter,
     ) -> Result<Option<DubinsPath>, PlanError> {
@@ -432,7 +470,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             let path = goal_end(k)
                 .and_then(|to| DubinsPath::word_between(&from, &to, radius, word))
                 .ok_or(PlanError::Internal)?; // solved above, with the same numbers
-            if self.path_is_clear_near(&path, window, meter) {
+            if self.link_is_clear(&path, altitudes, window, meter) {
                 return Ok(Some(path));
             }
             meter.check()?;

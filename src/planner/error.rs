@@ -70,8 +70,15 @@ pub enum PlanError {
         field: QueryField,
     },
     /// [`Planner::set_altitude`](super::Planner::set_altitude) got a non-finite altitude or a
-    /// negative or non-finite safety height.
+    /// negative or non-finite safety height, or
+    /// [`Planner::set_query_altitudes`](super::Planner::set_query_altitudes) an altitude that is
+    /// not finite or beyond 100 km.
     InvalidAltitude,
+    /// Three-dimensional roadmap only: the operation needs a three-dimensional roadmap.
+    NotThreeDimensional,
+    /// A three-dimensional roadmap's query needs the start's and the goal's altitudes
+    /// ([`Planner::set_query_altitudes`](super::Planner::set_query_altitudes)).
+    AltitudesNeeded,
     /// Landmark mode only: the operation needs a landmark network.
     NotLandmarkNetwork,
     /// Terrain mode only: the operation needs a terrain network.
@@ -146,6 +153,11 @@ impl fmt::Display for PlanError {
                 write!(f, "{field:?} lies over terrain blocked at this altitude")
             }
             InvalidAltitude => write!(f, "altitude or safety height is not a valid number"),
+            NotThreeDimensional => write!(f, "the network is not a three-dimensional roadmap"),
+            AltitudesNeeded => write!(
+                f,
+                "a three-dimensional roadmap needs the start's and goal's altitudes"
+            ),
             StartUnconnected => write!(f, "no collision-free connection from the start"),
             GoalUnconnected => write!(f, "no collision-free connection to the goal"),
             NoRoute => write!(f, "the goal cannot be reached in the network"),

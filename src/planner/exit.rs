@@ -24,6 +24,7 @@
 
 use super::connect::conflicts;
 use super::popup::Popup;
+use super::state::LinkEnd;
 use super::{Meter, PlanError, Planner, QueryField};
 use crate::geometry::line_cover::{capsule_interval, disc_interval, for_each_crossing};
 use crate::geometry::predicates::{conflicts_with_circle, conflicts_with_polygon, PolygonView};
@@ -86,6 +87,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             };
             meter.work.collision_tests += 1;
             if p.x < lo.x - c || p.y < lo.y - c || p.x > hi.x + c || p.y > hi.y + c {
+                continue;
+            }
+            // In a three-dimensional roadmap the start (and its level exit) may fly above it.
+            if self.end_is_above(LinkEnd::Start, i, c) {
                 continue;
             }
             let within = match obstacle {

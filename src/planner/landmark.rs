@@ -159,7 +159,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 .network
                 .edge_source(e)
                 .is_some_and(|source| self.navigable_from(state, source, e)),
-            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Voronoi(_) => true,
+            ModeState::Roadmap(_) | ModeState::Terrain(_) | ModeState::Voronoi(_) => true,
         }
     }
 

@@ -27,6 +27,7 @@ mod smooth;
 mod state;
 mod terrain;
 mod threats;
+mod vertical;
 mod voronoi;
 mod window;
 pub mod work;
@@ -56,7 +57,7 @@ use crate::geometry::{DubinsPath, Pose, Primitive, Vec2};
 use crate::network::{LoadError, Mode, Network};
 use heap::IndexedHeap;
 use heapless::Vec;
-use state::{LandmarkState, ModeState, TerrainState};
+use state::{LandmarkState, ModeState, RoadmapState, TerrainState};
 
 /// The most start (and the most goal) links a query keeps.
 pub const MAX_LINKS: usize = 16;
@@ -326,7 +327,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             paths: Vec::new(),
             route: Vec::new(),
             summary: SummarySlot::Empty,
-            state: ModeState::Roadmap,
+            state: ModeState::Roadmap(RoadmapState::new()),
             flight: slice::Flight::IDLE,
         }
     }
@@ -337,7 +338,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.cancel_plan();
         let network = Network::from_bytes_with_capacity(bytes, V, E)?;
         let state = match network.mode() {
-            Mode::Roadmap => ModeState::Roadmap,
+            Mode::Roadmap => ModeState::Roadmap(RoadmapState::new()),
             Mode::Terrain => {
                 // The terrain search runs over directed edges and start links.
                 let needed = network.edge_count() as usize + MAX_LINKS;
@@ -417,7 +418,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 .edge_source(e)
                 .is_some_and(|source| self.is_edge_usable_from(source, e)),
             // Only the landmark rule reads the source.
-            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Voronoi(_) => {
+            ModeState::Roadmap(_) | ModeState::Terrain(_) | ModeState::Voronoi(_) => {
                 self.is_edge_usable_from(u32::MAX, e)
             }
         }
@@ -428,7 +429,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     #[inline(always)]
     pub(crate) fn is_edge_usable_from(&self, source: u32, e: u32) -> bool {
         match &self.state {
-            ModeState::Roadmap => self.is_edge_enabled(e),
+            ModeState::Roadmap(_) => self.is_edge_enabled(e),
             ModeState::Terrain(t) => {
                 self.is_edge_enabled(e)
                     && self
@@ -484,7 +485,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// larger case): [`plan_work_bound`].
     pub fn worst_case_work(&self) -> u64 {
         match self.state {
-            ModeState::Roadmap => plan_work_bound(&self.work_bound_inputs(false)),
+            ModeState::Roadmap(_) => plan_work_bound(&self.work_bound_inputs(false)),
             ModeState::Terrain(_) => terrain_plan_work_bound(&self.terrain_bound_inputs()),
             ModeState::Landmark(_) => landmark_plan_work_bound(&self.work_bound_inputs(true)),
             ModeState::Voronoi(_) => voronoi_plan_work_bound(&self.voronoi_bound_inputs()),
@@ -498,7 +499,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         // Every grid entry takes at least one byte of the cell lists.
         let entries = h.grid_list_bytes as u64;
         match self.state {
-            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Voronoi(_) => {
+            ModeState::Roadmap(_) | ModeState::Terrain(_) | ModeState::Voronoi(_) => {
                 popup_work_bound(cells, entries, MAX_POPUP_VERTICES as u64)
             }
             ModeState::Landmark(_) => landmark_popup_work_bound(

@@ -203,7 +203,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             ModeState::Landmark(_) => self.chain_conflicts(e, popup, clearance, summary),
             // Voronoi mode: the stored graph's lines (the search checks its onboard graph's
             // edges against the pop-ups before each search).
-            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Voronoi(_) => {
+            ModeState::Roadmap(_) | ModeState::Terrain(_) | ModeState::Voronoi(_) => {
                 let path = match self.network.dubins_edge_ends(e) {
                     // A roadmap edge: first the cheap test on its hull, then the word solved.
                     Some((a, b, word)) => {

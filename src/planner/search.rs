@@ -146,7 +146,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// The state space of the loaded mode's search.
     pub(super) fn state_space(&self) -> StateSpace {
         match self.state {
-            ModeState::Roadmap | ModeState::Landmark(_) | ModeState::Voronoi(_) => {
+            ModeState::Roadmap(_) | ModeState::Landmark(_) | ModeState::Voronoi(_) => {
                 StateSpace::Vertices
             }
             ModeState::Terrain(_) => StateSpace::EdgeStates,
@@ -218,7 +218,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// place the vertex search tells the two graphs apart.
     pub(super) fn search_vertex_count(&self) -> u32 {
         match &self.state {
-            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Landmark(_) => {
+            ModeState::Roadmap(_) | ModeState::Terrain(_) | ModeState::Landmark(_) => {
                 self.network.vertex_count()
             }
             ModeState::Voronoi(state) => state.graph().vertex_count(),
@@ -228,7 +228,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Where search vertex `v` lies.
     pub(super) fn search_vertex_position(&self, v: u32) -> Option<Vec2> {
         match &self.state {
-            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Landmark(_) => {
+            ModeState::Roadmap(_) | ModeState::Terrain(_) | ModeState::Landmark(_) => {
                 self.network.vertex(v).map(|p| p.position)
             }
             ModeState::Voronoi(state) => state.graph().vertex(v),
@@ -238,7 +238,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// The edges (Voronoi mode: half-edges) leaving search vertex `u`.
     fn search_out_edges(&self, u: u32) -> core::ops::Range<u32> {
         match &self.state {
-            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Landmark(_) => {
+            ModeState::Roadmap(_) | ModeState::Terrain(_) | ModeState::Landmark(_) => {
                 self.network.out_edges(u)
             }
             ModeState::Voronoi(state) => state.graph().out_edges(u),
@@ -248,7 +248,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Edge `e`'s cost and target.
     fn search_edge_cost_target(&self, e: u32) -> Option<(f32, u32)> {
         match &self.state {
-            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Landmark(_) => {
+            ModeState::Roadmap(_) | ModeState::Terrain(_) | ModeState::Landmark(_) => {
                 self.network.edge_cost_target(e)
             }
             ModeState::Voronoi(state) => {
@@ -261,7 +261,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Edge `e`'s source.
     pub(super) fn search_edge_source(&self, e: u32) -> Option<u32> {
         match &self.state {
-            ModeState::Roadmap | ModeState::Terrain(_) | ModeState::Landmark(_) => {
+            ModeState::Roadmap(_) | ModeState::Terrain(_) | ModeState::Landmark(_) => {
                 self.network.edge_source(e)
             }
             ModeState::Voronoi(state) => state.graph().half_edge(e).map(|h| h.source as u32),
@@ -400,7 +400,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         // An edge's cost and target if the search may use it (`Some(None)`: it may not;
         // `None`: unreadable). The roadmap's without matching the mode for every edge.
         match self.state {
-            ModeState::Roadmap => self.relax_edges(query, du, edges, meter, |me, e| {
+            ModeState::Roadmap(_) => self.relax_edges(query, du, edges, meter, |me, e| {
                 if me.is_edge_enabled(e) {
                     me.network.edge_cost_target(e).map(Some)
                 } else {
@@ -635,6 +635,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     pub(super) fn clear_route(&mut self) {
         self.paths.clear();
         self.route.clear();
+        self.forget_route_altitudes();
         self.summary = SummarySlot::Empty;
     }
 }

@@ -178,7 +178,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// [`Planner::worst_case_work`].
     pub fn step_unit_bound(&self) -> u64 {
         match self.state {
-            ModeState::Roadmap => {
+            ModeState::Roadmap(_) => {
                 let net = &self.network;
                 let most_out = (0..net.vertex_count())
                     .map(|v| net.out_edges(v).len() as u64)
@@ -292,7 +292,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 let direct = if q.start.position.distance(q.goal.position)
                     <= self.config().connect_radius_m
                 {
-                    self.best_clear_path_to_goal(&q.start, &q.goal, self.start_window(), meter)?
+                    let altitudes = self.query_altitudes();
+                    let window = self.start_window();
+                    self.best_clear_path_to_goal(&q.start, &q.goal, altitudes, window, meter)?
                 } else {
                     None
                 };
@@ -362,7 +364,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     ) -> Result<(), PlanError> {
         let q = self.flight.query;
         let direct = match self.state {
-            ModeState::Roadmap => {
+            ModeState::Roadmap(_) => {
+                self.check_query_altitudes()?;
                 observe(Phase::CheckFree, &meter.work);
                 self.check_free(q.goal.position, super::QueryField::Goal, meter)?;
                 let exit = self.exit_from(&q.start, meter)?;
@@ -409,7 +412,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// Whether the loaded mode's queries report their phases to an observer (roadmap and
     /// terrain).
     fn observes_phases(&self) -> bool {
-        matches!(self.state, ModeState::Roadmap | ModeState::Terrain(_))
+        matches!(self.state, ModeState::Roadmap(_) | ModeState::Terrain(_))
     }
 
     /// The [`Stage::Route`] unit: writes the route the search found, the mode's way.
@@ -420,10 +423,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         meter: &mut Meter,
     ) -> Result<RouteSummary, PlanError> {
         match self.state {
-            ModeState::Roadmap => {
+            ModeState::Roadmap(_) => {
                 let exit = self.flight.exit.first().copied();
                 let mut summary =
                     self.write_route(arrival, exit.as_ref().map(|(path, _)| path), meter)?;
+                self.record_route_altitudes(&arrival, exit.is_some())?;
                 summary.exit = exit.map(|(_, e)| e);
                 self.summary = SummarySlot::Full(summary);
                 Ok(summary)

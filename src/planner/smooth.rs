@@ -29,7 +29,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// within the curvature limit) is refused, and stays as it is.
     fn ensure_dubins_route(&self) -> Result<(), PlanError> {
         match self.state {
-            ModeState::Roadmap | ModeState::Terrain(_) => Ok(()),
+            ModeState::Roadmap(_) | ModeState::Terrain(_) => Ok(()),
             ModeState::Landmark(_) | ModeState::Voronoi(_) => Err(PlanError::NotDubinsRoute),
         }
     }
@@ -38,10 +38,32 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         self.paths.iter().map(DubinsPath::length).sum()
     }
 
-    fn solve_clear(&self, from: &Pose, to: &Pose, meter: &mut Meter) -> Option<DubinsPath> {
+    /// The shortest Dubins path from `from` to `to` if it is clear: in a three-dimensional
+    /// roadmap flown between `altitudes` (junction indices, [`Planner::leg_altitudes`]).
+    fn solve_clear(
+        &self,
+        from: &Pose,
+        to: &Pose,
+        altitudes: Option<(f32, f32)>,
+        meter: &mut Meter,
+    ) -> Option<DubinsPath> {
         meter.work.dubins_solves += 1;
         let path = DubinsPath::shortest(from, to, self.network.turn_radius())?;
-        self.path_is_clear(&path, meter).then_some(path)
+        self.leg_is_clear(&path, altitudes, meter).then_some(path)
+    }
+
+    /// Whether a new path of the route is clear: flyable and clear in 3-D between `altitudes`
+    /// in a three-dimensional roadmap, clear of every obstacle and pop-up otherwise.
+    fn leg_is_clear(
+        &self,
+        path: &DubinsPath,
+        altitudes: Option<(f32, f32)>,
+        meter: &mut Meter,
+    ) -> bool {
+        match altitudes {
+            Some(ends) => self.path_is_clear_climbing(path, ends, meter),
+            None => self.path_is_clear(path, meter),
+        }
     }
 
     /// One greedy forward pass of shortcuts: at each junction `i` between paths `i−1` and `i`,
@@ -104,7 +126,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 break;
             };
             let target = b.end();
-            match self.solve_clear(&a.start, &target, meter) {
+            let altitudes = self.leg_altitudes(i - 1, i + 1);
+            match self.solve_clear(&a.start, &target, altitudes, meter) {
                 Some(joined)
                     if joined.length() < a.length() + b.length()
                         && count + pieces(&joined) <= R + pieces(&a) + pieces(&b) =>
@@ -116,6 +139,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     if i < self.paths.len() {
                         self.paths.remove(i);
                     }
+                    self.forget_junction_altitude(i);
                     count = count + pieces(&joined) - pieces(&a) - pieces(&b);
                     changes += 1;
                 }
@@ -180,7 +204,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 let Some(path) = DubinsPath::shortest(&from, &to, radius) else {
                     continue;
                 };
-                if so_far + path.length() < best.0 && self.path_is_clear(&path, meter) {
+                let altitudes = self.leg_altitudes(j, k);
+                if so_far + path.length() < best.0 && self.leg_is_clear(&path, altitudes, meter) {
                     best = (so_far + path.length(), j as u32, pieces(&path) as u8);
                 }
             }
@@ -232,6 +257,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
         }
         self.paths.truncate(links);
+        self.keep_junction_altitudes(chain);
     }
 
     /// Heading smoothing: for each junction between two paths (not the start, not the goal),
@@ -285,13 +311,14 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     position: junction.position,
                     heading,
                 };
-                let Some(first) = self.solve_clear(&a.start, &pose, &mut meter) else {
+                let (into, out) = (self.leg_altitudes(i - 1, i), self.leg_altitudes(i, i + 1));
+                let Some(first) = self.solve_clear(&a.start, &pose, into, &mut meter) else {
                     continue;
                 };
                 if first.length() >= best.0 {
                     continue;
                 }
-                let Some(second) = self.solve_clear(&pose, &b.end(), &mut meter) else {
+                let Some(second) = self.solve_clear(&pose, &b.end(), out, &mut meter) else {
                     continue;
                 };
                 if first.length() + second.length() < best.0 {

@@ -127,14 +127,45 @@ impl<const R: usize> LandmarkState<R> {
     }
 }
 
+/// Which end of a roadmap query a link joins.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum LinkEnd {
+    /// From the start to a vertex.
+    Start,
+    /// From a vertex to the goal.
+    Goal,
+}
+
+/// Roadmap mode's state: what a three-dimensional roadmap's queries need beyond the planar
+/// ones (`planner/vertical.rs`). A planar roadmap leaves it empty.
+#[derive(Clone, Debug)]
+pub(super) struct RoadmapState<const R: usize> {
+    /// The start's and the goal's altitudes for the queries that follow, metres (`None`: not
+    /// set; a three-dimensional roadmap refuses to plan without them).
+    pub(super) altitudes: Option<(f32, f32)>,
+    /// The last route's altitude at the end of each of its paths, metres (three-dimensional
+    /// roadmaps; empty otherwise).
+    pub(super) route_altitudes: Vec<f32, R>,
+}
+
+impl<const R: usize> RoadmapState<R> {
+    /// No altitudes set, no route.
+    pub(super) const fn new() -> Self {
+        RoadmapState {
+            altitudes: None,
+            route_altitudes: Vec::new(),
+        }
+    }
+}
+
 /// The state of the loaded network's mode.
 // Fixed memory: the planner reserves room for the largest variant once (no allocator to box
 // it), which is still less than keeping every mode's state side by side.
 #[allow(clippy::large_enum_variant)]
 #[derive(Debug)]
 pub(super) enum ModeState<'n, const R: usize> {
-    /// Roadmaps keep nothing of their own (also the state of a planner with no network).
-    Roadmap,
+    /// Roadmap mode (also the state of a planner with no network).
+    Roadmap(RoadmapState<R>),
     /// Terrain mode.
     Terrain(TerrainState),
     /// Landmark mode.

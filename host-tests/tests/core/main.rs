@@ -59,6 +59,9 @@ mod trig;
 /// A three-dimensional roadmap's vertical section: written and read back, bad limits,
 /// altitudes and heights refused by name, an edge's climb at the limits' boundary.
 mod vertical_network;
+/// Planning on a three-dimensional roadmap: a low wall flown over where a planar roadmap
+/// goes round, checked by f64 sampling in 3-D; endpoints above or inside a building.
+mod vertical_planning;
 /// The vertical profile of Niendorf et al.'s aircraft: the limits, an LP reference, the span
 /// below a ceiling against an f64 profile, and buildings of finite height against sampling.
 mod vertical_profile;

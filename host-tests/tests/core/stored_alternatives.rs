@@ -235,8 +235,9 @@ fn flags_and_counts_that_disagree_are_refused() {
     let section = AlternativesRecord::SIZE + PopupRecord::SIZE + 24 + DiscRecord::SIZE;
     let start = good.len() - section;
     let flags_at = 7;
+    // An undefined flag bit (bit 1 is the vertical section's).
     let mut b = good.clone();
-    b[flags_at] |= 2;
+    b[flags_at] |= 4;
     fix_crc(&mut b);
     assert_eq!(
         Network::from_bytes(&b).unwrap_err(),

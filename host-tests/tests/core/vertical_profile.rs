@@ -23,6 +23,7 @@ use skyroute::geometry::vertical::{
 };
 use skyroute::geometry::{DubinsPath, Pose, Primitive, Vec2};
 
+use host_tests::reference::vertical_altitude as altitude_f64;
 use host_tests::{cases, Rng};
 
 fn random_limits(rng: &mut Rng) -> VerticalLimits {
@@ -48,38 +49,6 @@ fn random_profile(rng: &mut Rng) -> (VerticalProfile, VerticalLimits) {
         if let Some(p) = VerticalProfile::new(from, to, length, &limits) {
             return (p, limits);
         }
-    }
-}
-
-/// The profile from the definitions, in f64: a rest-to-rest move of `d = |to − from|` in the
-/// least distance (gradient ramping at `k` up to at most `g` and back), a climb at once, a
-/// descent as late as it can be.
-fn altitude_f64(p: &VerticalProfile, limits: &VerticalLimits, s: f64) -> f64 {
-    let v = limits.airspeed as f64;
-    let (g, k) = (
-        limits.climb_rate as f64 / v,
-        limits.vertical_accel as f64 / (v * v),
-    );
-    let (from, to, length) = (p.from as f64, p.to as f64, p.length as f64);
-    let d = (to - from).abs();
-    let (ease, ramp) = if d >= g * g / k {
-        (g / k, d / g + g / k)
-    } else {
-        ((d / k).sqrt(), 2.0 * (d / k).sqrt())
-    };
-    let start = if to >= from { 0.0 } else { length - ramp };
-    let u = (s.clamp(0.0, length) - start).clamp(0.0, ramp);
-    let moved = if u <= ease {
-        0.5 * k * u * u
-    } else if u >= ramp - ease {
-        d - 0.5 * k * (ramp - u).powi(2)
-    } else {
-        0.5 * k * ease * ease + k * ease * (u - ease)
-    };
-    if to >= from {
-        from + moved
-    } else {
-        from - moved
     }
 }
 
