@@ -478,6 +478,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             } else {
                 self.config().free_goal_headings.clamp(1, MAX_GOAL_HEADINGS) as u64
             },
+            three_dimensional: self.network.is_three_dimensional(),
         }
     }
 

@@ -104,6 +104,9 @@ pub struct WorkBoundInputs {
     pub goal_links: u64,
     /// Goal headings tried, H (1 with a fixed goal heading, 36 without).
     pub goal_headings: u64,
+    /// Whether the network is a three-dimensional roadmap (its route's altitudes cost one
+    /// more walk back from the goal).
+    pub three_dimensional: bool,
 }
 
 /// The most work one [`Planner::plan`](super::Planner::plan) can count:
@@ -120,8 +123,13 @@ pub struct WorkBoundInputs {
 ///   P·(popup_vertices + 1)) collision tests;
 /// * search: |V| heap resets; ≤ |V| pops and ≤ Ks + |E| pushes or decreases of ≤ L = ⌊log2|V|⌋+1
 ///   levels each; ≤ |E| out-edge and ≤ |V|·Kg goal-link relaxations;
-/// * route: ≤ 2(|V| + 1) vertex scans for the two walks back from the goal;
+/// * route: ≤ 2(|V| + 1) vertex scans for the two walks back from the goal, and in a
+///   three-dimensional roadmap a third for its altitudes;
 /// * the exit from a keep-out region the start lies in: [`exit_work_bound`].
+///
+/// A three-dimensional roadmap's link checks are within the connections' term: each path is
+/// checked against every obstacle and pop-up, and each obstacle against at most the part of
+/// each primitive flown below its height.
 pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
     let v = n.vertices;
     let levels = heap_levels(v);
@@ -133,9 +141,15 @@ pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
     let windows = 3 * n.obstacles;
     let connecting = solves + windows + 3 * connections * per_primitive;
     let search = v + (v + n.start_links + n.edges) * levels + n.edges + v * n.goal_links;
-    let route = 2 * (v + 1);
+    let route = route_walks(n) * (v + 1);
     let endpoints_free = 2 * (n.obstacles + n.popups);
     endpoints_free + candidates + connecting + search + route + exit_work_bound(n)
+}
+
+/// Walks back from the goal a roadmap route costs: the writer's two, and one for a
+/// three-dimensional roadmap's altitudes.
+fn route_walks(n: &WorkBoundInputs) -> u64 {
+    2 + n.three_dimensional as u64
 }
 
 /// The most work one indivisible unit of a roadmap query's [`Planner::step`](super::Planner::step)
@@ -154,7 +168,8 @@ pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
 /// * one search expansion: the pop, L; Kg goal links examined, of which the one at the vertex
 ///   may be resolved, O (the goal's window, read once) + g; each out-edge examined and pushed,
 ///   `most_out_degree`·(1 + L);
-/// * the route: 2(|V| + 1) vertex scans for the two walks back.
+/// * the route: 2(|V| + 1) vertex scans for the two walks back, 3(|V| + 1) in a
+///   three-dimensional roadmap.
 ///
 /// Returns the largest.
 pub fn roadmap_step_unit_bound(n: &WorkBoundInputs, most_out_degree: u64) -> u64 {
@@ -170,7 +185,7 @@ pub fn roadmap_step_unit_bound(n: &WorkBoundInputs, most_out_degree: u64) -> u64
         to_goal,
         v + n.start_links * levels,
         levels + n.goal_links + n.obstacles + to_goal + most_out_degree * (1 + levels),
-        2 * (v + 1),
+        route_walks(n) * (v + 1),
     ];
     units.into_iter().max().unwrap_or(0)
 }

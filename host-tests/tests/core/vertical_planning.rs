@@ -291,3 +291,35 @@ fn random_queries_over_the_wall_keep_above_it() {
     );
     eprintln!("{routed} routed, {over} over the wall, {exits} after an exit");
 }
+
+/// A query whose budget is one short of its work is refused, and the previous route and its
+/// altitudes stay as they were.
+#[test]
+fn a_budget_one_short_keeps_the_previous_route_and_its_altitudes() {
+    let solid = network(true);
+    let mut planner = Small::new();
+    planner.load(&solid).unwrap();
+    planner.set_query_altitudes(30.0, 40.0).unwrap();
+    let first = query(Vec2::new(0.0, 100.0), Vec2::new(600.0, 200.0));
+    planner.plan(&first, u64::MAX).unwrap();
+    let (paths, altitudes) = (
+        planner.route_paths().to_vec(),
+        planner.route_altitudes().to_vec(),
+    );
+    let second = query(Vec2::new(0.0, 500.0), Vec2::new(600.0, 100.0));
+    planner.set_query_altitudes(50.0, 30.0).unwrap();
+    let needed = {
+        let mut probe = Small::new();
+        probe.load(&solid).unwrap();
+        probe.set_query_altitudes(50.0, 30.0).unwrap();
+        probe.plan(&second, u64::MAX).unwrap().work.total()
+    };
+    assert!(matches!(
+        planner.plan(&second, needed - 1),
+        Err(PlanError::BudgetExhausted { .. })
+    ));
+    assert_eq!(planner.route_paths(), paths.as_slice());
+    assert_eq!(planner.route_altitudes(), altitudes.as_slice());
+    assert_eq!(planner.plan(&second, needed).unwrap().work.total(), needed);
+    assert_eq!(planner.route_altitudes().last(), Some(&30.0));
+}
