@@ -5,12 +5,12 @@ use crate::build_limits::{check_area, check_grid, check_sampling, encode_checked
 use crate::frame::LocalFrame;
 use crate::landmark::{build_landmark_network_with, LandmarkNetwork, RangeRule};
 use crate::roadmap::{
-    build_roadmap, CollisionCheck, Roadmap, RoadmapInput, RoadmapParams, Sagitta,
+    build_roadmap_with, CollisionCheck, Roadmap, RoadmapInput, RoadmapParams, Sagitta,
 };
 use crate::scenario::{Mode, Scenario};
 use crate::terrain::{build_terrain_graph, TerrainGraph, TerrainParams};
 use skyroute::network::format::ProvenanceRecord;
-use skyroute::network::write::{EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec};
+use skyroute::network::write::{EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec, VerticalSpec};
 use skyroute::network::write::{LandmarkSiteSpec, LandmarkSpec};
 use skyroute::Pose;
 use std::fmt;
@@ -76,6 +76,10 @@ pub enum BuildError {
     /// Roadmap mode: the pop-ups' bypass alternatives could not be planned or stored:
     /// (scenario file, why).
     Alternatives(String, String),
+    /// A three-dimensional scenario (`planner.altitude_min_m`, `planner.altitude_max_m`) taken
+    /// as another mode than a roadmap (`--mode`), which would ignore its heights: (scenario
+    /// file, the mode).
+    NotRoadmap3d(String, Mode),
     /// Out of the builder's limits ([`crate::build_limits`]), no vertices, or refused by the
     /// writer.
     Limit(crate::build_limits::LimitError),
@@ -110,6 +114,13 @@ impl fmt::Display for BuildError {
             BuildError::Voronoi(file, why) | BuildError::Alternatives(file, why) => {
                 write!(f, "{file}: {why}")
             }
+            BuildError::NotRoadmap3d(file, mode) => write!(
+                f,
+                "{file}: planner.altitude_min_m: the scenario is a three-dimensional roadmap \
+                 and cannot be built as a {} network, which would ignore its heights and \
+                 altitudes",
+                mode.as_str()
+            ),
             BuildError::Limit(e) => write!(f, "{e}"),
         }
     }
@@ -146,6 +157,12 @@ pub fn build(
     let provenance = crate::provenance::scenario_items(s)
         .map(|items| crate::provenance::records(&items))
         .map_err(|e| BuildError::Provenance(e.to_string()))?;
+    if s.vertical().is_some() && s.planner.mode != Mode::Roadmap {
+        return Err(BuildError::NotRoadmap3d(
+            s.path.display().to_string(),
+            s.planner.mode,
+        ));
+    }
     match s.planner.mode {
         Mode::Roadmap => build_roadmap_network(s, options, progress, provenance),
         Mode::Terrain => build_terrain(s, options, provenance),
@@ -155,7 +172,7 @@ pub fn build(
 }
 
 /// Roadmap mode: the sampled Dubins roadmap ([`crate::roadmap`]) over the bounding box of the
-/// scenario's positions.
+/// scenario's positions; three-dimensional ([`crate::roadmap_vertical`]) when the scenario is.
 fn build_roadmap_network(
     s: &Scenario,
     options: &BuildOptions,
@@ -220,13 +237,22 @@ fn build_roadmap_network(
         (lo, hi),
         4.0 * turn_radius + grid_cell,
     )?;
+    let vertical = crate::roadmap_vertical::vertical_input(s, &frame);
+    if vertical.is_some() && !s.popups.is_empty() {
+        return Err(BuildError::Alternatives(
+            file,
+            "planner.altitude_min_m: the pop-ups' bypass alternatives are not stored in a \
+             three-dimensional roadmap; remove the popup features or the altitude band"
+                .into(),
+        ));
+    }
     let input = RoadmapInput {
         area_min: lo,
         area_max: hi,
         obstacles: obstacles.clone(),
         fixed_vertices: Vec::new(),
     };
-    let roadmap = build_roadmap(&input, &params, progress);
+    let roadmap = build_roadmap_with(&input, &params, vertical.as_ref(), progress);
     let (origin_lat, origin_lon) = frame.origin();
     let spec = NetworkSpec {
         origin_lat_deg: origin_lat,
@@ -243,7 +269,12 @@ fn build_roadmap_network(
         provenance,
     };
     let why = "every sample lies within planner.clearance_m of a no-fly zone or threat";
-    let mut bytes = encode_checked(&spec, &file, grid_field, why)?;
+    let vertical_spec = vertical.map(|v| VerticalSpec {
+        limits: v.limits,
+        altitudes: roadmap.altitudes.clone(),
+        heights: v.heights,
+    });
+    let mut bytes = encode_checked(&spec, vertical_spec.as_ref(), &file, grid_field, why)?;
     if !s.popups.is_empty() {
         bytes = crate::ruz::stored::with_alternatives(s, &frame, &spec, &bytes)
             .map_err(|e| BuildError::Alternatives(file.clone(), e))?;
@@ -348,7 +379,7 @@ fn build_terrain(
     };
     let why = "no corner of terrain blocked at terrain.altitude_m or an --altitude-levels level \
                gives a node";
-    let bytes = encode_checked(&spec, &file, grid_field, why)?;
+    let bytes = encode_checked(&spec, None, &file, grid_field, why)?;
     Ok(Built {
         bytes,
         frame,
@@ -391,7 +422,7 @@ fn build_voronoi(
         .map_err(|why| BuildError::Voronoi(file.clone(), why))?;
     spec.provenance = provenance;
     let why = "the Voronoi graph has no vertices";
-    let bytes = encode_checked(&spec, &file, grid_field, why)?;
+    let bytes = encode_checked(&spec, None, &file, grid_field, why)?;
     Ok(Built {
         bytes,
         frame,
@@ -427,7 +458,7 @@ fn build_landmark(
         .map_err(|field| BuildError::Missing(file.clone(), field))?;
     spec.provenance = provenance;
     let why = "the scenario has no landmarks, start or goal";
-    let bytes = encode_checked(&spec, &file, grid_field, why)?;
+    let bytes = encode_checked(&spec, None, &file, grid_field, why)?;
     Ok(Built {
         bytes,
         frame,

@@ -8,7 +8,9 @@ use crate::roadmap::{candidate_count, MAX_SAMPLE_CANDIDATES, MIN_SAMPLE_SPACING_
 use crate::roadmap::{neighbour_pairs, MAX_NEIGHBOUR_PAIRS};
 use crate::scenario::Scenario;
 use skyroute::geometry::points_bounding_box;
-use skyroute::network::write::{encode, grid_cells, NetworkSpec, WriteError};
+use skyroute::network::write::{
+    encode, encode_three_dimensional, grid_cells, NetworkSpec, VerticalSpec, WriteError,
+};
 use skyroute::Vec2;
 
 /// A refusal: the parameter out of its limit, the network without vertices, or the writer's
@@ -185,10 +187,11 @@ pub fn landmark_box(s: &Scenario) -> (Vec2, Vec2) {
     points_bounding_box(sites.map(|(lon, lat)| local(&frame, lon, lat)))
 }
 
-/// Encodes `spec`, refusing a network with no vertices (`why` says what left none) and
-/// naming `grid_field` when the grid index is refused.
+/// Encodes `spec`, three-dimensional with `vertical`, refusing a network with no vertices
+/// (`why` says what left none) and naming `grid_field` when the grid index is refused.
 pub fn encode_checked(
     spec: &NetworkSpec,
+    vertical: Option<&VerticalSpec>,
     file: &str,
     grid_field: &str,
     why: &str,
@@ -196,5 +199,9 @@ pub fn encode_checked(
     if spec.vertices.is_empty() {
         return Err(LimitError::NoVertices(file.to_string(), why.to_string()));
     }
-    encode(spec).map_err(|e| grid_error(file, grid_field, e))
+    match vertical {
+        Some(v) => encode_three_dimensional(spec, v, None),
+        None => encode(spec),
+    }
+    .map_err(|e| grid_error(file, grid_field, e))
 }

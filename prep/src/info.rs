@@ -51,6 +51,7 @@ pub fn describe(path: &Path, bytes: &[u8]) -> Result<String, String> {
         net.max_cell_entries()
     );
     mode_section(w, &net);
+    vertical_section(w, &net);
     alternatives_section(w, &net);
     let _ = writeln!(
         w,
@@ -110,6 +111,44 @@ fn mode_section(w: &mut String, net: &Network) {
             }
         }
     }
+}
+
+/// A three-dimensional roadmap's vertical section (Niendorf et al.): its limits, the range of
+/// its vertices' altitudes and its obstacles' heights.
+fn vertical_section(w: &mut String, net: &Network) {
+    let Some(l) = net.vertical_limits() else {
+        return;
+    };
+    let h = net.header();
+    let range = |values: &mut dyn Iterator<Item = f32>| {
+        values.fold(None, |r: Option<(f32, f32)>, z| {
+            Some(r.map_or((z, z), |(lo, hi)| (lo.min(z), hi.max(z))))
+        })
+    };
+    let altitudes = range(&mut (0..h.vertex_count).filter_map(|v| net.vertex_altitude(v)));
+    let heights: Vec<f32> = (0..h.obstacle_count)
+        .filter_map(|i| net.obstacle_height(i))
+        .collect();
+    let bounded = range(&mut heights.iter().copied().filter(|x| x.is_finite()));
+    let _ = writeln!(
+        w,
+        "  three-dimensional roadmap (Niendorf et al.): airspeed {} m/s, climb rate {} m/s, \
+         vertical acceleration {} m/s² (at most {:.1} m of climb per 100 m flown); vertex \
+         altitudes {}",
+        l.airspeed,
+        l.climb_rate,
+        l.vertical_accel,
+        l.max_climb(100.0),
+        altitudes.map_or("none".into(), |(lo, hi)| format!("{lo:.1} to {hi:.1} m"))
+    );
+    let unbounded = heights.iter().filter(|x| !x.is_finite()).count();
+    let _ = writeln!(
+        w,
+        "  obstacle heights: {} of bounded height{}, {unbounded} unbounded (no altitude clears \
+         them)",
+        heights.len() - unbounded,
+        bounded.map_or(String::new(), |(lo, hi)| format!(" ({lo:.1} to {hi:.1} m)"))
+    );
 }
 
 /// The capacities and RAM a planner needs, and the worst-case work of its operations.

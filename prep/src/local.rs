@@ -36,6 +36,26 @@ pub fn local_obstacles(s: &Scenario, frame: &LocalFrame) -> Vec<ObstacleSpec> {
 /// polygons of [`crate::zone_pieces::simple_pieces`], computed in the local frame, each named
 /// after the zone.
 pub fn local_obstacles_named(s: &Scenario, frame: &LocalFrame) -> Vec<(ObstacleSpec, String)> {
+    local_obstacles_sourced(s, frame)
+        .into_iter()
+        .map(|(o, name, _)| (o, name))
+        .collect()
+}
+
+/// The height of each of [`local_obstacles`], in its order: a zone's pieces have the zone's
+/// `height_m` (`None`: unbounded), a threat disc is unbounded.
+pub fn local_obstacle_heights(s: &Scenario, frame: &LocalFrame) -> Vec<Option<f64>> {
+    local_obstacles_sourced(s, frame)
+        .into_iter()
+        .map(|(_, _, h)| h)
+        .collect()
+}
+
+/// [`local_obstacles_named`], each with its height too.
+fn local_obstacles_sourced(
+    s: &Scenario,
+    frame: &LocalFrame,
+) -> Vec<(ObstacleSpec, String, Option<f64>)> {
     let to_local = |ring: &[(f64, f64)]| -> Vec<(f64, f64)> {
         ring.iter()
             .map(|&(lon, lat)| frame.to_local(lon, lat))
@@ -50,7 +70,7 @@ pub fn local_obstacles_named(s: &Scenario, frame: &LocalFrame) -> Vec<(ObstacleS
                 .iter()
                 .map(|&(x, y)| Vec2::new(x as f32, y as f32))
                 .collect();
-            out.push((ObstacleSpec::Polygon(ring), name.clone()));
+            out.push((ObstacleSpec::Polygon(ring), name.clone(), z.height_m));
         }
     }
     out.extend(s.threats.iter().map(|t| {
@@ -58,7 +78,7 @@ pub fn local_obstacles_named(s: &Scenario, frame: &LocalFrame) -> Vec<(ObstacleS
             centre: local(frame, t.lon, t.lat),
             radius: t.radius_m as f32,
         };
-        (disc, format!("threat {:?}", t.name))
+        (disc, format!("threat {:?}", t.name), None)
     }));
     out
 }

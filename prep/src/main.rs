@@ -500,6 +500,9 @@ fn build_command(
         t0.elapsed().as_secs_f64(),
         output.display()
     );
+    if let Some(line) = skyroute_prep::roadmap_vertical::summary(r) {
+        println!("  {line}");
+    }
     Ok(())
 }
 

@@ -12,6 +12,7 @@ pub use crate::free_heading::FreeHeadingRule;
 use crate::local::{local, local_heading};
 use crate::scenario::{Endpoint, Scenario};
 use rayon::prelude::*;
+use skyroute::geometry::vertical::VerticalProfile;
 use skyroute::network::Mode;
 use skyroute::planner::{
     ArcCheckStats, Goal, PlanError, PlannerConfig, Query, QueryField, RouteSummary, Search,
@@ -63,6 +64,10 @@ pub struct Leg {
     pub planned_length: f32,
     /// The leg's lines and arcs.
     pub primitives: Vec<Primitive>,
+    /// On a three-dimensional roadmap, for each primitive: the altitude profile of the path it
+    /// belongs to and the distance along that path at which it starts (its altitude `s`
+    /// metres in is `profile.altitude_at(offset + s)`). Empty on other networks.
+    pub vertical: Vec<(VerticalProfile, f32)>,
     /// Whether its connections needed the widened radius ([`MissionOptions`]).
     pub widened: bool,
     /// The turn-arc checks of the leg's search against the elevation grid (terrain networks;
@@ -88,6 +93,9 @@ pub struct Mission {
     /// the heading fixed for it (radians, local frame; NaN when no heading had a clear way in
     /// and out, and the default rule chose) and its clear out-edges. Empty otherwise.
     pub fixed_headings: Vec<(String, f32, usize)>,
+    /// The vertical limits of a three-dimensional roadmap's network (its legs' profiles fly
+    /// within them); `None` for other networks.
+    pub vertical_limits: Option<skyroute::geometry::vertical::VerticalLimits>,
 }
 
 /// Why a mission could not be planned.
@@ -202,13 +210,20 @@ pub enum Shortcuts {
 }
 
 /// Plans `q`, and when `adaptive` and an end did not connect, plans it again with the connect
-/// radius unbounded (the nearest candidates however far). Returns whether it widened.
+/// radius unbounded (the nearest candidates however far). Returns whether it widened. On a
+/// three-dimensional roadmap the query flies from `altitudes.0` to `altitudes.1`.
 fn plan_query(
     p: &mut HostPlanner,
     q: &Query,
+    altitudes: Option<(f32, f32)>,
     budget: u64,
     adaptive: bool,
 ) -> (Result<RouteSummary, PlanError>, bool) {
+    if let Some((from, to)) = altitudes {
+        if let Err(e) = p.set_query_altitudes(from, to) {
+            return (Err(e), false);
+        }
+    }
     let first = p.plan(q, budget);
     let unconnected = matches!(
         first,
@@ -295,6 +310,8 @@ fn explain(
 struct Stage {
     name: String,
     position: Vec2,
+    /// Its altitude on a three-dimensional roadmap (the scenario's `altitude_m`).
+    altitude: Option<f32>,
     /// `None`: the core picks among its own free goal headings (the final goal only).
     headings: Vec<Option<f32>>,
 }
@@ -310,8 +327,14 @@ fn stage(frame: &LocalFrame, e: &Endpoint, last: bool) -> Stage {
     Stage {
         name: e.name.clone(),
         position: local(frame, e.lon, e.lat),
+        altitude: e.altitude_m.map(|z| z as f32),
         headings,
     }
+}
+
+/// The altitudes a leg from `prev` to `next` flies between on a three-dimensional roadmap.
+fn leg_altitudes(prev: &Stage, next: &Stage) -> Option<(f32, f32)> {
+    prev.altitude.zip(next.altitude)
 }
 
 /// Loads `bytes` into a fresh boxed planner with the pop-ups added and the connect radius of
@@ -411,12 +434,16 @@ fn plan_mission_in_pool(
     }
     let chosen = walk_back(&stages, &best)?;
     let (legs, length) = plan_legs(bytes, popups, options, &stages, &chosen)?;
+    let vertical_limits = skyroute::Network::from_bytes(bytes)
+        .ok()
+        .and_then(|n| n.vertical_limits());
     Ok(Mission {
         legs,
         length,
         queries,
         work,
         fixed_headings,
+        vertical_limits,
     })
 }
 
@@ -512,6 +539,7 @@ fn mission_stages(scenario: &Scenario, frame: &LocalFrame) -> Result<Vec<Stage>,
     let mut stages = vec![Stage {
         name: start.name.clone(),
         position: start_pose.position,
+        altitude: start.altitude_m.map(|z| z as f32),
         headings: vec![Some(start_pose.heading)],
     }];
     stages.extend(scenario.waypoints.iter().map(|w| stage(frame, w, false)));
@@ -564,7 +592,8 @@ fn best_into(
                     },
                     search: Search::AStar,
                 };
-                (a, b, plan_query(p, &q, budget, adaptive).0)
+                let altitudes = leg_altitudes(prev, next);
+                (a, b, plan_query(p, &q, altitudes, budget, adaptive).0)
             },
         )
         .collect();
@@ -664,6 +693,26 @@ pub fn exit_note(leg: &Leg, scenario: &Scenario, popups: &[LocalPopup]) -> Optio
     ))
 }
 
+/// For each primitive of the planner's route on a three-dimensional roadmap, its path's
+/// profile and the distance along the path at which it starts; empty otherwise (in the order
+/// of [`Planner::route`], the paths' primitives in turn).
+fn primitive_profiles(p: &HostPlanner) -> Vec<(VerticalProfile, f32)> {
+    let mut out = Vec::new();
+    for (k, path) in p.route_paths().iter().enumerate() {
+        let Some(profile) = p.route_profile(k) else {
+            return Vec::new();
+        };
+        let mut offset = 0.0;
+        for (prim, length) in path.primitives().iter().zip(path.lengths) {
+            if prim.is_some() {
+                out.push((profile, offset));
+            }
+            offset += length;
+        }
+    }
+    out
+}
+
 /// Plans the chosen legs once more to keep their geometry, post-processed; returns them and
 /// the route's length.
 fn plan_legs(
@@ -698,7 +747,8 @@ fn plan_legs(
             error,
             detail: String::new(),
         };
-        let (planned, widened) = plan_query(&mut p, &q, budget, adaptive);
+        let altitudes = leg_altitudes(prev, next);
+        let (planned, widened) = plan_query(&mut p, &q, altitudes, budget, adaptive);
         let planned = planned.map_err(unreachable)?;
         let arc_checks = p.arc_check_stats();
         // Post-processing (Niendorf et al. §V): both passes keep the route collision-free.
@@ -711,12 +761,14 @@ fn plan_legs(
             .map_err(unreachable)?;
         let summary = *p.route_summary().ok_or(unreachable(PlanError::Internal))?;
         length += summary.length as f64;
+        let vertical = primitive_profiles(&p);
         legs.push(Leg {
             from: prev.name.clone(),
             to: next.name.clone(),
             summary,
             planned_length: planned.length,
             primitives: p.route().to_vec(),
+            vertical,
             widened,
             arc_checks,
             cells_per_turn_bound: match p.network().mode() {

@@ -527,20 +527,22 @@ fn with_start(
             .goal
             .as_ref()
             .map_or_else(|| "goal".to_string(), |e| e.name.clone());
+        let altitude_m = s.goal.as_ref().and_then(|e| e.altitude_m);
         s.goal = Some(scenario::Endpoint {
             name,
             lon,
             lat,
             heading_deg,
             dist_m: None,
+            altitude_m,
         });
     }
     let Some((lon, lat, heading_deg)) = req.start else {
         return Ok(s);
     };
-    let (name, dist_m) = s.start.as_ref().map_or_else(
-        || ("start".to_string(), None),
-        |e| (e.name.clone(), e.dist_m),
+    let (name, dist_m, altitude_m) = s.start.as_ref().map_or_else(
+        || ("start".to_string(), None, None),
+        |e| (e.name.clone(), e.dist_m, e.altitude_m),
     );
     s.start = Some(scenario::Endpoint {
         name,
@@ -548,6 +550,7 @@ fn with_start(
         lat,
         heading_deg: Some(heading_deg),
         dist_m: dist_m.filter(|_| landmark),
+        altitude_m,
     });
     Ok(s)
 }

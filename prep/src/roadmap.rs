@@ -5,6 +5,11 @@
 //! Construction is parallel (rayon) and deterministic: each sample's out-edges are computed
 //! independently and collected in sample order, so the same input gives the same bytes on any
 //! number of threads.
+//!
+//! With a [`VerticalInput`] the roadmap is three-dimensional (the paper's aircraft: a Dubins
+//! car in the plane plus a vertical double integrator): samples also get an altitude, an edge
+//! must be a feasible climb, and an obstacle of finite height is checked only against the part
+//! of an edge flown below it ([`crate::roadmap_vertical`]).
 
 use rayon::prelude::*;
 use skyroute::geometry::predicates::{
@@ -14,6 +19,8 @@ use skyroute::geometry::predicates::{
 use skyroute::geometry::WordSet;
 use skyroute::network::write::{EdgeSpec, ObstacleSpec};
 use skyroute::{DubinsPath, Pose, Primitive, Vec2};
+
+pub use crate::roadmap_vertical::VerticalInput;
 
 /// How edges are checked against obstacles.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -93,6 +100,15 @@ pub struct Roadmap {
     pub edges_examined: usize,
     /// Vertices connected through the k-nearest fallback.
     pub fallback_vertices: usize,
+    /// Three-dimensional roadmap: each vertex's altitude, metres, in vertex order; empty for a
+    /// planar one.
+    pub altitudes: Vec<f32>,
+    /// Three-dimensional roadmap: candidate edges refused because their altitude change is not
+    /// a feasible climb or descent over their path (before any collision check).
+    pub edges_too_steep: usize,
+    /// Three-dimensional roadmap: edges whose path meets the footprint of an obstacle of
+    /// finite height (they fly over it).
+    pub edges_over_low_obstacles: usize,
 }
 
 /// The radical inverse of `i` in base `b` (van der Corput).
@@ -125,7 +141,8 @@ pub fn primitive_conflicts(prim: &Primitive, obstacle: &ObstacleSpec, clearance:
     }
 }
 
-fn point_conflicts(p: Vec2, obstacle: &ObstacleSpec, clearance: f32) -> bool {
+/// Whether the point `p` lies within `clearance` of `obstacle` (inside it included).
+pub(crate) fn point_conflicts(p: Vec2, obstacle: &ObstacleSpec, clearance: f32) -> bool {
     let probe = Primitive::Line(skyroute::Segment::new(p, p));
     match obstacle {
         ObstacleSpec::Polygon(points) => {
@@ -142,10 +159,9 @@ fn point_conflicts(p: Vec2, obstacle: &ObstacleSpec, clearance: f32) -> bool {
     }
 }
 
-/// Obstacles with their bounding boxes, for a cheap first test.
 /// A spatial index of the obstacles: their bounding boxes bucketed on a uniform grid, so a
 /// query visits only the obstacles in the cells its (widened) box overlaps.
-struct ObstacleIndex<'a> {
+pub(crate) struct ObstacleIndex<'a> {
     items: Vec<(&'a ObstacleSpec, Vec2, Vec2)>,
     /// Side of a bucket, metres.
     cell: f32,
@@ -164,7 +180,7 @@ const MAX_OBSTACLE_BUCKETS: f32 = 65_536.0;
 const OBSTACLE_CELL_M: f32 = 100.0;
 
 impl<'a> ObstacleIndex<'a> {
-    fn new(obstacles: &'a [ObstacleSpec]) -> Self {
+    pub(crate) fn new(obstacles: &'a [ObstacleSpec]) -> Self {
         let items = obstacles
             .iter()
             .map(|o| {
@@ -196,6 +212,16 @@ impl<'a> ObstacleIndex<'a> {
 
     /// Obstacles whose box comes within `margin` of the box `[lo, hi]`, in index order.
     fn near(&self, lo: Vec2, hi: Vec2, margin: f32) -> impl Iterator<Item = &'a ObstacleSpec> + '_ {
+        self.near_indexed(lo, hi, margin).map(|(_, o)| o)
+    }
+
+    /// [`Self::near`] with each obstacle's index in the list the index was built from.
+    pub(crate) fn near_indexed(
+        &self,
+        lo: Vec2,
+        hi: Vec2,
+        margin: f32,
+    ) -> impl Iterator<Item = (usize, &'a ObstacleSpec)> + '_ {
         let (qlo, qhi) = (
             Vec2::new(lo.x - margin, lo.y - margin),
             Vec2::new(hi.x + margin, hi.y + margin),
@@ -216,11 +242,18 @@ impl<'a> ObstacleIndex<'a> {
         ids.into_iter().filter_map(move |i| {
             let (o, olo, ohi) = &self.items[i as usize];
             let apart = qlo.x > ohi.x || qhi.x < olo.x || qlo.y > ohi.y || qhi.y < olo.y;
-            (!apart).then_some(*o)
+            (!apart).then_some((i as usize, *o))
         })
     }
 
-    fn path_is_clear(&self, path: &DubinsPath, clearance: f32, check: CollisionCheck) -> bool {
+    /// Whether `path` keeps more than `clearance` from every obstacle (planar: every obstacle
+    /// a wall of unbounded height), by `check`.
+    pub(crate) fn path_is_clear(
+        &self,
+        path: &DubinsPath,
+        clearance: f32,
+        check: CollisionCheck,
+    ) -> bool {
         match check {
             CollisionCheck::Exact => path.primitives().into_iter().flatten().all(|prim| {
                 let (lo, hi) = prim.bounding_box();
@@ -237,25 +270,59 @@ impl<'a> ObstacleIndex<'a> {
                 // obstacle has a chord point within m + f. With the margin clearance + f the
                 // check accepts a subset of the exact one; with the clearance alone (the
                 // paper's reading) every accepted path keeps at least clearance − f.
-                let r = path.radius;
-                let f = r * (1.0 - (arc_step_m / (2.0 * r)).cos());
-                let margin = match sagitta {
-                    Sagitta::Added => clearance + f,
-                    Sagitta::InClearance => clearance,
-                };
-                let steps = (path.length() / arc_step_m).ceil().max(1.0) as usize;
-                let point = |i: usize| {
-                    path.sample(path.length() * i as f32 / steps as f32)
-                        .position
-                };
-                (0..steps).all(|i| {
-                    let chord = Primitive::Line(skyroute::Segment::new(point(i), point(i + 1)));
+                let chords = Chords::new(path, clearance, arc_step_m, sagitta);
+                (0..chords.steps).all(|i| {
+                    let chord = chords.chord(i);
                     let (lo, hi) = chord.bounding_box();
-                    self.near(lo, hi, margin)
-                        .all(|o| !primitive_conflicts(&chord, o, margin))
+                    self.near(lo, hi, chords.margin)
+                        .all(|o| !primitive_conflicts(&chord, o, chords.margin))
                 })
             }
         }
+    }
+}
+
+/// The discretised check's chords of a path: `steps` chords between points equally spaced
+/// along it, at most the arc step apart, tested with `margin`.
+pub(crate) struct Chords<'p> {
+    path: &'p DubinsPath,
+    /// Number of chords.
+    pub(crate) steps: usize,
+    /// The distance a chord must keep from an obstacle: the clearance, plus the sagitta
+    /// f = r(1 − cos(d/2r)) with [`Sagitta::Added`].
+    pub(crate) margin: f32,
+}
+
+impl<'p> Chords<'p> {
+    pub(crate) fn new(
+        path: &'p DubinsPath,
+        clearance: f32,
+        arc_step_m: f32,
+        sagitta: Sagitta,
+    ) -> Self {
+        let r = path.radius;
+        let f = r * (1.0 - (arc_step_m / (2.0 * r)).cos());
+        let margin = match sagitta {
+            Sagitta::Added => clearance + f,
+            Sagitta::InClearance => clearance,
+        };
+        let steps = (path.length() / arc_step_m).ceil().max(1.0) as usize;
+        Self {
+            path,
+            steps,
+            margin,
+        }
+    }
+
+    /// Arc length along the path of chord point `i` (0 ..= steps).
+    pub(crate) fn at(&self, i: usize) -> f32 {
+        self.path.length() * i as f32 / self.steps as f32
+    }
+
+    /// Chord `i`, from point `i` to point `i + 1`.
+    pub(crate) fn chord(&self, i: usize) -> Primitive {
+        let point = |i: usize| self.path.sample(self.at(i)).position;
+        Primitive::Line(skyroute::Segment::new(point(i), point(i + 1)))
     }
 }
 
@@ -353,10 +420,31 @@ impl SampleGrid {
     }
 }
 
-/// Builds the roadmap. `progress` is called with (done, total) as sample rows finish.
+/// Builds the planar roadmap. `progress` is called with (done, total) as sample rows finish.
 pub fn build_roadmap(
     input: &RoadmapInput,
     params: &RoadmapParams,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Roadmap {
+    build_roadmap_with(input, params, None, progress)
+}
+
+/// What one sample's connection counted.
+#[derive(Default)]
+struct Tally {
+    examined: usize,
+    too_steep: usize,
+    over_low: usize,
+}
+
+/// Builds the roadmap, three-dimensional when `vertical` is given (see
+/// [`crate::roadmap_vertical`]; `vertical.heights` has one entry per `input.obstacles`, and
+/// `vertical.fixed_altitudes` one per `input.fixed_vertices`). Without it, the planar roadmap
+/// of [`build_roadmap`]. `progress` is called with (done, total) as sample rows finish.
+pub fn build_roadmap_with(
+    input: &RoadmapInput,
+    params: &RoadmapParams,
+    vertical: Option<&VerticalInput>,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Roadmap {
     let obstacles = ObstacleIndex::new(&input.obstacles);
@@ -370,8 +458,12 @@ pub fn build_roadmap(
         splitmix(&mut state),
         splitmix(&mut state),
     ];
+    // The altitude's shift is drawn after the plane's, so a planar roadmap's samples do not
+    // depend on whether it is drawn.
+    let altitude_shift = vertical.map(|_| splitmix(&mut state));
 
     let mut vertices: Vec<Pose> = input.fixed_vertices.clone();
+    let mut altitudes: Vec<f32> = vertical.map_or(Vec::new(), |v| v.fixed_altitudes.clone());
     let mut positions: Vec<Vec2> = vertices.iter().map(|p| p.position).collect();
     let mut spacing_grid = SampleGrid::new(&[], lo, hi, params.sample_spacing_m);
     for (i, p) in positions.iter().enumerate() {
@@ -384,10 +476,18 @@ pub fn build_roadmap(
         let v = (radical_inverse(i, 2) + shift[1]).fract();
         let a = (radical_inverse(i, 3) + shift[2]).fract();
         let p = Vec2::new((lo.x as f64 + u * w) as f32, (lo.y as f64 + v * h) as f32);
-        if obstacles
-            .near(p, p, params.clearance_m)
-            .any(|o| point_conflicts(p, o, params.clearance_m))
-        {
+        // The 4-D Hammersley point's fourth coordinate, the altitude: the next prime base (5)
+        // with its own Cranley–Patterson shift.
+        let z = vertical
+            .zip(altitude_shift)
+            .map(|(vin, shift_z)| vin.altitude_at((radical_inverse(i, 5) + shift_z).fract()));
+        let in_obstacle = match (vertical, z) {
+            (Some(vin), Some(z)) => vin.sample_conflicts(&obstacles, p, z, params.clearance_m),
+            _ => obstacles
+                .near(p, p, params.clearance_m)
+                .any(|o| point_conflicts(p, o, params.clearance_m)),
+        };
+        if in_obstacle {
             dropped_in_obstacles += 1;
             continue;
         }
@@ -401,6 +501,7 @@ pub fn build_roadmap(
         let c = spacing_grid.cell_of(p);
         spacing_grid.buckets[c.1 * spacing_grid.nx + c.0].push(positions.len() as u32);
         positions.push(p);
+        altitudes.extend(z);
         vertices.push(Pose {
             position: p,
             heading: (a * std::f64::consts::TAU - std::f64::consts::PI) as f32,
@@ -417,7 +518,7 @@ pub fn build_roadmap(
     let total = vertices.len();
     let connect = |s: usize,
                    targets: &mut dyn Iterator<Item = u32>,
-                   examined: &mut usize|
+                   tally: &mut Tally|
      -> Vec<EdgeSpec> {
         let mut out = Vec::new();
         for t in targets {
@@ -425,29 +526,49 @@ pub fn build_roadmap(
             if t == s {
                 continue;
             }
-            *examined += 1;
+            tally.examined += 1;
             let Some(path) =
                 DubinsPath::shortest_among(&vertices[s], &vertices[t], params.turn_radius_m, words)
             else {
                 continue;
             };
-            if obstacles.path_is_clear(&path, params.clearance_m, params.check) {
+            let clear = match vertical {
+                None => obstacles.path_is_clear(&path, params.clearance_m, params.check),
+                Some(vin) => {
+                    let Some(profile) = vin.profile(altitudes[s], altitudes[t], &path) else {
+                        tally.too_steep += 1;
+                        continue;
+                    };
+                    let clear = vin.path_is_clear(
+                        &obstacles,
+                        &path,
+                        &profile,
+                        params.clearance_m,
+                        params.check,
+                    );
+                    if clear && vin.overflies(&obstacles, &path) {
+                        tally.over_low += 1;
+                    }
+                    clear
+                }
+            };
+            if clear {
                 out.push(EdgeSpec::dubins(s as u32, t as u32, &path));
             }
         }
         out
     };
-    let per_vertex: Vec<(Vec<EdgeSpec>, usize, bool)> = (0..total)
+    let per_vertex: Vec<(Vec<EdgeSpec>, Tally, bool)> = (0..total)
         .into_par_iter()
         .map(|s| {
             let p = positions[s];
-            let mut examined = 0;
+            let mut tally = Tally::default();
             let mut near: Vec<u32> = grid
                 .around(p)
                 .filter(|&t| positions[t as usize].distance(p) <= params.neighbour_radius_m)
                 .collect();
             near.sort_unstable();
-            let mut edges = connect(s, &mut near.into_iter(), &mut examined);
+            let mut edges = connect(s, &mut near.into_iter(), &mut tally);
             let mut fallback = false;
             if edges.is_empty() && params.k_nearest_fallback > 0 {
                 let mut order: Vec<u32> = (0..total as u32).filter(|&t| t as usize != s).collect();
@@ -458,17 +579,19 @@ pub fn build_roadmap(
                         .then(a.cmp(&b))
                 });
                 order.truncate(params.k_nearest_fallback);
-                edges = connect(s, &mut order.into_iter(), &mut examined);
+                edges = connect(s, &mut order.into_iter(), &mut tally);
                 fallback = true;
             }
             let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             if n.is_multiple_of(256) || n == total {
                 progress(n, total);
             }
-            (edges, examined, fallback)
+            (edges, tally, fallback)
         })
         .collect();
-    let edges_examined = per_vertex.iter().map(|v| v.1).sum();
+    let edges_examined = per_vertex.iter().map(|v| v.1.examined).sum();
+    let edges_too_steep = per_vertex.iter().map(|v| v.1.too_steep).sum();
+    let edges_over_low_obstacles = per_vertex.iter().map(|v| v.1.over_low).sum();
     let fallback_vertices = per_vertex.iter().filter(|v| v.2).count();
     let edges = per_vertex.into_iter().flat_map(|v| v.0).collect();
     Roadmap {
@@ -479,5 +602,8 @@ pub fn build_roadmap(
         dropped_by_spacing,
         edges_examined,
         fallback_vertices,
+        altitudes,
+        edges_too_steep,
+        edges_over_low_obstacles,
     }
 }

@@ -50,14 +50,21 @@ fn leg_feature(
     leg: &crate::render::RouteLeg,
     altitude: Option<f64>,
 ) -> Value {
-    let mut coords: Vec<[f64; 2]> = Vec::new();
+    // A three-dimensional route's positions carry their altitude (RFC 7946 §3.1.1).
+    let three_d = !leg.vertical.is_empty() && leg.vertical.len() == leg.primitives.len();
+    let mut coords: Vec<Vec<f64>> = Vec::new();
     let mut arcs = Vec::new();
-    for p in &leg.primitives {
+    for (i, p) in leg.primitives.iter().enumerate() {
         let n = (p.length() / SAMPLE_STEP_M).ceil().max(1.0) as usize;
         let first = usize::from(!coords.is_empty());
         for k in first..=n {
-            let q = p.pose_at(p.length() * k as f32 / n as f32).position;
-            coords.push(lon_lat(frame, q.x, q.y));
+            let s = p.length() * k as f32 / n as f32;
+            let q = p.pose_at(s).position;
+            let mut point = lon_lat(frame, q.x, q.y).to_vec();
+            if let Some((profile, offset)) = leg.vertical.get(i).filter(|_| three_d) {
+                point.push(profile.altitude_at(offset + s) as f64);
+            }
+            coords.push(point);
         }
         if let Primitive::Arc(a) = p {
             arcs.push(json!({

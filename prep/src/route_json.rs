@@ -4,6 +4,7 @@ use crate::frame::LocalFrame;
 use crate::mission::Mission;
 use serde_json::{json, Value};
 use skyroute::geometry::hermite::HermiteSegment;
+use skyroute::geometry::vertical::{VerticalLimits, VerticalProfile};
 use skyroute::planner::Work;
 use skyroute::{Primitive, Turn};
 
@@ -67,6 +68,72 @@ pub fn sampled_lon_lat(primitives: &[Primitive], frame: &LocalFrame, step: f32) 
     out
 }
 
+/// A primitive's altitude on a three-dimensional roadmap: the profile of the path it belongs
+/// to (`from_m` → `to_m` over `path_length_m`, rebuilt with
+/// [`skyroute::geometry::vertical::VerticalProfile::new`] and the route's `vertical` limits)
+/// and the distance along that path at which it starts (`offset_m`); with its altitudes at its
+/// two ends for reading.
+pub fn primitive_altitude_json(p: &Primitive, profile: &VerticalProfile, offset: f32) -> Value {
+    json!({
+        "from_m": profile.from,
+        "to_m": profile.to,
+        "path_length_m": profile.length,
+        "offset_m": offset,
+        "start_m": profile.altitude_at(offset),
+        "end_m": profile.altitude_at(offset + p.length()),
+    })
+}
+
+/// A three-dimensional roadmap's vertical limits as JSON.
+pub fn vertical_limits_json(l: &VerticalLimits) -> Value {
+    json!({
+        "airspeed_mps": l.airspeed,
+        "climb_rate_mps": l.climb_rate,
+        "vertical_accel_mps2": l.vertical_accel,
+    })
+}
+
+/// Points every `step` metres along the primitives (and at each primitive's end) as
+/// `[lon, lat, altitude]`, each primitive flown with its profile and offset (`vertical`, one
+/// per primitive).
+pub fn sampled_lon_lat_alt(
+    primitives: &[Primitive],
+    vertical: &[(VerticalProfile, f32)],
+    frame: &LocalFrame,
+    step: f32,
+) -> Vec<[f64; 3]> {
+    let mut out = Vec::new();
+    for (p, (profile, offset)) in primitives.iter().zip(vertical) {
+        let n = (p.length() / step).ceil().max(1.0) as usize;
+        let first = if out.is_empty() { 0 } else { 1 };
+        for i in first..=n {
+            let s = p.length() * i as f32 / n as f32;
+            let q = p.pose_at(s).position;
+            let (lon, lat) = frame.to_geo(q.x as f64, q.y as f64);
+            out.push([lon, lat, profile.altitude_at(offset + s) as f64]);
+        }
+    }
+    out
+}
+
+/// A leg's primitives as JSON, each with its altitude on a three-dimensional roadmap.
+fn leg_primitives_json(l: &crate::mission::Leg) -> Vec<Value> {
+    l.primitives
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let mut v = primitive_json(p);
+            if let (Some((profile, offset)), Some(o)) = (l.vertical.get(k), v.as_object_mut()) {
+                o.insert(
+                    "altitude".into(),
+                    primitive_altitude_json(p, profile, *offset),
+                );
+            }
+            v
+        })
+        .collect()
+}
+
 /// The route file written by `skyroute plan`.
 pub fn mission_json(m: &Mission, frame: &LocalFrame, scenario_name: &str) -> Value {
     let all: Vec<Primitive> = m
@@ -74,8 +141,19 @@ pub fn mission_json(m: &Mission, frame: &LocalFrame, scenario_name: &str) -> Val
         .iter()
         .flat_map(|l| l.primitives.iter().copied())
         .collect();
+    let vertical: Vec<(VerticalProfile, f32)> = m
+        .legs
+        .iter()
+        .flat_map(|l| l.vertical.iter().copied())
+        .collect();
+    let geometry = match m.vertical_limits.is_some() && vertical.len() == all.len() {
+        true => {
+            json!({"type": "LineString", "coordinates": sampled_lon_lat_alt(&all, &vertical, frame, 5.0)})
+        }
+        false => json!({"type": "LineString", "coordinates": sampled_lon_lat(&all, frame, 5.0)}),
+    };
     let (lat0, lon0) = frame.origin();
-    json!({
+    let mut route = json!({
         "scenario": scenario_name,
         "frame": {"origin_lat_deg": lat0, "origin_lon_deg": lon0, "method": "transverse Mercator on WGS-84 centred on the origin (prep/src/frame.rs)"},
         "length_m": m.length,
@@ -97,8 +175,12 @@ pub fn mission_json(m: &Mission, frame: &LocalFrame, scenario_name: &str) -> Val
                 "regions": e.regions,
                 "length_m": e.length,
             })),
-            "primitives": l.primitives.iter().map(primitive_json).collect::<Vec<_>>(),
+            "primitives": leg_primitives_json(l),
         })).collect::<Vec<_>>(),
-        "geometry": {"type": "LineString", "coordinates": sampled_lon_lat(&all, frame, 5.0)},
-    })
+        "geometry": geometry,
+    });
+    if let (Some(limits), Some(o)) = (&m.vertical_limits, route.as_object_mut()) {
+        o.insert("vertical".into(), vertical_limits_json(limits));
+    }
+    route
 }

@@ -6,7 +6,7 @@
 //! `absolute` on a terrain network, else `relativeToGround`.
 
 use crate::route_geojson::SAMPLE_STEP_M;
-use crate::route_json::sampled_lon_lat;
+use crate::route_json::{sampled_lon_lat, sampled_lon_lat_alt};
 use crate::route_mission::{
     mission_altitude, mission_route, popup_rings, MissionOutput, FRAME_GLOBAL,
 };
@@ -91,7 +91,16 @@ pub fn route_kml(route_json: &Value, s: &Scenario, out: &MissionOutput) -> Resul
     k.push_str(STYLES);
     k.push_str("<Folder><name>Route</name>\n");
     for (i, leg) in m.route.legs.iter().enumerate() {
-        let pts = sampled_lon_lat(&leg.primitives, &m.frame, SAMPLE_STEP_M);
+        // A three-dimensional route's points at their own altitudes, above the ground.
+        let pts: Vec<[f64; 3]> =
+            if leg.vertical.len() == leg.primitives.len() && !leg.vertical.is_empty() {
+                sampled_lon_lat_alt(&leg.primitives, &leg.vertical, &m.frame, SAMPLE_STEP_M)
+            } else {
+                sampled_lon_lat(&leg.primitives, &m.frame, SAMPLE_STEP_M)
+                    .iter()
+                    .map(|p| [p[0], p[1], altitude])
+                    .collect()
+            };
         let _ = writeln!(
             k,
             "<Placemark><name>leg {i}: {} - {}</name><description>{:.1} m</description>\
@@ -100,14 +109,29 @@ pub fn route_kml(route_json: &Value, s: &Scenario, out: &MissionOutput) -> Resul
             escape(&leg.from),
             escape(&leg.to),
             leg.length_m,
-            coordinates(pts.iter().map(|p| (p[0], p[1])), altitude)
+            pts.iter()
+                .map(|p| format!("{},{},{}", p[0], p[1], p[2]))
+                .collect::<Vec<_>>()
+                .join(" ")
         );
     }
     k.push_str("</Folder>\n<Folder><name>Start, waypoints and goal</name>\n");
     for w in m.plan.waypoints.iter().filter(|w| w.name.is_some()) {
         let (lon, lat) = m.frame.to_geo(w.position.0, w.position.1);
         let name = w.name.as_deref().unwrap_or_default();
-        point(&mut k, name, "endpoint", lon, lat, altitude, mode);
+        // A three-dimensional scenario's endpoints at their own altitudes.
+        let own = (s.start.iter().chain(&s.waypoints).chain(s.goal.iter()))
+            .find(|e| e.name == name)
+            .and_then(|e| e.altitude_m);
+        point(
+            &mut k,
+            name,
+            "endpoint",
+            lon,
+            lat,
+            own.unwrap_or(altitude),
+            mode,
+        );
     }
     k.push_str("</Folder>\n<Folder><name>No-fly zones</name>\n");
     for z in &s.no_fly {

@@ -58,6 +58,10 @@ pub fn route_text(
     s: &Scenario,
     out: &MissionOutput,
 ) -> Result<String, Box<dyn std::error::Error>> {
+    if format.is_mission() && route_json.get("vertical").is_some() {
+        return Err("a three-dimensional route's altitude changes along its paths, and the                     mission formats (.plan, .waypoints) are written at one altitude: write the                     route as .json, .geojson or .kml, whose points carry their altitudes"
+            .into());
+    }
     Ok(match format {
         RouteFormat::Detailed => serde_json::to_string_pretty(route_json)?,
         RouteFormat::GeoJson => serde_json::to_string(&route_geojson(route_json)?)?,

@@ -221,6 +221,34 @@ fn roadmap(queries: u64) -> Sweep {
     })
 }
 
+/// The three-dimensional roadmap: as [`roadmap`], each query between random altitudes in the
+/// band the network's vertices were sampled in (and 20 m beyond it either way).
+fn roadmap_3d(queries: u64) -> Sweep {
+    let b = built("niendorf-urban-3d");
+    let net = Network::from_bytes(&b.bytes).unwrap();
+    let altitudes = (0..net.vertex_count()).filter_map(|v| net.vertex_altitude(v));
+    let (low, high) = altitudes.fold((f32::INFINITY, f32::NEG_INFINITY), |(l, h), z| {
+        (l.min(z), h.max(z))
+    });
+    let mut p: Box<Big<'_>> = Box::new(Planner::new());
+    p.load(&b.bytes).unwrap();
+    sweep(&mut p, queries, 5, true, |p, rng, i| {
+        if i % 16 == 0 {
+            let n = rng.below(4);
+            random_popups(p, rng, n, &net);
+        }
+        let mut altitude = || rng.range((low - 20.0) as f64, (high + 20.0) as f64) as f32;
+        let (from, to) = (altitude(), altitude());
+        p.set_query_altitudes(from, to).unwrap();
+        let search = if i % 2 == 0 {
+            Search::Dijkstra
+        } else {
+            Search::AStar
+        };
+        random_query(rng, &net, search)
+    })
+}
+
 fn terrain(queries: u64) -> Sweep {
     let b = built("medeiros-jacksboro");
     let net = Network::from_bytes(&b.bytes).unwrap();
@@ -350,8 +378,9 @@ fn main() -> ExitCode {
         .iter()
         .position(|a| a == "--mode")
         .and_then(|i| args.get(i + 1));
-    let modes: [ModeSweep; 4] = [
+    let modes: [ModeSweep; 5] = [
         ("roadmap niendorf-urban", roadmap),
+        ("roadmap niendorf-urban-3d", roadmap_3d),
         ("terrain medeiros-jacksboro", terrain),
         ("landmark babel-II-N", landmark),
         ("voronoi voronoi-dense", voronoi),
@@ -361,10 +390,14 @@ fn main() -> ExitCode {
             .iter()
             .filter(|(name, _)| only.is_none_or(|m| name.starts_with(m.as_str())))
             .map(|&(name, run)| {
-                scope.spawn(move || {
-                    let t = Instant::now();
-                    (name, run(queries), t.elapsed().as_secs_f64())
-                })
+                // A planner built in place may pass through the thread's stack first.
+                std::thread::Builder::new()
+                    .stack_size(64 << 20)
+                    .spawn_scoped(scope, move || {
+                        let t = Instant::now();
+                        (name, run(queries), t.elapsed().as_secs_f64())
+                    })
+                    .expect("a sweep thread starts")
             })
             .collect();
         handles.into_iter().map(|h| h.join().unwrap()).collect()

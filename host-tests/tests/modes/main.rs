@@ -23,6 +23,9 @@ mod landmark_plan;
 mod mission;
 /// Every scenario's network image against the recorded length and CRC-32.
 mod network_images;
+/// The three-dimensional urban mission: clear of every building's prism by f64 sampling, over
+/// low buildings, shorter than with every building a wall.
+mod niendorf_3d;
 /// The niendorf-urban network and route keep clearance from every building (from JSON).
 mod niendorf_clearance;
 /// Planning in slices (`start_plan` + `step`) against one `plan` call, in every mode.

@@ -21,6 +21,9 @@ pub struct RouteLeg {
     pub pieces: Vec<Piece>,
     /// A Voronoi route's coarse polyline (start, graph vertices, goal); empty for other routes.
     pub coarse: Vec<Vec2>,
+    /// A three-dimensional roadmap route: for each primitive, its path's altitude profile and
+    /// the distance along the path at which it starts; empty for other routes.
+    pub vertical: Vec<(skyroute::geometry::vertical::VerticalProfile, f32)>,
 }
 
 /// A route file written by `skyroute plan`.

@@ -5,6 +5,7 @@ use super::picture::{
 };
 use serde_json::Value;
 use skyroute::geometry::spline::Piece;
+use skyroute::geometry::vertical::{VerticalLimits, VerticalProfile};
 use skyroute::{Arc, Primitive, Segment, Vec2};
 use std::path::Path;
 
@@ -230,6 +231,10 @@ pub fn route_from_json(v: &Value) -> Result<Route, String> {
         .get("legs")
         .and_then(Value::as_array)
         .ok_or("legs: missing or not an array")?;
+    let limits = match v.get("vertical") {
+        Some(l) => Some(vertical_limits_from_json(l).map_err(|e| format!("vertical.{e}"))?),
+        None => None,
+    };
     let mut out = Vec::new();
     for (i, leg) in legs.iter().enumerate() {
         let name = |k: &str| {
@@ -254,6 +259,17 @@ pub fn route_from_json(v: &Value) -> Result<Route, String> {
             .and_then(Value::as_f64)
             .unwrap_or_else(|| primitives.iter().map(|p| p.length() as f64).sum());
         let (pieces, coarse) = leg_curves(leg, i)?;
+        let vertical = match &limits {
+            Some(limits) => prims
+                .iter()
+                .enumerate()
+                .map(|(k, p)| {
+                    altitude_from_json(p, limits)
+                        .map_err(|e| format!("legs[{i}].primitives[{k}].altitude.{e}"))
+                })
+                .collect::<Result<Vec<_>, _>>()?,
+            None => Vec::new(),
+        };
         out.push(RouteLeg {
             from: name("from"),
             to: name("to"),
@@ -261,6 +277,7 @@ pub fn route_from_json(v: &Value) -> Result<Route, String> {
             primitives,
             pieces,
             coarse,
+            vertical,
         });
     }
     let mut popups = Vec::new();
@@ -298,6 +315,37 @@ pub fn route_from_json(v: &Value) -> Result<Route, String> {
         decision: decision_from_json(v)?,
         altitude_m: v.get("altitude_m").and_then(Value::as_f64),
     })
+}
+
+/// A three-dimensional route's vertical limits (`vertical`: airspeed, climb rate, vertical
+/// acceleration).
+fn vertical_limits_from_json(v: &Value) -> Result<VerticalLimits, String> {
+    let limits = VerticalLimits {
+        airspeed: num(v, "airspeed_mps")? as f32,
+        climb_rate: num(v, "climb_rate_mps")? as f32,
+        vertical_accel: num(v, "vertical_accel_mps2")? as f32,
+    };
+    match limits.is_valid() {
+        true => Ok(limits),
+        false => Err("airspeed_mps, climb_rate_mps, vertical_accel_mps2: not all positive".into()),
+    }
+}
+
+/// A three-dimensional route's primitive: its path's profile, rebuilt from its `altitude`
+/// member, and the distance along the path at which it starts.
+fn altitude_from_json(
+    p: &Value,
+    limits: &VerticalLimits,
+) -> Result<(VerticalProfile, f32), String> {
+    let a = p
+        .get("altitude")
+        .ok_or("missing (the route is three-dimensional)")?;
+    let (from, to, length) = (num(a, "from_m")?, num(a, "to_m")?, num(a, "path_length_m")?);
+    let offset = num(a, "offset_m")? as f32;
+    let profile = VerticalProfile::new(from as f32, to as f32, length as f32, limits).ok_or(
+        "from_m, to_m, path_length_m: not a climb the vertical limits allow over that length",
+    )?;
+    Ok((profile, offset))
 }
 
 /// Reads a route file; errors name it.

@@ -151,6 +151,9 @@ pub enum ErrorKind {
         /// The intersection that was found.
         edges: (usize, usize),
     },
+    /// A key of the three-dimensional roadmap (a height, an altitude, a vertical limit) in a
+    /// planar scenario, one without `planner.altitude_min_m` and `planner.altitude_max_m`.
+    Planar,
     /// Something else, in words.
     Invalid(String),
 }
@@ -270,6 +273,11 @@ impl fmt::Display for ErrorKind {
                 "polygon ring is self-intersecting (edges {} and {} meet); replaced its {before} \
                  vertices by their convex hull of {after}",
                 edges.0, edges.1
+            ),
+            ErrorKind::Planar => write!(
+                f,
+                "the scenario is planar: this key is read only in a three-dimensional roadmap \
+                 scenario, one with planner.altitude_min_m and planner.altitude_max_m"
             ),
             ErrorKind::Invalid(m) => write!(f, "{m}"),
         }

@@ -24,6 +24,12 @@
 //! with an exact point-in-polygon test. Start and goal may be absent: the caller decides; a start
 //! that is present has a `heading_deg` in every mode (no mode can take a free start heading).
 //!
+//! A roadmap scenario with `planner.altitude_min_m` and `planner.altitude_max_m` is
+//! three-dimensional (Niendorf et al.; [`Scenario::vertical`]): its no-fly zones may have a
+//! `height_m`, its vehicle a `climb_rate_mps` and a `vertical_accel_mps2`, and each start, goal
+//! and waypoint must have an `altitude_m`. In a planar scenario any of these keys is refused by
+//! name ([`ErrorKind::Planar`]), never ignored.
+//!
 //! Members that the format does not define are ignored at the top level (GeoJSON allows foreign
 //! members there) and in a feature outside `properties`. A UTF-8 byte-order mark at the start
 //! of the text is skipped.
@@ -35,10 +41,12 @@ mod json;
 mod parser;
 mod sections;
 mod types;
+mod vertical;
 
 pub use error::{ErrorDetail, ErrorKind, FeatureRef, ScenarioError};
 pub use types::{
     Circle, Endpoint, Landmark, Mode, NoFly, PlannerParams, Popup, Scenario, Terrain, Vehicle,
+    Vertical, DEFAULT_CLIMB_RATE_MPS, DEFAULT_VERTICAL_ACCEL_MPS2, MAX_ALTITUDE_M,
     ROSETTE_HEADINGS,
 };
 
@@ -154,3 +162,5 @@ mod tests_geometry;
 mod tests_holes;
 #[cfg(test)]
 mod tests_inputs;
+#[cfg(test)]
+mod tests_vertical;

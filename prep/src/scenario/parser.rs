@@ -50,18 +50,30 @@ struct Seen {
 }
 
 /// The `properties` keys that features of `kind` define (`scenarios/README.md`), in the order
-/// messages list them; `None` for an unknown kind. Any other key is refused (a misspelt
-/// `heading` or `heigth` would otherwise be ignored).
-fn property_keys(kind: &str) -> Option<&'static [&'static str]> {
-    Some(match kind {
-        "no_fly" => &["kind", "name"],
-        "landmark" => &["kind", "name", "d_max_m", "quality"],
-        "start" => &["kind", "name", "heading_deg", "dist_m"],
-        "goal" | "waypoint" => &["kind", "name", "heading_deg"],
-        "threat" => &["kind", "name", "radius_m"],
-        "popup" => &["kind", "name", "radius_m", "probability"],
+/// messages list them, in a planar scenario or a `three_dimensional` one (which adds a no-fly
+/// zone's `height_m` and an endpoint's `altitude_m`); `None` for an unknown kind. Any other key
+/// is refused (a misspelt `heading` or `heigth` would otherwise be ignored).
+fn property_keys(kind: &str, three_dimensional: bool) -> Option<&'static [&'static str]> {
+    Some(match (kind, three_dimensional) {
+        ("no_fly", false) => &["kind", "name"],
+        ("no_fly", true) => &["kind", "name", "height_m"],
+        ("landmark", _) => &["kind", "name", "d_max_m", "quality"],
+        ("start", false) => &["kind", "name", "heading_deg", "dist_m"],
+        ("start", true) => &["kind", "name", "heading_deg", "dist_m", "altitude_m"],
+        ("goal" | "waypoint", false) => &["kind", "name", "heading_deg"],
+        ("goal" | "waypoint", true) => &["kind", "name", "heading_deg", "altitude_m"],
+        ("threat", _) => &["kind", "name", "radius_m"],
+        ("popup", _) => &["kind", "name", "radius_m", "probability"],
         _ => return None,
     })
+}
+
+/// Whether `key` of a feature of `kind` is a three-dimensional scenario's only.
+fn vertical_key(kind: &str, key: &str) -> bool {
+    matches!(
+        (kind, key),
+        ("no_fly", "height_m") | ("start" | "goal" | "waypoint", "altitude_m")
+    )
 }
 
 impl Parser<'_> {
@@ -260,8 +272,10 @@ impl Parser<'_> {
             Some(v) => self.string(&TOP, v, "description")?.to_string(),
             None => String::new(),
         };
-        let vehicle = self.vehicle(self.req(&TOP, root, "vehicle", "vehicle")?)?;
+        let vehicle_obj = self.req(&TOP, root, "vehicle", "vehicle")?;
+        let mut vehicle = self.vehicle(vehicle_obj)?;
         let planner = self.planner(self.req(&TOP, root, "planner", "planner")?)?;
+        self.vertical(&mut vehicle, vehicle_obj, &planner)?;
         let weather = match Self::opt(root, "weather") {
             Some(v) => self.weather(v)?,
             None => Vec::new(),
@@ -352,10 +366,16 @@ impl Parser<'_> {
         }
         let kind_v = self.req(&at, props, "kind", "properties.kind")?;
         let kind = self.string(&at, kind_v, "properties.kind")?;
-        let known = property_keys(kind)
+        let three_dimensional = s.vertical().is_some();
+        let known = property_keys(kind, three_dimensional)
             .ok_or_else(|| self.err(&at, "properties.kind", ErrorKind::UnknownKind(kind.into())))?;
         if let Some(k) = props.keys().find(|k| !known.contains(&k.as_str())) {
-            return Err(self.err(&at, format!("properties.{k}"), ErrorKind::UnknownKey(known)));
+            // A height or altitude in a planar scenario is known, but would be ignored.
+            let why = match vertical_key(kind, k) {
+                true => ErrorKind::Planar,
+                false => ErrorKind::UnknownKey(known),
+            };
+            return Err(self.err(&at, format!("properties.{k}"), why));
         }
         let geometry = self.req(&at, f, "geometry", "geometry")?;
         let geometry = self.object(&at, geometry, "geometry")?;
@@ -363,6 +383,7 @@ impl Parser<'_> {
             "no_fly" => {
                 // A MultiPolygon's members become zones named "NAME[k]".
                 let polygons = self.polygons(&at, geometry)?;
+                let height_m = self.zone_height(&at, props, three_dimensional)?;
                 let parts = polygons.len();
                 for (k, ZoneRings { exterior, holes }) in polygons.into_iter().enumerate() {
                     let name = match parts {
@@ -373,6 +394,7 @@ impl Parser<'_> {
                         name,
                         ring: exterior,
                         holes,
+                        height_m,
                     });
                     seen.no_fly.push(me.clone());
                 }
@@ -391,7 +413,8 @@ impl Parser<'_> {
                 });
             }
             "start" | "goal" | "waypoint" => {
-                let e = self.endpoint(&at, props, geometry, name)?;
+                let mut e = self.endpoint(&at, props, geometry, name)?;
+                e.altitude_m = self.endpoint_altitude(&at, props, three_dimensional)?;
                 // No mode takes a free start heading: the core plans from one start pose, and a
                 // landmark network's start vertex has one heading. So a start without one is
                 // refused here rather than flown in some default direction.
@@ -462,6 +485,7 @@ impl Parser<'_> {
             lat,
             heading_deg,
             dist_m,
+            altitude_m: None,
         })
     }
 

@@ -15,6 +15,8 @@ const VEHICLE_KEYS: &[&str] = &[
     "a_long_min_mps2",
     "a_long_max_mps2",
     "wingspan_m",
+    "climb_rate_mps",
+    "vertical_accel_mps2",
 ];
 const PLANNER_KEYS: &[&str] = &[
     "mode",
@@ -28,6 +30,8 @@ const PLANNER_KEYS: &[&str] = &[
     "line_elements_per_pair",
     "threat_weight",
     "seed",
+    "altitude_min_m",
+    "altitude_max_m",
 ];
 const TERRAIN_KEYS: &[&str] = &["dem", "altitude_m", "safety_height_m"];
 
@@ -45,6 +49,10 @@ impl Parser<'_> {
             a_long_min_mps2: n("a_long_min_mps2")?,
             a_long_max_mps2: n("a_long_max_mps2")?,
             wingspan_m: n("wingspan_m")?,
+            // Read once the planner says whether the scenario is three-dimensional
+            // (`Parser::vertical`).
+            climb_rate_mps: None,
+            vertical_accel_mps2: None,
         };
         let bad = |field: &str, m: String| Err(self.err(&TOP, field, ErrorKind::VehicleLimits(m)));
         if veh.v_min_mps <= 0.0 {
@@ -198,6 +206,8 @@ impl Parser<'_> {
                 k => k,
             },
             seed: int("seed", 0, u64::MAX)?,
+            altitude_min_m: self.opt_altitude(&TOP, o, "altitude_min_m", p)?,
+            altitude_max_m: self.opt_altitude(&TOP, o, "altitude_max_m", p)?,
         })
     }
 

@@ -60,6 +60,23 @@ impl Scenario {
     pub fn local_frame(&self) -> LocalFrame {
         LocalFrame::centred_on(self.positions())
     }
+
+    /// The altitude band and vertical limits of a three-dimensional roadmap scenario (one with
+    /// `planner.altitude_min_m` and `planner.altitude_max_m`); `None` for a planar one.
+    pub fn vertical(&self) -> Option<Vertical> {
+        Some(Vertical {
+            altitude_min_m: self.planner.altitude_min_m?,
+            altitude_max_m: self.planner.altitude_max_m?,
+            climb_rate_mps: self
+                .vehicle
+                .climb_rate_mps
+                .unwrap_or(DEFAULT_CLIMB_RATE_MPS),
+            vertical_accel_mps2: self
+                .vehicle
+                .vertical_accel_mps2
+                .unwrap_or(DEFAULT_VERTICAL_ACCEL_MPS2),
+        })
+    }
 }
 
 /// The aircraft's performance figures.
@@ -79,6 +96,36 @@ pub struct Vehicle {
     pub a_long_max_mps2: f64,
     /// Wingspan, m (> 0).
     pub wingspan_m: f64,
+    /// Three-dimensional roadmap: largest climb or sink rate `v_c`, m/s (> 0); `None`: the
+    /// default [`DEFAULT_CLIMB_RATE_MPS`].
+    pub climb_rate_mps: Option<f64>,
+    /// Three-dimensional roadmap: largest vertical acceleration `a_z`, m/s² (> 0); `None`: the
+    /// default [`DEFAULT_VERTICAL_ACCEL_MPS2`].
+    pub vertical_accel_mps2: Option<f64>,
+}
+
+/// Niendorf et al.'s climb rate `v_c`, m/s: a three-dimensional scenario's default.
+pub const DEFAULT_CLIMB_RATE_MPS: f64 = 10.0;
+
+/// Niendorf et al.'s vertical acceleration `a_z`, m/s²: a three-dimensional scenario's default.
+pub const DEFAULT_VERTICAL_ACCEL_MPS2: f64 = 20.0;
+
+/// The largest altitude magnitude a scenario may give, metres (the network format's limit on a
+/// vertex altitude, `skyroute::network::format::MAX_ALTITUDE_M`).
+pub const MAX_ALTITUDE_M: f64 = skyroute::network::format::MAX_ALTITUDE_M as f64;
+
+/// What makes a roadmap scenario three-dimensional (Niendorf et al.): the altitude band its
+/// samples are drawn from and the aircraft's vertical limits, defaults applied.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Vertical {
+    /// Lowest sample altitude, m.
+    pub altitude_min_m: f64,
+    /// Highest sample altitude, m (≥ `altitude_min_m`).
+    pub altitude_max_m: f64,
+    /// Largest climb or sink rate `v_c`, m/s.
+    pub climb_rate_mps: f64,
+    /// Largest vertical acceleration `a_z`, m/s².
+    pub vertical_accel_mps2: f64,
 }
 
 impl Vehicle {
@@ -140,6 +187,12 @@ pub struct PlannerParams {
     pub threat_weight: Option<f64>,
     /// Random seed.
     pub seed: Option<u64>,
+    /// Three-dimensional roadmap: lowest sample altitude, m (finite, |value| ≤
+    /// [`MAX_ALTITUDE_M`]); present exactly when `altitude_max_m` is.
+    pub altitude_min_m: Option<f64>,
+    /// Three-dimensional roadmap: highest sample altitude, m (≥ `altitude_min_m`, |value| ≤
+    /// [`MAX_ALTITUDE_M`]); present exactly when `altitude_min_m` is.
+    pub altitude_max_m: Option<f64>,
 }
 
 /// The `terrain` member.
@@ -164,6 +217,9 @@ pub struct NoFly {
     /// Its holes, rings as [`NoFly::ring`], in file order: areas inside the ring that are not
     /// part of the zone. Each lies strictly inside the ring and apart from the others.
     pub holes: Vec<Vec<(f64, f64)>>,
+    /// Height of the building or zone, m (finite, > 0); `None`: unbounded (no altitude clears
+    /// it). Only a three-dimensional scenario gives one.
+    pub height_m: Option<f64>,
 }
 
 /// A polygon as the scenario parser reads it: its exterior ring and its holes.
@@ -208,6 +264,9 @@ pub struct Endpoint {
     pub heading_deg: Option<f64>,
     /// The start only (landmark mode): the largest distance to the first landmark, m (> 0).
     pub dist_m: Option<f64>,
+    /// Altitude, m (finite, |value| ≤ [`MAX_ALTITUDE_M`]): present exactly in a
+    /// three-dimensional scenario.
+    pub altitude_m: Option<f64>,
 }
 
 /// A known threat.
