@@ -172,7 +172,7 @@ pub fn build(
 }
 
 /// Roadmap mode: the sampled Dubins roadmap ([`crate::roadmap`]) over the bounding box of the
-/// scenario's positions; three-dimensional ([`crate::roadmap_vertical`]) when the scenario is.
+/// scenario's positions; three-dimensional ([`crate::roadmap::vertical`]) when the scenario is.
 fn build_roadmap_network(
     s: &Scenario,
     options: &BuildOptions,
@@ -237,7 +237,7 @@ fn build_roadmap_network(
         (lo, hi),
         4.0 * turn_radius + grid_cell,
     )?;
-    let vertical = crate::roadmap_vertical::vertical_input(s, &frame);
+    let vertical = crate::roadmap::vertical::vertical_input(s, &frame);
     if vertical.is_some() && !s.popups.is_empty() {
         return Err(BuildError::Alternatives(
             file,

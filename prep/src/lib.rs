@@ -24,7 +24,6 @@ pub mod provenance;
 pub mod render;
 pub mod roadmap;
 pub mod roadmap_exposure;
-pub mod roadmap_vertical;
 pub mod route_geojson;
 pub mod route_json;
 pub mod route_kml;

@@ -500,7 +500,7 @@ fn build_command(
         t0.elapsed().as_secs_f64(),
         output.display()
     );
-    if let Some(line) = skyroute_prep::roadmap_vertical::summary(r) {
+    if let Some(line) = skyroute_prep::roadmap::vertical::summary(r) {
         println!("  {line}");
     }
     Ok(())

@@ -14,10 +14,8 @@
 //! profile climbs as early and descends as late as it can ([`VerticalProfile`]), so the part
 //! below a ceiling is one interval at an end of the edge.
 
+use super::{point_conflicts, primitive_conflicts, Chords, CollisionCheck, ObstacleIndex, Roadmap};
 use crate::frame::LocalFrame;
-use crate::roadmap::{
-    point_conflicts, primitive_conflicts, Chords, CollisionCheck, ObstacleIndex, Roadmap,
-};
 use crate::scenario::Scenario;
 use skyroute::geometry::vertical::{pieces_within, VerticalLimits, VerticalProfile};
 use skyroute::{DubinsPath, Vec2};
@@ -189,8 +187,8 @@ pub fn summary(r: &Roadmap) -> Option<String> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::{ObstacleIndex, Sagitta};
     use super::*;
-    use crate::roadmap::{ObstacleIndex, Sagitta};
     use skyroute::network::write::ObstacleSpec;
     use skyroute::Pose;
 

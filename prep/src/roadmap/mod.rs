@@ -9,7 +9,7 @@
 //! With a [`VerticalInput`] the roadmap is three-dimensional (the paper's aircraft: a Dubins
 //! car in the plane plus a vertical double integrator): samples also get an altitude, an edge
 //! must be a feasible climb, and an obstacle of finite height is checked only against the part
-//! of an edge flown below it ([`crate::roadmap_vertical`]).
+//! of an edge flown below it ([`crate::roadmap::vertical`]).
 
 use rayon::prelude::*;
 use skyroute::geometry::predicates::{
@@ -20,7 +20,8 @@ use skyroute::geometry::WordSet;
 use skyroute::network::write::{EdgeSpec, ObstacleSpec};
 use skyroute::{DubinsPath, Pose, Primitive, Vec2};
 
-pub use crate::roadmap_vertical::VerticalInput;
+pub mod vertical;
+pub use vertical::VerticalInput;
 
 /// How edges are checked against obstacles.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -437,17 +438,26 @@ struct Tally {
     over_low: usize,
 }
 
-/// Builds the roadmap, three-dimensional when `vertical` is given (see
-/// [`crate::roadmap_vertical`]; `vertical.heights` has one entry per `input.obstacles`, and
-/// `vertical.fixed_altitudes` one per `input.fixed_vertices`). Without it, the planar roadmap
-/// of [`build_roadmap`]. `progress` is called with (done, total) as sample rows finish.
-pub fn build_roadmap_with(
+/// The roadmap's vertices: the fixed ones, then the Hammersley candidates (4-D with the
+/// altitude when `vertical` is given) that are clear of the obstacles and at least the sample
+/// spacing from every vertex kept before them.
+struct Samples {
+    vertices: Vec<Pose>,
+    /// One per vertex in a three-dimensional roadmap; empty otherwise.
+    altitudes: Vec<f32>,
+    positions: Vec<Vec2>,
+    candidates: u64,
+    dropped_in_obstacles: usize,
+    dropped_by_spacing: usize,
+}
+
+/// Draws the [`Samples`] of a roadmap.
+fn sample_vertices(
     input: &RoadmapInput,
     params: &RoadmapParams,
     vertical: Option<&VerticalInput>,
-    progress: &(dyn Fn(usize, usize) + Sync),
-) -> Roadmap {
-    let obstacles = ObstacleIndex::new(&input.obstacles);
+    obstacles: &ObstacleIndex,
+) -> Samples {
     let (lo, hi) = (input.area_min, input.area_max);
     let (w, h) = ((hi.x - lo.x) as f64, (hi.y - lo.y) as f64);
     // The caller has checked it against MAX_SAMPLE_CANDIDATES (`crate::build`).
@@ -482,7 +492,7 @@ pub fn build_roadmap_with(
             .zip(altitude_shift)
             .map(|(vin, shift_z)| vin.altitude_at((radical_inverse(i, 5) + shift_z).fract()));
         let in_obstacle = match (vertical, z) {
-            (Some(vin), Some(z)) => vin.sample_conflicts(&obstacles, p, z, params.clearance_m),
+            (Some(vin), Some(z)) => vin.sample_conflicts(obstacles, p, z, params.clearance_m),
             _ => obstacles
                 .near(p, p, params.clearance_m)
                 .any(|o| point_conflicts(p, o, params.clearance_m)),
@@ -507,6 +517,37 @@ pub fn build_roadmap_with(
             heading: (a * std::f64::consts::TAU - std::f64::consts::PI) as f32,
         });
     }
+
+    Samples {
+        vertices,
+        altitudes,
+        positions,
+        candidates,
+        dropped_in_obstacles,
+        dropped_by_spacing,
+    }
+}
+
+/// Builds the roadmap, three-dimensional when `vertical` is given (see
+/// [`crate::roadmap::vertical`]; `vertical.heights` has one entry per `input.obstacles`, and
+/// `vertical.fixed_altitudes` one per `input.fixed_vertices`). Without it, the planar roadmap
+/// of [`build_roadmap`]. `progress` is called with (done, total) as sample rows finish.
+pub fn build_roadmap_with(
+    input: &RoadmapInput,
+    params: &RoadmapParams,
+    vertical: Option<&VerticalInput>,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Roadmap {
+    let obstacles = ObstacleIndex::new(&input.obstacles);
+    let (lo, hi) = (input.area_min, input.area_max);
+    let Samples {
+        vertices,
+        altitudes,
+        positions,
+        candidates,
+        dropped_in_obstacles,
+        dropped_by_spacing,
+    } = sample_vertices(input, params, vertical, &obstacles);
 
     let words = if params.allow_ccc {
         WordSet::ALL
