@@ -464,3 +464,110 @@ fn pop_ups_are_refused_in_three_dimensions() {
         "{e}"
     );
 }
+
+/// `skyroute plan` on the 3-D network (waypoint headings by the paper's rule, to keep it quick):
+/// the route file carries the vertical limits and each
+/// primitive's altitude, the GeoJSON and KML points their altitudes within the scenario's band
+/// and the endpoints' altitudes, and the one-altitude mission formats refuse the route by name.
+#[test]
+fn plan_writes_altitudes_and_refuses_one_altitude_mission_formats() {
+    let dir = TempDir::new("roadmap-3d-plan");
+    let (net, sc) = (dir.file("u3.bin"), scenario("niendorf-urban-3d.geojson"));
+    ok(skyroute(&["build", &sc, "-o", &net]), "build");
+    let json = dir.file("r.json");
+    ok(
+        skyroute(&[
+            "plan",
+            &net,
+            "--scenario",
+            &sc,
+            "--free-headings",
+            "paper",
+            "-o",
+            &json,
+        ]),
+        "plan",
+    );
+    let route: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(route["vertical"]["climb_rate_mps"], 10.0);
+    let first = &route["legs"][0]["primitives"][0]["altitude"];
+    assert_eq!(first["start_m"], 60.0, "{first}");
+    let last_leg = route["legs"].as_array().unwrap().last().unwrap();
+    let last = last_leg["primitives"].as_array().unwrap().last().unwrap();
+    assert_eq!(last["altitude"]["end_m"], 60.0, "{last}");
+    for p in route["geometry"]["coordinates"].as_array().unwrap() {
+        let z = p[2].as_f64().expect("[lon, lat, altitude]");
+        assert!((40.0 - 1e-3..=120.0 + 1e-3).contains(&z), "{z}");
+    }
+    let geojson = dir.file("r.geojson");
+    ok(
+        skyroute(&[
+            "plan",
+            &net,
+            "--scenario",
+            &sc,
+            "--free-headings",
+            "paper",
+            "-o",
+            &geojson,
+        ]),
+        "plan",
+    );
+    let g: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&geojson).unwrap()).unwrap();
+    let legs: Vec<&serde_json::Value> = g["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["properties"]["kind"] == "leg")
+        .collect();
+    assert!(!legs.is_empty());
+    for f in legs {
+        for p in f["geometry"]["coordinates"].as_array().unwrap() {
+            assert_eq!(p.as_array().unwrap().len(), 3, "{p}");
+        }
+    }
+    let kml = dir.file("r.kml");
+    ok(
+        skyroute(&[
+            "plan",
+            &net,
+            "--scenario",
+            &sc,
+            "--free-headings",
+            "paper",
+            "-o",
+            &kml,
+        ]),
+        "plan",
+    );
+    let text = std::fs::read_to_string(&kml).unwrap();
+    assert!(
+        text.contains(",60</coordinates></Point>"),
+        "endpoints at 60 m"
+    );
+    for format in ["plan", "waypoints"] {
+        let out = dir.file(&format!("r.{format}"));
+        let o = skyroute(&[
+            "plan",
+            &net,
+            "--scenario",
+            &sc,
+            "--free-headings",
+            "paper",
+            "-o",
+            &out,
+        ]);
+        assert_ne!(o.status.code(), Some(0), "{format}");
+        let err = stderr(&o);
+        assert!(
+            err.contains("a three-dimensional route's altitude changes along its paths"),
+            "{format}: {err}"
+        );
+        assert!(
+            !std::path::Path::new(&out).exists(),
+            "{format}: nothing written"
+        );
+    }
+}
