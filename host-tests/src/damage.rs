@@ -129,3 +129,27 @@ pub fn check_offset_rules_refused(good: &[u8], table: &OffsetTable) {
     // An offset above the total in the middle (non-decreasing up to it).
     refused(&[(k, total + 1)], k, "a middle offset above the total");
 }
+
+/// `limits` with each of its three numbers in turn replaced by 0, −1, NaN and ∞: every way a
+/// single bad value can make vertical limits invalid.
+pub fn bad_vertical_limits(
+    limits: skyroute::geometry::vertical::VerticalLimits,
+) -> Vec<skyroute::geometry::vertical::VerticalLimits> {
+    use skyroute::geometry::vertical::VerticalLimits;
+    let mut out = Vec::new();
+    for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+        out.push(VerticalLimits {
+            airspeed: bad,
+            ..limits
+        });
+        out.push(VerticalLimits {
+            climb_rate: bad,
+            ..limits
+        });
+        out.push(VerticalLimits {
+            vertical_accel: bad,
+            ..limits
+        });
+    }
+    out
+}

@@ -474,8 +474,7 @@ fn plan_writes_altitudes_and_refuses_one_altitude_mission_formats() {
     let dir = TempDir::new("roadmap-3d-plan");
     let (net, sc) = (dir.file("u3.bin"), scenario("niendorf-urban-3d.geojson"));
     ok(skyroute(&["build", &sc, "-o", &net]), "build");
-    let json = dir.file("r.json");
-    ok(
+    let plan = |out: &str| {
         skyroute(&[
             "plan",
             &net,
@@ -484,10 +483,11 @@ fn plan_writes_altitudes_and_refuses_one_altitude_mission_formats() {
             "--free-headings",
             "paper",
             "-o",
-            &json,
-        ]),
-        "plan",
-    );
+            out,
+        ])
+    };
+    let json = dir.file("r.json");
+    ok(plan(&json), "plan");
     let route: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     assert_eq!(route["vertical"]["climb_rate_mps"], 10.0);
@@ -501,19 +501,7 @@ fn plan_writes_altitudes_and_refuses_one_altitude_mission_formats() {
         assert!((40.0 - 1e-3..=120.0 + 1e-3).contains(&z), "{z}");
     }
     let geojson = dir.file("r.geojson");
-    ok(
-        skyroute(&[
-            "plan",
-            &net,
-            "--scenario",
-            &sc,
-            "--free-headings",
-            "paper",
-            "-o",
-            &geojson,
-        ]),
-        "plan",
-    );
+    ok(plan(&geojson), "plan");
     let g: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&geojson).unwrap()).unwrap();
     let legs: Vec<&serde_json::Value> = g["features"]
@@ -529,19 +517,7 @@ fn plan_writes_altitudes_and_refuses_one_altitude_mission_formats() {
         }
     }
     let kml = dir.file("r.kml");
-    ok(
-        skyroute(&[
-            "plan",
-            &net,
-            "--scenario",
-            &sc,
-            "--free-headings",
-            "paper",
-            "-o",
-            &kml,
-        ]),
-        "plan",
-    );
+    ok(plan(&kml), "plan");
     let text = std::fs::read_to_string(&kml).unwrap();
     assert!(
         text.contains(",60</coordinates></Point>"),
@@ -549,16 +525,7 @@ fn plan_writes_altitudes_and_refuses_one_altitude_mission_formats() {
     );
     for format in ["plan", "waypoints"] {
         let out = dir.file(&format!("r.{format}"));
-        let o = skyroute(&[
-            "plan",
-            &net,
-            "--scenario",
-            &sc,
-            "--free-headings",
-            "paper",
-            "-o",
-            &out,
-        ]);
+        let o = plan(&out);
         assert_ne!(o.status.code(), Some(0), "{format}");
         let err = stderr(&o);
         assert!(

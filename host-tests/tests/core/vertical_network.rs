@@ -86,32 +86,17 @@ fn a_three_dimensional_roadmap_reads_back_its_limits_altitudes_and_heights() {
 fn bad_vertical_limits_altitudes_and_heights_are_refused_by_name() {
     let (spec, vertical) = spec();
     let limits = vertical.limits;
-    for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {
-        for limits in [
-            VerticalLimits {
-                airspeed: bad,
-                ..limits
-            },
-            VerticalLimits {
-                climb_rate: bad,
-                ..limits
-            },
-            VerticalLimits {
-                vertical_accel: bad,
-                ..limits
-            },
-        ] {
-            let v = VerticalSpec {
-                limits,
-                ..vertical.clone()
-            };
-            assert_eq!(
-                refused(&spec, &v),
-                LoadError::InvalidParameter {
-                    parameter: Parameter::Vertical
-                }
-            );
-        }
+    for limits in host_tests::damage::bad_vertical_limits(limits) {
+        let v = VerticalSpec {
+            limits,
+            ..vertical.clone()
+        };
+        assert_eq!(
+            refused(&spec, &v),
+            LoadError::InvalidParameter {
+                parameter: Parameter::Vertical
+            }
+        );
     }
     for bad in [f32::NAN, f32::INFINITY, -f32::INFINITY, 1.0001e5, -1.0001e5] {
         let mut v = vertical.clone();

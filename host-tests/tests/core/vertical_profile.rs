@@ -127,25 +127,10 @@ fn a_move_beyond_the_largest_climb_or_a_bad_input_is_refused() {
         assert!(VerticalProfile::new(from, to, length, &limits).is_none());
     }
     assert!(VerticalProfile::new(5.0, 5.0, 0.0, &limits).is_some());
-    for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {
-        for limits in [
-            VerticalLimits {
-                airspeed: bad,
-                ..limits
-            },
-            VerticalLimits {
-                climb_rate: bad,
-                ..limits
-            },
-            VerticalLimits {
-                vertical_accel: bad,
-                ..limits
-            },
-        ] {
-            assert!(!limits.is_valid());
-            assert_eq!(limits.max_climb(100.0), 0.0);
-            assert!(VerticalProfile::new(0.0, 0.0, 100.0, &limits).is_none());
-        }
+    for limits in host_tests::damage::bad_vertical_limits(limits) {
+        assert!(!limits.is_valid());
+        assert_eq!(limits.max_climb(100.0), 0.0);
+        assert!(VerticalProfile::new(0.0, 0.0, 100.0, &limits).is_none());
     }
 }
 
