@@ -112,7 +112,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// within the vertical limits over its length) and keeps the clearance from every static
     /// obstacle below its height and from every active pop-up. Work: as
     /// [`Planner::path_is_clear`], one collision test per obstacle element a piece is checked
-    /// against (a piece flown wholly above an obstacle costs one test, its bounding box).
+    /// against (a piece flown wholly above an obstacle costs one test, its bounding box). Not
+    /// inlined: its frame would add to the stack of every roadmap query, planar ones too.
+    #[inline(never)]
     pub(super) fn path_is_clear_climbing(
         &self,
         path: &DubinsPath,
