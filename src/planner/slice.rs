@@ -425,10 +425,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         match self.state {
             ModeState::Roadmap(_) => {
                 let exit = self.flight.exit.first().copied();
-                let altitudes = self.route_altitudes_of(&arrival, exit.is_some(), meter)?;
+                self.charge_route_altitudes(&arrival, meter)?;
                 let mut summary =
                     self.write_route(arrival, exit.as_ref().map(|(path, _)| path), meter)?;
-                self.keep_route_altitudes(altitudes)?;
+                self.fill_route_altitudes(&arrival, exit.is_some())?;
                 summary.exit = exit.map(|(_, e)| e);
                 self.summary = SummarySlot::Full(summary);
                 Ok(summary)

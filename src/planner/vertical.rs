@@ -216,67 +216,80 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// The altitude at the end of each path of the route `arrival` describes, start to goal:
-    /// the exit's end at the start's altitude (an exit is flown level), each network vertex's
-    /// own, then the goal's; `None` in a planar network. Walks back from the goal link as the
-    /// route writer does, before the route is written, counting one vertex scan per step
-    /// (|V| + 1 at most: a third walk beside the writer's two in [`plan_work_bound`]), so that
-    /// the budget is settled before the old route is touched.
+    /// Charges the walk back from the goal that finds the route's altitudes
+    /// ([`Planner::fill_route_altitudes`]) before the route is written, counting one vertex
+    /// scan per step (|V| + 1 at most: a third walk beside the writer's two in
+    /// [`plan_work_bound`]), so that the budget is settled before the old route is touched.
+    /// Nothing in a planar network. Not inlined, like the filling: their frames stay off the
+    /// stack of the route writer and of planar queries.
     ///
     /// [`plan_work_bound`]: super::plan_work_bound
-    pub(super) fn route_altitudes_of(
+    #[inline(never)]
+    pub(super) fn charge_route_altitudes(
         &self,
         arrival: &Arrival,
-        exit: bool,
         meter: &mut Meter,
-    ) -> Result<Option<heapless::Vec<f32, R>>, PlanError> {
-        let Some((start, goal)) = self.query_altitudes() else {
-            return Ok(None);
+    ) -> Result<(), PlanError> {
+        if self.query_altitudes().is_none() {
+            return Ok(());
+        }
+        if let Arrival::FromState { link, .. } = arrival {
+            let vertex = self.goal_links.get(*link).map_or(u32::MAX, |l| l.vertex);
+            self.walk_vertices(vertex, meter, |_| Ok(()))?;
+        }
+        meter.check()
+    }
+
+    /// Records the altitude at the end of each of the new route's paths, start to goal: the
+    /// exit's end at the start's altitude (an exit is flown level), each network vertex's own,
+    /// then the goal's. Replays the walk [`Planner::charge_route_altitudes`] charged, the one
+    /// the route was written by ([`Arrival`]), so it cannot fail unless the route is
+    /// inconsistent, which clears the altitudes and reports [`PlanError::Internal`]. A planar
+    /// network's route has none.
+    #[inline(never)]
+    pub(super) fn fill_route_altitudes(
+        &mut self,
+        arrival: &Arrival,
+        exit: bool,
+    ) -> Result<(), PlanError> {
+        let ModeState::Roadmap(state) = &mut self.state else {
+            return Ok(());
         };
-        let mut altitudes = heapless::Vec::<f32, R>::new();
+        let mut altitudes = core::mem::take(&mut state.route_altitudes);
+        altitudes.clear();
+        let Some((start, goal)) = self.query_altitudes() else {
+            return Ok(());
+        };
         let mut full = altitudes.push(goal).is_err();
         if let Arrival::FromState { link, .. } = arrival {
             let vertex = self.goal_links.get(*link).map_or(u32::MAX, |l| l.vertex);
-            let (_, start_link) = self.walk_vertices(vertex, meter, |e| {
+            let mut replay = Meter::new(u64::MAX);
+            let walked = self.walk_vertices(vertex, &mut replay, |e| {
                 let target = self.network.edge(e).map(|edge| edge.target);
                 let z = target.and_then(|v| self.network.vertex_altitude(v));
                 full |= altitudes.push(z.ok_or(PlanError::Internal)?).is_err();
                 Ok(())
-            })?;
-            let first = start_link
-                .and_then(|k| self.start_links.get(k))
-                .and_then(|l| self.network.vertex_altitude(l.vertex))
-                .ok_or(PlanError::Internal)?;
-            full |= altitudes.push(first).is_err();
+            });
+            let first = walked.ok().and_then(|(_, start_link)| {
+                let v = self.start_links.get(start_link?)?.vertex;
+                self.network.vertex_altitude(v)
+            });
+            full |= first.is_none_or(|z| altitudes.push(z).is_err());
         }
         if exit {
             full |= altitudes.push(start).is_err();
         }
-        meter.check()?;
-        // More altitudes than R: the route has more paths than R, which its writer refuses.
         altitudes.reverse();
-        Ok((!full).then_some(altitudes))
-    }
-
-    /// Keeps `altitudes` ([`Planner::route_altitudes_of`]) as the new route's: one per path,
-    /// or the route is inconsistent ([`PlanError::Internal`], the altitudes cleared).
-    pub(super) fn keep_route_altitudes(
-        &mut self,
-        altitudes: Option<heapless::Vec<f32, R>>,
-    ) -> Result<(), PlanError> {
-        let three_d = self.network.is_three_dimensional();
-        let paths = self.paths.len();
-        let ModeState::Roadmap(state) = &mut self.state else {
-            return Ok(());
-        };
-        match altitudes {
-            Some(a) if a.len() == paths => state.route_altitudes = a,
-            None if !three_d => state.route_altitudes.clear(),
-            _ => {
-                state.route_altitudes.clear();
-                return Err(PlanError::Internal);
-            }
+        let consistent = !full && altitudes.len() == self.paths.len();
+        if !consistent {
+            altitudes.clear();
         }
-        Ok(())
+        if let ModeState::Roadmap(state) = &mut self.state {
+            state.route_altitudes = altitudes;
+        }
+        match consistent {
+            true => Ok(()),
+            false => Err(PlanError::Internal),
+        }
     }
 }
