@@ -337,8 +337,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     pub fn load(&mut self, bytes: &'n [u8]) -> Result<(), LoadError> {
         self.cancel_plan();
         let network = Network::from_bytes_with_capacity(bytes, V, E)?;
-        let state = match network.mode() {
-            Mode::Roadmap => ModeState::Roadmap(RoadmapState::new()),
+        // The terrain state is small; the others are built in place by `install` (a large
+        // state built here first would be copied, and its copy would add to the caller's
+        // stack frame).
+        let terrain = match network.mode() {
+            Mode::Roadmap | Mode::Landmark => None,
             Mode::Terrain => {
                 // The terrain search runs over directed edges and start links.
                 let needed = network.edge_count() as usize + MAX_LINKS;
@@ -348,14 +351,20 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         capacity: V,
                     });
                 }
-                ModeState::Terrain(TerrainState::for_network(&network))
+                Some(TerrainState::for_network(&network))
             }
-            Mode::Landmark => ModeState::Landmark(LandmarkState::new()),
             // Its state lives in storage the caller provides.
             Mode::Voronoi => return Err(LoadError::NeedsVoronoiStorage),
             Mode::Unknown(mode) => return Err(LoadError::UnknownMode { mode }),
         };
-        self.install(network, state);
+        let landmark = network.mode() == Mode::Landmark;
+        self.network = network;
+        self.state = match (terrain, landmark) {
+            (Some(t), _) => ModeState::Terrain(t),
+            (None, true) => ModeState::Landmark(LandmarkState::new()),
+            (None, false) => ModeState::Roadmap(RoadmapState::new()),
+        };
+        self.reset_for_network();
         Ok(())
     }
 
@@ -363,6 +372,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     fn install(&mut self, network: Network<'n>, state: ModeState<'n, R>) {
         self.network = network;
         self.state = state;
+        self.reset_for_network();
+    }
+
+    /// Clears the pop-ups, the edge masks and the route after a network is installed.
+    fn reset_for_network(&mut self) {
         self.blocked_by = [0; E];
         self.popups.clear();
         self.paths.clear();
