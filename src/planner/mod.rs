@@ -287,6 +287,14 @@ impl SummarySlot {
     }
 }
 
+/// The state [`Planner::load`] gives the loaded network's mode: only the terrain state is
+/// built before it is installed; the larger ones are built in place.
+enum FreshState {
+    Roadmap,
+    Terrain(TerrainState),
+    Landmark,
+}
+
 /// `via` values at or above this mark a vertex reached straight from start link `via − FROM_START`.
 const FROM_START: u32 = u32::MAX - MAX_LINKS as u32;
 
@@ -340,8 +348,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         // The terrain state is small; the others are built in place by `install` (a large
         // state built here first would be copied, and its copy would add to the caller's
         // stack frame).
-        let terrain = match network.mode() {
-            Mode::Roadmap | Mode::Landmark => None,
+        let fresh = match network.mode() {
+            Mode::Roadmap => FreshState::Roadmap,
+            Mode::Landmark => FreshState::Landmark,
             Mode::Terrain => {
                 // The terrain search runs over directed edges and start links.
                 let needed = network.edge_count() as usize + MAX_LINKS;
@@ -351,18 +360,17 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         capacity: V,
                     });
                 }
-                Some(TerrainState::for_network(&network))
+                FreshState::Terrain(TerrainState::for_network(&network))
             }
             // Its state lives in storage the caller provides.
             Mode::Voronoi => return Err(LoadError::NeedsVoronoiStorage),
             Mode::Unknown(mode) => return Err(LoadError::UnknownMode { mode }),
         };
-        let landmark = network.mode() == Mode::Landmark;
         self.network = network;
-        self.state = match (terrain, landmark) {
-            (Some(t), _) => ModeState::Terrain(t),
-            (None, true) => ModeState::Landmark(LandmarkState::new()),
-            (None, false) => ModeState::Roadmap(RoadmapState::new()),
+        self.state = match fresh {
+            FreshState::Roadmap => ModeState::Roadmap(RoadmapState::new()),
+            FreshState::Terrain(t) => ModeState::Terrain(t),
+            FreshState::Landmark => ModeState::Landmark(LandmarkState::new()),
         };
         self.reset_for_network();
         Ok(())
