@@ -187,17 +187,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         let clearance = self.network.clearance();
         for prim in path.primitives().into_iter().flatten() {
-            let (lo, hi) = prim.bounding_box();
+            let bbox = prim.bounding_box();
             for i in 0..count {
-                let Some((obstacle, (olo, ohi))) = obstacle(i) else {
+                let Some((obstacle, obox)) = obstacle(i) else {
                     return false;
                 };
                 meter.work.collision_tests += 1;
-                let apart = lo.x - clearance > ohi.x
-                    || hi.x + clearance < olo.x
-                    || lo.y - clearance > ohi.y
-                    || hi.y + clearance < olo.y;
-                if !apart && conflicts(&prim, &obstacle, clearance, meter) {
+                if conflicts_within(&prim, bbox, &obstacle, obox, clearance, meter) {
                     return false;
                 }
             }
@@ -477,6 +473,25 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
         Ok(None)
     }
+}
+
+/// [`conflicts`] after a test of the bounding boxes, `prim`'s (`bbox`) widened by the
+/// clearance against the obstacle's (`obox`): boxes that far apart cannot conflict, and cost
+/// no predicate test.
+#[inline(always)]
+pub(super) fn conflicts_within(
+    prim: &Primitive,
+    (lo, hi): (Vec2, Vec2),
+    obstacle: &Obstacle<'_>,
+    (olo, ohi): (Vec2, Vec2),
+    clearance: f32,
+    meter: &mut Meter,
+) -> bool {
+    let apart = lo.x - clearance > ohi.x
+        || hi.x + clearance < olo.x
+        || lo.y - clearance > ohi.y
+        || hi.y + clearance < olo.y;
+    !apart && conflicts(prim, obstacle, clearance, meter)
 }
 
 /// Whether `prim` comes within `clearance` of `obstacle` (exact predicates), counting one

@@ -9,7 +9,7 @@
 //! path cut there by [`Primitive::trimmed`]), with the planar exact predicates. Obstacles of
 //! unbounded height and pop-ups (which have no height) are checked against the whole path.
 
-use super::connect::conflicts;
+use super::connect::conflicts_within;
 use super::search::Arrival;
 use super::state::{LinkEnd, ModeState};
 use super::{Meter, PlanError, Planner};
@@ -136,7 +136,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 continue;
             };
             for i in 0..self.network.obstacle_count() {
-                let (Some((obstacle, (olo, ohi))), Some(height)) =
+                let (Some((obstacle, obox)), Some(height)) =
                     (self.network.obstacle(i), self.network.obstacle_height(i))
                 else {
                     return false;
@@ -149,12 +149,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         .and_then(|(a, b)| prim.trimmed(a - offset, b - offset)),
                 };
                 let Some(piece) = piece else { continue };
-                let (lo, hi) = piece.bounding_box();
-                let apart = lo.x - clearance > ohi.x
-                    || hi.x + clearance < olo.x
-                    || lo.y - clearance > ohi.y
-                    || hi.y + clearance < olo.y;
-                if !apart && conflicts(&piece, &obstacle, clearance, meter) {
+                let bbox = piece.bounding_box();
+                if conflicts_within(&piece, bbox, &obstacle, obox, clearance, meter) {
                     return false;
                 }
             }

@@ -55,8 +55,8 @@ struct Finding {
 }
 
 fn check(m: &Mission, frame: &LocalFrame, text: &str, clearance: f64) -> Finding {
-    let route = route_from_json(&mission_json(m, frame, NAME)).expect("the route reads back");
     let json = mission_json(m, frame, NAME);
+    let route = route_from_json(&json).expect("the route reads back");
     let limits = &json["vertical"];
     assert!(
         limits.is_object(),
