@@ -226,6 +226,11 @@ pub enum SrStatus {
     PopupNotSimple = 304,
     /// `PopupError::UnknownId`: No active pop-up has this id.
     PopupUnknownId = 305,
+    /// `PopupError::BadHeight`: A height is NaN, not positive, or finite beyond
+    /// `MAX_ALTITUDE_M`.
+    PopupBadHeight = 306,
+    /// `PopupError::HeightNeedsAltitudes`: A finite height on a network without altitudes.
+    PopupHeightNeedsAltitudes = 307,
     /// `GeoError::NonFinite`: A coordinate or heading is NaN or infinite.
     GeoNonFinite = 400,
     /// `GeoError::Latitude`: A latitude outside [−90, 90] degrees.
@@ -329,6 +334,8 @@ pub fn popup_status(e: &PopupError) -> SrStatus {
         PopupError::OutOfRange => SrStatus::PopupOutOfRange,
         PopupError::NotSimple => SrStatus::PopupNotSimple,
         PopupError::UnknownId { .. } => SrStatus::PopupUnknownId,
+        PopupError::BadHeight => SrStatus::PopupBadHeight,
+        PopupError::HeightNeedsAltitudes => SrStatus::PopupHeightNeedsAltitudes,
     }
 }
 
@@ -417,6 +424,8 @@ impl SrStatus {
             SrStatus::PopupOutOfRange => c"SR_STATUS_POPUP_OUT_OF_RANGE",
             SrStatus::PopupNotSimple => c"SR_STATUS_POPUP_NOT_SIMPLE",
             SrStatus::PopupUnknownId => c"SR_STATUS_POPUP_UNKNOWN_ID",
+            SrStatus::PopupBadHeight => c"SR_STATUS_POPUP_BAD_HEIGHT",
+            SrStatus::PopupHeightNeedsAltitudes => c"SR_STATUS_POPUP_HEIGHT_NEEDS_ALTITUDES",
             SrStatus::GeoNonFinite => c"SR_STATUS_GEO_NON_FINITE",
             SrStatus::GeoLatitude => c"SR_STATUS_GEO_LATITUDE",
             SrStatus::GeoLongitude => c"SR_STATUS_GEO_LONGITUDE",
@@ -444,7 +453,7 @@ impl SrStatus {
 }
 
 /// Every status, in the order of their numbers.
-const ALL: [SrStatus; 86] = [
+const ALL: [SrStatus; 88] = [
     SrStatus::Ok,
     SrStatus::NullPointer,
     SrStatus::MemoryMisaligned,
@@ -526,6 +535,8 @@ const ALL: [SrStatus; 86] = [
     SrStatus::PopupOutOfRange,
     SrStatus::PopupNotSimple,
     SrStatus::PopupUnknownId,
+    SrStatus::PopupBadHeight,
+    SrStatus::PopupHeightNeedsAltitudes,
     SrStatus::GeoNonFinite,
     SrStatus::GeoLatitude,
     SrStatus::GeoLongitude,

@@ -17,13 +17,18 @@ use heapless::Vec;
 pub(super) type Candidates = Vec<(f32, u32), MAX_CANDIDATES>;
 
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
-    /// Rejects a start or goal that lies inside a static obstacle or an active pop-up.
+    /// Rejects a start or goal that lies inside a static obstacle or an active pop-up (in a
+    /// three-dimensional roadmap, one whose height its altitude does not reach above).
     pub(super) fn check_free(
         &self,
         p: Vec2,
         field: QueryField,
         meter: &mut Meter,
     ) -> Result<(), PlanError> {
+        let end = match field {
+            QueryField::Start => LinkEnd::Start,
+            QueryField::Goal => LinkEnd::Goal,
+        };
         for i in 0..self.network.obstacle_count() {
             let Some((obstacle, (lo, hi))) = self.network.obstacle(i) else {
                 return Err(PlanError::Internal);
@@ -32,11 +37,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             if p.x < lo.x || p.y < lo.y || p.x > hi.x || p.y > hi.y {
                 continue;
             }
-            let end = match field {
-                QueryField::Start => LinkEnd::Start,
-                QueryField::Goal => LinkEnd::Goal,
-            };
-            if self.end_is_above(end, i, 0.0) {
+            let height = self.network.obstacle_height(i).unwrap_or(f32::INFINITY);
+            if self.end_is_above(end, height, 0.0) {
                 continue;
             }
             let inside = match obstacle {
@@ -47,9 +49,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 return Err(PlanError::InsideObstacle { field, obstacle: i });
             }
         }
-        for (id, popup) in self.popups() {
+        for (id, popup, height) in self.popups_with_heights() {
             meter.work.collision_tests += 1;
-            if popup.contains(p) {
+            if popup.contains(p) && !self.end_is_above(end, height, 0.0) {
                 return Err(PlanError::InsidePopup { field, popup: id });
             }
         }

@@ -229,6 +229,12 @@ pub enum PopupError {
         /// The id given.
         id: u8,
     },
+    /// A height is NaN, not positive, or finite beyond
+    /// [`MAX_ALTITUDE_M`](crate::network::format::MAX_ALTITUDE_M).
+    BadHeight,
+    /// A finite height on a network without altitudes (only a three-dimensional roadmap
+    /// can fly over a pop-up).
+    HeightNeedsAltitudes,
 }
 
 impl fmt::Display for PopupError {
@@ -240,6 +246,14 @@ impl fmt::Display for PopupError {
             PopupError::OutOfRange => write!(f, "pop-up lies beyond 10 000 km of the origin"),
             PopupError::NotSimple => write!(f, "pop-up polygon is not simple"),
             PopupError::UnknownId { id } => write!(f, "no active pop-up with id {id}"),
+            PopupError::BadHeight => write!(
+                f,
+                "pop-up height is NaN, not positive, or finite beyond 100 km"
+            ),
+            PopupError::HeightNeedsAltitudes => write!(
+                f,
+                "pop-up has a height but the network has no altitudes (not a 3-D roadmap)"
+            ),
         }
     }
 }

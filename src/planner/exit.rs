@@ -14,7 +14,9 @@
 //! contains the straight's start. A candidate is kept only if it comes within the clearance of
 //! no other obstacle or pop-up and ends outside every region. The shortest kept candidate is
 //! the exit: shortest among these 65, which is what "shortest flyable exit" means here (a
-//! finer turn step could shorten it by at most the arc of one step, `πr/32`).
+//! finer turn step could shorten it by at most the arc of one step, `πr/32`). In a
+//! three-dimensional roadmap the exit is flown level at the start's altitude, so an obstacle
+//! or pop-up the start is above by the clearance is neither a region nor in its way.
 //!
 //! # Work
 //! Each candidate: the trace of every region the start lies in (one interval per polygon edge
@@ -90,7 +92,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 continue;
             }
             // In a three-dimensional roadmap the start (and its level exit) may fly above it.
-            if self.end_is_above(LinkEnd::Start, i, c) {
+            let height = self.network.obstacle_height(i).unwrap_or(f32::INFINITY);
+            if self.end_is_above(LinkEnd::Start, height, c) {
                 continue;
             }
             let within = match obstacle {
@@ -108,7 +111,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     .map_err(|_| TooManyRegions)?;
             }
         }
-        for (id, popup) in self.popups() {
+        for (id, popup, height) in self.popups_with_heights() {
+            if self.end_is_above(LinkEnd::Start, height, c) {
+                meter.work.collision_tests += 1;
+                continue;
+            }
             let (within, tests) = popup.conflicts(&point, c);
             meter.work.collision_tests += tests as u64;
             if within {
@@ -244,13 +251,18 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Whether the exit `path` keeps the clearance from every obstacle and pop-up outside
-    /// `regions`, and ends outside every region.
+    /// `regions`, and ends outside every region. The exit is flown level at the start's
+    /// altitude, so in a three-dimensional roadmap the obstacles and pop-ups it is above by
+    /// the clearance are passed over.
     fn exit_is_clear(&self, path: &DubinsPath, regions: &Regions, meter: &mut Meter) -> bool {
         let c = self.network.clearance();
         for prim in path.primitives().into_iter().flatten() {
             let (lo, hi) = prim.bounding_box();
             for i in 0..self.network.obstacle_count() {
-                if regions.contains(&Violation::Obstacle(i)) {
+                let height = self.network.obstacle_height(i).unwrap_or(f32::INFINITY);
+                if regions.contains(&Violation::Obstacle(i))
+                    || self.end_is_above(LinkEnd::Start, height, c)
+                {
                     continue;
                 }
                 let Some((obstacle, (olo, ohi))) = self.network.obstacle(i) else {
@@ -263,8 +275,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     return false;
                 }
             }
-            for (id, popup) in self.popups() {
-                if regions.contains(&Violation::Popup(id)) {
+            for (id, popup, height) in self.popups_with_heights() {
+                if regions.contains(&Violation::Popup(id))
+                    || self.end_is_above(LinkEnd::Start, height, c)
+                {
                     continue;
                 }
                 let (conflict, tests) = popup.conflicts(&prim, c);

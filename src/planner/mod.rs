@@ -37,6 +37,7 @@ pub use exit::{
     Exit, Violation, EXIT_MARGIN_M, EXIT_TURN_STEPS, MAX_EXIT_INTERVALS, MAX_EXIT_REGIONS,
 };
 pub use landmark::POPUP_CHORDS_PER_PIECE;
+use popup::ActivePopup;
 pub use popup::{Popup, PopupSummary, MAX_POPUP_VERTICES};
 pub use slice::PlanStep;
 pub use smooth::SmoothSummary;
@@ -238,8 +239,8 @@ pub struct Planner<'n, const V: usize, const E: usize, const P: usize, const R: 
     config_set: bool,
     /// Bit `p` set: pop-up slot `p` blocks the edge.
     blocked_by: [u16; E],
-    /// Active pop-ups with their ids (distinct, below `P`).
-    popups: Vec<(u8, Popup), P>,
+    /// Active pop-ups (ids distinct, below `P`).
+    popups: Vec<ActivePopup, P>,
     /// Best known cost to each vertex (valid once the vertex has been queued).
     dist: [f32; V],
     /// How each vertex was reached: an edge index, or `FROM_START + link`.

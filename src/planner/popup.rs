@@ -9,10 +9,12 @@ use crate::geometry::predicates::{
     conflicts_with_circle, conflicts_with_polygon, point_in_polygon, point_segment_distance,
     polygon_is_simple,
 };
+use crate::geometry::vertical::pieces_within;
 use crate::geometry::{
     points_bounding_box, DubinsPath, Primitive, Segment, Vec2, MAX_COORDINATE_M,
 };
 use crate::network::dubins_hull;
+use crate::network::format::MAX_ALTITUDE_M;
 use heapless::Vec;
 
 /// The most vertices a pop-up polygon may have.
@@ -144,11 +146,33 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// pop-up's box, widened by the clearance, overlaps). Work: at most
     /// [`Planner::worst_case_popup_work`].
     pub fn add_popup(&mut self, popup: Popup) -> Result<PopupSummary, PopupError> {
+        self.add_popup_with_height(popup, f32::INFINITY)
+    }
+
+    /// Adds a pop-up that reaches up to `height_m` (metres, in the network's datum, like a
+    /// static obstacle's height) and disables the edges that fly within the clearance of it
+    /// below `height_m` plus the clearance: in a three-dimensional roadmap an edge is tested
+    /// only over the part of it its altitude profile flies that low
+    /// ([`span_below`](crate::geometry::vertical::VerticalProfile::span_below)). `f32::INFINITY` is a wall, as [`Planner::add_popup`].
+    /// Refused with [`PopupError::BadHeight`] for a height that is NaN, not positive or finite
+    /// beyond [`MAX_ALTITUDE_M`], and with [`PopupError::HeightNeedsAltitudes`] for a finite
+    /// height on a network without altitudes. Work: as [`Planner::add_popup`].
+    pub fn add_popup_with_height(
+        &mut self,
+        popup: Popup,
+        height_m: f32,
+    ) -> Result<PopupSummary, PopupError> {
         self.cancel_plan();
         popup.validate()?;
+        if !(height_m > 0.0 && (height_m <= MAX_ALTITUDE_M || height_m == f32::INFINITY)) {
+            return Err(PopupError::BadHeight);
+        }
+        if height_m.is_finite() && !self.network.is_three_dimensional() {
+            return Err(PopupError::HeightNeedsAltitudes);
+        }
         // The smallest id no active pop-up has.
         let slot = (0..P)
-            .find(|id| self.popups.iter().all(|(used, _)| *used as usize != *id))
+            .find(|id| self.popups.iter().all(|p| p.id as usize != *id))
             .ok_or(PopupError::NoFreeSlot { capacity: P as u8 })?;
         let bit = 1u16 << slot;
         let clearance = self.network.clearance();
@@ -174,7 +198,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         if mask & bit != 0 {
                             continue; // already tested through another cell
                         }
-                        if self.edge_conflicts(e, &popup, clearance, &mut summary) {
+                        let tall = (&popup, height_m);
+                        if self.edge_conflicts(e, tall, clearance, &mut summary) {
                             if let Some(m) = self.blocked_by.get_mut(e as usize) {
                                 *m |= bit;
                             }
@@ -185,17 +210,23 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
         }
         // Cannot fail: a free id below P means fewer than P pop-ups are active.
-        let _ = self.popups.push((slot as u8, popup));
+        let _ = self.popups.push(ActivePopup {
+            id: slot as u8,
+            shape: popup,
+            height: height_m,
+        });
         Ok(summary)
     }
 
-    /// Whether edge `e` may come within `clearance` of `popup`: exactly for the lines and arcs
-    /// of Dubins and terrain edges, conservatively for Hermite chains
-    /// ([`Planner::chain_conflicts`]). An edge that cannot be read counts as a conflict.
+    /// Whether edge `e` may come within `clearance` of `popup` below `height` plus the
+    /// clearance: exactly for the lines and arcs of Dubins and terrain edges (in a
+    /// three-dimensional roadmap over the span of the edge flown that low), conservatively for
+    /// Hermite chains ([`Planner::chain_conflicts`]). An edge that cannot be read counts as a
+    /// conflict.
     fn edge_conflicts(
         &self,
         e: u32,
-        popup: &Popup,
+        (popup, height): (&Popup, f32),
         clearance: f32,
         summary: &mut PopupSummary,
     ) -> bool {
@@ -219,7 +250,24 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 let Some(path) = path else {
                     return true;
                 };
-                for prim in path.primitives().into_iter().flatten() {
+                // The pieces of the edge flown below the pop-up's top plus the clearance: all
+                // of it for a wall.
+                let pieces = match height {
+                    f32::INFINITY => path.primitives(),
+                    _ => match self
+                        .network
+                        .edge_profile(e)
+                        .map(|profile| profile.span_below(height + clearance))
+                    {
+                        Some(Some((from, to))) => pieces_within(&path, from, to),
+                        Some(None) => {
+                            summary.predicate_tests = summary.predicate_tests.saturating_add(1);
+                            return false;
+                        }
+                        None => return true,
+                    },
+                };
+                for prim in pieces.into_iter().flatten() {
                     let (conflict, tests) = popup.conflicts(&prim, clearance);
                     summary.predicate_tests = summary.predicate_tests.saturating_add(tests);
                     if conflict {
@@ -237,7 +285,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         let at = self
             .popups
             .iter()
-            .position(|(used, _)| *used == id)
+            .position(|p| p.id == id)
             .ok_or(PopupError::UnknownId { id })?;
         self.popups.swap_remove(at);
         let keep = !(1u16 << id);
@@ -249,8 +297,30 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// The active pop-ups with their ids.
     pub fn popups(&self) -> impl Iterator<Item = (u8, &Popup)> {
-        self.popups.iter().map(|(id, p)| (*id, p))
+        self.popups.iter().map(|p| (p.id, &p.shape))
     }
+
+    /// Active pop-up `id`'s height, metres (`+∞` for a wall); `None` when no active pop-up
+    /// has this id.
+    pub fn popup_height(&self, id: u8) -> Option<f32> {
+        self.popups.iter().find(|p| p.id == id).map(|p| p.height)
+    }
+
+    /// The active pop-ups with their ids and heights.
+    pub(super) fn popups_with_heights(&self) -> impl Iterator<Item = (u8, &Popup, f32)> {
+        self.popups.iter().map(|p| (p.id, &p.shape, p.height))
+    }
+}
+
+/// An active pop-up.
+#[derive(Clone, Debug)]
+pub(super) struct ActivePopup {
+    /// Its id, below `P`.
+    id: u8,
+    /// Its shape.
+    shape: Popup,
+    /// Its top, metres in the network's datum; `+∞` for a wall.
+    height: f32,
 }
 
 /// Whether everything within `hull.1` of segment `hull.0` stays farther than `clearance` from

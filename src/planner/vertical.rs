@@ -6,8 +6,9 @@
 //! same way: the altitude change must be a rest-to-rest move within the vertical limits over
 //! the path's length ([`VerticalProfile`]), and each obstacle is checked against the part of
 //! the path flown below its height plus the clearance ([`VerticalProfile::span_below`], the
-//! path cut there by [`Primitive::trimmed`]), with the planar exact predicates. Obstacles of
-//! unbounded height and pop-ups (which have no height) are checked against the whole path.
+//! path cut there by [`Primitive::trimmed`]), with the planar exact predicates; pop-ups added
+//! with a height ([`Planner::add_popup_with_height`]) likewise. Obstacles and pop-ups of
+//! unbounded height are checked against the whole path.
 
 use super::connect::conflicts_within;
 use super::search::Arrival;
@@ -80,13 +81,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 
-    /// Three-dimensional roadmap: whether the query's `end` is at or above obstacle `i`'s
-    /// height plus `margin` (so no point there lies in the obstacle, or within `margin` of it
-    /// from below); false in a planar network and for an obstacle of unbounded height.
-    pub(super) fn end_is_above(&self, end: LinkEnd, i: u32, margin: f32) -> bool {
-        let (Some((start, goal)), Some(height)) =
-            (self.query_altitudes(), self.network.obstacle_height(i))
-        else {
+    /// Three-dimensional roadmap: whether the query's `end` is at or above `height` plus
+    /// `margin` (so no point there lies in an obstacle or pop-up of that height, or within
+    /// `margin` of it from below); false in a planar network and for an unbounded height.
+    pub(super) fn end_is_above(&self, end: LinkEnd, height: f32, margin: f32) -> bool {
+        let Some((start, goal)) = self.query_altitudes() else {
             return false;
         };
         let z = match end {
@@ -110,9 +109,9 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
 
     /// Whether `path`, flown from altitude `from` to `to`, is flyable (a rest-to-rest move
     /// within the vertical limits over its length) and keeps the clearance from every static
-    /// obstacle below its height and from every active pop-up. Work: as
-    /// [`Planner::path_is_clear`], one collision test per obstacle element a piece is checked
-    /// against (a piece flown wholly above an obstacle costs one test, its bounding box). Not
+    /// obstacle and active pop-up below its height. Work: as [`Planner::path_is_clear`], one
+    /// collision test per obstacle or pop-up element a piece is checked against (a piece flown
+    /// wholly above an obstacle costs one test, its bounding box; above a pop-up, one). Not
     /// inlined: its frame would add to the stack of every roadmap query, planar ones too.
     #[inline(never)]
     pub(super) fn path_is_clear_climbing(
@@ -135,6 +134,13 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                 offset += length;
                 continue;
             };
+            // The part of this primitive flown below `height` plus the clearance.
+            let piece_below = |height: f32| match height {
+                f32::INFINITY => Some(*prim),
+                _ => profile
+                    .span_below(height + clearance)
+                    .and_then(|(a, b)| prim.trimmed(a - offset, b - offset)),
+            };
             for i in 0..self.network.obstacle_count() {
                 let (Some((obstacle, obox)), Some(height)) =
                     (self.network.obstacle(i), self.network.obstacle_height(i))
@@ -142,20 +148,24 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     return false;
                 };
                 meter.work.collision_tests += 1;
-                let piece = match height {
-                    f32::INFINITY => Some(*prim),
-                    _ => profile
-                        .span_below(height + clearance)
-                        .and_then(|(a, b)| prim.trimmed(a - offset, b - offset)),
+                let Some(piece) = piece_below(height) else {
+                    continue;
                 };
-                let Some(piece) = piece else { continue };
                 let bbox = piece.bounding_box();
                 if conflicts_within(&piece, bbox, &obstacle, obox, clearance, meter) {
                     return false;
                 }
             }
-            if !self.primitive_clear_of_popups(prim, meter) {
-                return false;
+            for (_, popup, height) in self.popups_with_heights() {
+                let Some(piece) = piece_below(height) else {
+                    meter.work.collision_tests += 1;
+                    continue;
+                };
+                let (conflict, tests) = popup.conflicts(&piece, clearance);
+                meter.work.collision_tests += tests as u64;
+                if conflict {
+                    return false;
+                }
             }
             offset += length;
         }

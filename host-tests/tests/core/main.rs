@@ -62,6 +62,9 @@ mod vertical_network;
 /// Planning on a three-dimensional roadmap: a low wall flown over where a planar roadmap
 /// goes round, checked by f64 sampling in 3-D; endpoints above or inside a building.
 mod vertical_planning;
+/// Pop-ups with heights on a three-dimensional roadmap: the edges they block against an f64
+/// sampling in 3-D, routes over low ones and round tall ones, endpoints above them.
+mod vertical_popups;
 /// The vertical profile of Niendorf et al.'s aircraft: the limits, an LP reference, the span
 /// below a ceiling against an f64 profile, and buildings of finite height against sampling.
 mod vertical_profile;

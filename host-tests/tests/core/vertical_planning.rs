@@ -14,9 +14,9 @@ use skyroute::network::write::{encode, encode_three_dimensional, NetworkSpec, Ob
 use skyroute::planner::{Goal, PlanError, Planner, Query, QueryField, Search};
 use skyroute::{Pose, Vec2};
 
-type Small<'n> = Planner<'n, 512, 8192, 4, 128>;
+pub(crate) type Small<'n> = Planner<'n, 512, 8192, 4, 128>;
 
-const CLEARANCE: f32 = 5.0;
+pub(crate) const CLEARANCE: f32 = 5.0;
 const WALL_HEIGHT: f32 = 35.0;
 
 /// The wall: 20 m thick across x = 290…310, from y = −100 to 480 (a gap above it, under the
@@ -36,14 +36,14 @@ fn altitude_at(p: Vec2) -> f32 {
     30.0 + 10.0 * ((i + j).rem_euclid(3)) as f32
 }
 
-fn limits() -> VerticalLimits {
+pub(crate) fn limits() -> VerticalLimits {
     VerticalLimits::niendorf(25.0)
 }
 
 /// A 7 × 7 lattice 100 m apart (turn radius 30 m) with the wall, keeping the edges that clear
 /// it: in 3-D (flyable climbs, the wall checked below its height plus the clearance) or in the
 /// plane (the wall of unbounded height).
-fn network(three_d: bool) -> Vec<u8> {
+pub(crate) fn network(three_d: bool) -> Vec<u8> {
     let mut spec: NetworkSpec = lattice_spec(7, 100.0, 0.0, 30.0);
     spec.clearance_m = CLEARANCE;
     spec.obstacles = vec![ObstacleSpec::Polygon(wall())];
@@ -90,7 +90,7 @@ fn network(three_d: bool) -> Vec<u8> {
     encode_three_dimensional(&spec, &vertical, None).expect("3-D network")
 }
 
-fn query(start: Vec2, goal: Vec2) -> Query {
+pub(crate) fn query(start: Vec2, goal: Vec2) -> Query {
     Query {
         start: Pose::new(start.x, start.y, 0.0),
         goal: Goal {
