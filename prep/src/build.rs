@@ -238,14 +238,6 @@ fn build_roadmap_network(
         4.0 * turn_radius + grid_cell,
     )?;
     let vertical = crate::roadmap::vertical::vertical_input(s, &frame);
-    if vertical.is_some() && !s.popups.is_empty() {
-        return Err(BuildError::Alternatives(
-            file,
-            "planner.altitude_min_m: the pop-ups' bypass alternatives are not stored in a \
-             three-dimensional roadmap; remove the popup features or the altitude band"
-                .into(),
-        ));
-    }
     let input = RoadmapInput {
         area_min: lo,
         area_max: hi,
@@ -275,7 +267,9 @@ fn build_roadmap_network(
         heights: v.heights,
     });
     let mut bytes = encode_checked(&spec, vertical_spec.as_ref(), &file, grid_field, why)?;
-    if !s.popups.is_empty() {
+    // The stored bypass alternatives go round each pop-up's disc in the plane; a
+    // three-dimensional roadmap stores none (`plan` applies the pop-ups with their heights).
+    if !s.popups.is_empty() && vertical_spec.is_none() {
         bytes = crate::ruz::stored::with_alternatives(s, &frame, &spec, &bytes)
             .map_err(|e| BuildError::Alternatives(file.clone(), e))?;
     }

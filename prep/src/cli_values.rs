@@ -6,8 +6,52 @@ use crate::route_mission::Autopilot;
 use crate::scenario::Mode;
 use skyroute::planner::decision::DecisionLimits;
 
-/// `LON,LAT,RADIUS_M` of `--popup`: a position in range and a positive finite radius.
-pub fn parse_popup(s: &str) -> Result<(f64, f64, f64), String> {
+/// A `--popup` of `skyroute plan` and `render`: a disc, and on a three-dimensional roadmap
+/// optionally its top.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PopupArg {
+    /// Centre longitude, degrees.
+    pub lon: f64,
+    /// Centre latitude, degrees.
+    pub lat: f64,
+    /// Radius, metres.
+    pub radius_m: f64,
+    /// Its top, metres in the scenario's datum; `None`: no altitude clears it.
+    pub height_m: Option<f64>,
+}
+
+/// `LON,LAT,RADIUS_M[,HEIGHT_M]` of `--popup`: a position in range, a positive finite
+/// radius and, optionally, a positive height up to 100 km.
+pub fn parse_tall_popup(s: &str) -> Result<PopupArg, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))
+        .collect::<Result<_, _>>()?;
+    let (disc, height_m) = match v[..] {
+        [lon, lat, r] => ([lon, lat, r], None),
+        [lon, lat, r, h] if h > 0.0 && h <= crate::scenario::MAX_ALTITUDE_M => {
+            ([lon, lat, r], Some(h))
+        }
+        _ => ([f64::NAN; 3], None),
+    };
+    match disc {
+        [lon, lat, r] if lon.abs() <= 180.0 && lat.abs() <= 90.0 && r > 0.0 && r.is_finite() => {
+            Ok(PopupArg {
+                lon,
+                lat,
+                radius_m: r,
+                height_m,
+            })
+        }
+        _ => Err(format!(
+            "expected LON,LAT,RADIUS_M[,HEIGHT_M] with |lon| <= 180, |lat| <= 90, radius > 0 \
+             and 0 < height <= 100000, got {s:?}"
+        )),
+    }
+}
+
+/// `LON,LAT,RADIUS_M` of `--threat`: a position in range and a positive finite radius.
+pub fn parse_threat(s: &str) -> Result<(f64, f64, f64), String> {
     let v: Vec<f64> = s
         .split(',')
         .map(|x| x.trim().parse::<f64>().map_err(|e| format!("{x:?}: {e}")))

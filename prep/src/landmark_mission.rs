@@ -163,11 +163,8 @@ pub fn plan_landmark(
     p.load(bytes).map_err(LandmarkPlanError::Load)?;
     p.set_weather(w).map_err(LandmarkPlanError::Plan)?;
     for pop in popups {
-        p.add_popup(skyroute::Popup::Circle {
-            centre: pop.centre,
-            radius: pop.radius,
-        })
-        .map_err(|e| LandmarkPlanError::Popup(pop.name.clone(), e))?;
+        pop.add_to(&mut p)
+            .map_err(|e| LandmarkPlanError::Popup(pop.name.clone(), e))?;
     }
     let overflight_count = l.landmark_count * l.directions;
     let between: Vec<u32> = (0..net.edge_count())

@@ -57,9 +57,11 @@ struct PlanArgs {
     /// The scenario the network was built from, whose start, waypoints and goal to visit.
     #[arg(long)]
     scenario: PathBuf,
-    /// A circular pop-up obstacle, `LON,LAT,RADIUS_M` (repeatable).
-    #[arg(long, value_parser = parse_popup)]
-    popup: Vec<(f64, f64, f64)>,
+    /// A circular pop-up obstacle, `LON,LAT,RADIUS_M[,HEIGHT_M]` (repeatable). HEIGHT_M, its
+    /// top in the scenario's datum, only on a three-dimensional roadmap, which flies over it
+    /// where it can; without it no altitude clears the pop-up.
+    #[arg(long, value_parser = parse_tall_popup)]
+    popup: Vec<PopupArg>,
     /// Plan from `LON,LAT,HEADING_DEG` (compass heading) instead of the scenario's start:
     /// re-planning from where the aircraft is. On a landmark network the core joins it to
     /// the overflights one flyable Hermite piece reaches within the range left
@@ -140,7 +142,7 @@ struct PlanArgs {
     threat_weight: Option<f32>,
     /// Voronoi networks: a radar that popped up in flight, `LON,LAT,RADIUS_M` (repeatable;
     /// RADIUS_M is its exposure's reference distance, like a scenario threat's).
-    #[arg(long, value_parser = parse_popup)]
+    #[arg(long, value_parser = parse_threat)]
     threat: Vec<(f64, f64, f64)>,
     /// Roadmap and terrain networks: the scenario's pop-up NAME may appear, with its
     /// `probability` (repeatable; Ruz et al.). With this option only the named pop-ups are
@@ -356,9 +358,10 @@ enum Command {
         /// landmark network's landmarks (numbered L1, L2, … without it).
         #[arg(long)]
         scenario: Option<PathBuf>,
-        /// A circular pop-up obstacle to draw, `LON,LAT,RADIUS_M` (repeatable).
-        #[arg(long, value_parser = parse_popup)]
-        popup: Vec<(f64, f64, f64)>,
+        /// A circular pop-up obstacle to draw, `LON,LAT,RADIUS_M[,HEIGHT_M]` (repeatable; the
+        /// height is not drawn).
+        #[arg(long, value_parser = parse_tall_popup)]
+        popup: Vec<PopupArg>,
         /// Where to write the picture: PNG when the name ends in `.png`, SVG when in `.svg`.
         #[arg(short, long)]
         output: PathBuf,
@@ -502,6 +505,13 @@ fn build_command(
     );
     if let Some(line) = skyroute_prep::roadmap::vertical::summary(r) {
         println!("  {line}");
+        if !s.popups.is_empty() {
+            println!(
+                "  scenario pop-ups: {}; `plan` applies them with their heights, and no bypass alternatives are \
+                 stored (`plan --popup-appears` plans them on the ground)",
+                s.popups.len()
+            );
+        }
     }
     Ok(())
 }

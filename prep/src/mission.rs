@@ -177,6 +177,22 @@ pub struct LocalPopup {
     pub centre: Vec2,
     /// Radius, metres.
     pub radius: f32,
+    /// Its top, metres (three-dimensional roadmaps); `None`: no altitude clears it.
+    pub height: Option<f32>,
+}
+
+impl LocalPopup {
+    /// Adds the pop-up to `planner`, with its height if it has one.
+    pub fn add_to<const V: usize, const E: usize, const P: usize, const R: usize>(
+        &self,
+        planner: &mut Planner<'_, V, E, P, R>,
+    ) -> Result<skyroute::planner::PopupSummary, skyroute::planner::PopupError> {
+        let disc = skyroute::Popup::Circle {
+            centre: self.centre,
+            radius: self.radius,
+        };
+        planner.add_popup_with_height(disc, self.height.unwrap_or(f32::INFINITY))
+    }
 }
 
 /// How the mission connects its stages to the network.
@@ -367,11 +383,8 @@ fn planner<'n>(
         });
     }
     for pop in popups {
-        p.add_popup(skyroute::Popup::Circle {
-            centre: pop.centre,
-            radius: pop.radius,
-        })
-        .map_err(|e| MissionError::Popup(pop.name.clone(), e))?;
+        pop.add_to(&mut p)
+            .map_err(|e| MissionError::Popup(pop.name.clone(), e))?;
     }
     Ok(p)
 }
@@ -451,7 +464,8 @@ fn plan_mission_in_pool(
 /// ([`crate::free_heading::most_clear_out_edges`]): among its heading copies, the one with the
 /// most clear out-edges to the network's vertices within `--connect-radius`, else the
 /// scenario's neighbour radius, else the core's connect radius, against the scenario's
-/// obstacles and `popups`. A waypoint with no heading that has a clear way in and out keeps
+/// obstacles and `popups` (on a three-dimensional roadmap below their heights, from and to
+/// the waypoint's altitude). A waypoint with no heading that has a clear way in and out keeps
 /// all its copies (the default rule decides it; count 0). Returns each waypoint's name, the
 /// heading fixed (NaN when none was) and its count.
 fn fix_free_headings(
@@ -467,6 +481,13 @@ fn fix_free_headings(
     } = *inputs;
     let net = skyroute::Network::from_bytes(bytes).map_err(MissionError::Load)?;
     let mut obstacles = crate::local::local_obstacles(scenario, frame);
+    // On a three-dimensional roadmap: every obstacle's height, the pop-ups' after the zones'.
+    let vertical = crate::roadmap::vertical::vertical_input(scenario, frame).map(|mut v| {
+        v.heights.resize(obstacles.len(), f32::INFINITY);
+        v.heights
+            .extend(popups.iter().map(|p| p.height.unwrap_or(f32::INFINITY)));
+        v
+    });
     obstacles.extend(
         popups
             .iter()
@@ -488,9 +509,13 @@ fn fix_free_headings(
             continue;
         }
         let headings: Vec<f32> = st.headings.iter().flatten().copied().collect();
+        let surroundings = crate::free_heading::Surroundings {
+            obstacles: &obstacles,
+            vertical: vertical.as_ref().zip(st.altitude),
+        };
         let (h, count) = crate::free_heading::most_clear_out_edges(
             &net,
-            &obstacles,
+            &surroundings,
             st.position,
             &headings,
             radius,

@@ -30,6 +30,8 @@ pub struct PopupInput {
     pub lat: f64,
     /// Radius, metres.
     pub radius_m: f64,
+    /// Its top, metres (three-dimensional roadmaps); `None`: no altitude clears it.
+    pub height_m: Option<f64>,
     /// The scenario's appearance probability, if it gives one.
     pub probability: Option<f64>,
 }
@@ -41,6 +43,7 @@ impl PopupInput {
             name: self.name.clone(),
             centre: crate::local::local(frame, self.lon, self.lat),
             radius: self.radius_m as f32,
+            height: self.height_m.map(|h| h as f32),
         }
     }
 }
@@ -49,7 +52,7 @@ impl PopupInput {
 /// false), then the command line's, numbered from 1 as `--popup #k`.
 pub fn gather_popups(
     s: &Scenario,
-    command_line: &[(f64, f64, f64)],
+    command_line: &[crate::cli_values::PopupArg],
     with_scenario: bool,
 ) -> Vec<PopupInput> {
     let from_scenario = s
@@ -62,19 +65,18 @@ pub fn gather_popups(
             lon: p.lon,
             lat: p.lat,
             radius_m: p.radius_m,
+            height_m: p.height_m,
             probability: Some(p.probability),
         });
-    let given = command_line
-        .iter()
-        .enumerate()
-        .map(|(i, &(lon, lat, r))| PopupInput {
-            name: format!("--popup #{}", i + 1),
-            source: PopupSource::CommandLine,
-            lon,
-            lat,
-            radius_m: r,
-            probability: None,
-        });
+    let given = command_line.iter().enumerate().map(|(i, p)| PopupInput {
+        name: format!("--popup #{}", i + 1),
+        source: PopupSource::CommandLine,
+        lon: p.lon,
+        lat: p.lat,
+        radius_m: p.radius_m,
+        height_m: p.height_m,
+        probability: None,
+    });
     from_scenario.chain(given).collect()
 }
 
@@ -200,12 +202,12 @@ pub fn check_query(
     Ok(())
 }
 
-/// Refuses, by name, a waypoint or goal inside the disc of one of `popups`, and a start too
-/// except on a roadmap network (whose planner leaves the pop-up by an exit first,
-/// `src/planner/exit.rs`): no route can pass or end there, and the message names the endpoint
-/// and the pop-up as the scenario and the command line do (the core's refusal would name the
-/// pop-up by its slot, and a goal it cannot be reached in is reported at the waypoint before
-/// it).
+/// Refuses, by name, a waypoint or goal inside the disc of one of `popups` (below its top,
+/// on a three-dimensional roadmap), and a start too except on a roadmap network (whose
+/// planner leaves the pop-up by an exit first, `src/planner/exit.rs`): no route can pass or
+/// end there, and the message names the endpoint and the pop-up as the scenario and the
+/// command line do (the core's refusal would name the pop-up by its slot, and a goal it
+/// cannot be reached in is reported at the waypoint before it).
 pub fn check_ends_clear_of_popups(
     s: &Scenario,
     frame: &LocalFrame,
@@ -224,7 +226,8 @@ pub fn check_ends_clear_of_popups(
         for p in popups {
             let (cx, cy) = frame.to_local(p.lon, p.lat);
             let d = (x - cx).hypot(y - cy);
-            if d < p.radius_m {
+            let above = e.altitude_m.zip(p.height_m).is_some_and(|(z, h)| z >= h);
+            if d < p.radius_m && !above {
                 return Err(format!(
                     "{role} {:?} lies inside {} (radius {} m, its centre {:.0} m away): no \
                      route can {} there",

@@ -36,7 +36,7 @@ impl std::error::Error for NoRoute {}
 pub struct PlanRequest<'a> {
     pub network: &'a Path,
     pub scenario: &'a Path,
-    pub popups: &'a [(f64, f64, f64)],
+    pub popups: &'a [crate::cli_values::PopupArg],
     /// `--start`: `(lon, lat, compass heading)` replacing the scenario's start.
     pub start: Option<(f64, f64, f64)>,
     /// `--goal`: `(lon, lat, compass heading or none)` replacing the scenario's goal.
@@ -89,6 +89,7 @@ pub fn popups_json(popups: &[PopupInput], frame: &crate::frame::LocalFrame) -> s
                 "lon": p.lon,
                 "lat": p.lat,
                 "radius_m": p.radius_m,
+                "height_m": p.height_m,
                 "probability": p.probability,
                 "centre": [c.x, c.y],
             })

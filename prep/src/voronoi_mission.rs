@@ -163,11 +163,8 @@ pub fn plan_voronoi_mission(
             .map_err(|e| VoronoiPlanError::Threat(format!("--threat-weight {k}"), e))?;
     }
     for pop in popups {
-        p.add_popup(skyroute::Popup::Circle {
-            centre: pop.centre,
-            radius: pop.radius,
-        })
-        .map_err(|e| VoronoiPlanError::Popup(pop.name.clone(), e))?;
+        pop.add_to(&mut p)
+            .map_err(|e| VoronoiPlanError::Popup(pop.name.clone(), e))?;
     }
     for t in threats {
         p.add_threat(t.position, t.radius)

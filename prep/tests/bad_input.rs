@@ -522,6 +522,10 @@ fn popups_of_no_area_or_off_the_globe_are_refused() {
         "11.63,48.09,-5",
         "nan,48.09,50",
         "11.63,91,50",
+        "11.63,48.09,50,0",
+        "11.63,48.09,50,nan",
+        "11.63,48.09,50,1e6",
+        "11.63,48.09,50,30,1",
     ] {
         let o = skyroute(&["plan", net, "--scenario", &sc, "--popup", popup, "-o", &out]);
         assert_eq!(code(&o), 2, "{popup}: {}", stderr(&o));

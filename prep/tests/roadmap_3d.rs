@@ -443,24 +443,90 @@ fn a_three_dimensional_scenario_is_built_only_as_a_roadmap() {
     assert!(e.to_string().contains("as a terrain network"), "{e}");
 }
 
+/// Pop-ups with heights, from the scenario (`height_m`) and from `--popup LON,LAT,R,H`, on
+/// the urban mission (waypoint headings by the paper's rule, to keep it quick): a 60 m disc
+/// on the route with its top at 30 m (below every vertex's 40 m, so below the route plus the
+/// clearance) changes nothing; one at 100 m makes the route go round it, like the same disc
+/// as a wall. The build stores no bypass alternatives for them, and says so; a planar network
+/// refuses a height by the pop-up's name.
 #[test]
-fn pop_ups_are_refused_in_three_dimensions() {
+fn pop_ups_with_heights_are_flown_over_when_low_and_round_when_tall() {
     let dir = TempDir::new("roadmap-3d-popup");
-    let text = std::fs::read_to_string(scenario("niendorf-urban-3d.geojson")).unwrap();
-    let popup = r#"{"type": "Feature", "properties": {"kind": "popup", "name": "U1",
-        "radius_m": 100, "probability": 0.5},
-        "geometry": {"type": "Point", "coordinates": [11.6275, 48.0960]}},"#;
-    let text = text.replacen("\"features\": [", &format!("\"features\": [{popup}"), 1);
-    let path = dir.file("popup.geojson");
-    std::fs::write(&path, text).unwrap();
-    let o = skyroute(&["build", &path, "-o", &dir.file("x.bin")]);
+    let (net, sc) = (dir.file("u3.bin"), scenario("niendorf-urban-3d.geojson"));
+    ok(skyroute(&["build", &sc, "-o", &net]), "build");
+    let disc = "11.639436,48.104092,60";
+    let plan = |scenario: &str, popup: Option<String>, out: &str| {
+        let mut args = vec![
+            "plan",
+            &net,
+            "--scenario",
+            scenario,
+            "--free-headings",
+            "paper",
+            "-o",
+            out,
+        ];
+        let popup = popup.map(|p| ["--popup".to_string(), p]);
+        args.extend(popup.iter().flatten().map(String::as_str));
+        let o = ok(skyroute(&args), "plan");
+        let route: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
+        (route["length_m"].as_f64().unwrap(), route, stdout(&o))
+    };
+    let (none, ..) = plan(&sc, None, &dir.file("none.json"));
+    let (low, route, _) = plan(&sc, Some(format!("{disc},30")), &dir.file("low.json"));
+    let (tall, ..) = plan(&sc, Some(format!("{disc},100")), &dir.file("tall.json"));
+    let (wall, ..) = plan(&sc, Some(disc.to_string()), &dir.file("wall.json"));
+    assert_eq!(route["popups"][0]["height_m"], 30.0);
+    assert_eq!(low, none, "a pop-up below the route changes nothing");
+    assert!(tall > none + 10.0, "{tall} against {none}");
+    assert_eq!(tall, wall, "a pop-up above the route is gone round");
+    // The same pop-up as a scenario feature: built without stored alternatives, and applied
+    // with its height.
+    let text = std::fs::read_to_string(&sc).unwrap();
+    let feature = |h: u32| {
+        format!(
+            r#"{{"type": "Feature", "properties": {{"kind": "popup", "name": "U1",
+            "radius_m": 60, "probability": 0.5, "height_m": {h}}},
+            "geometry": {{"type": "Point", "coordinates": [11.639436, 48.104092]}}}},"#
+        )
+    };
+    for (h, expected) in [(30, none), (100, tall)] {
+        let with = text.replacen(
+            "\"features\": [",
+            &format!("\"features\": [{}", feature(h)),
+            1,
+        );
+        let path = dir.file(&format!("popup-{h}.geojson"));
+        std::fs::write(&path, with).unwrap();
+        let built = ok(skyroute(&["build", &path, "-o", &net]), "build");
+        assert!(
+            stdout(&built).contains("scenario pop-ups: 1; `plan` applies them with their heights"),
+            "{}",
+            stdout(&built)
+        );
+        let (length, route, _) = plan(&path, None, &dir.file("s.json"));
+        assert_eq!(length, expected, "scenario pop-up at {h} m");
+        assert_eq!(route["popups"][0]["height_m"], h as f64);
+    }
+    // A height on a planar network is refused by the pop-up's name.
+    let planar_sc = scenario("niendorf-urban.geojson");
+    let planar = dir.file("u2.bin");
+    ok(skyroute(&["build", &planar_sc, "-o", &planar]), "build");
+    let o = skyroute(&[
+        "plan",
+        &planar,
+        "--scenario",
+        &planar_sc,
+        "--popup",
+        &format!("{disc},30"),
+        "-o",
+        &dir.file("p.json"),
+    ]);
     assert!(!o.status.success());
     let e = stderr(&o);
     assert!(
-        e.contains(
-            "popup.geojson: planner.altitude_min_m: the pop-ups' bypass alternatives are not \
-             stored in a three-dimensional roadmap"
-        ),
+        e.contains("--popup #1") && e.contains("the network has no altitudes"),
         "{e}"
     );
 }

@@ -242,7 +242,8 @@ pub fn study_with(
 }
 
 /// The [`ALTERNATIVES`] alternatives of the pop-up `name` (module documentation): fewer when no
-/// blocking disc yields a further distinct route.
+/// blocking disc yields a further distinct route. Each goes round the disc: a scenario
+/// pop-up's `height_m` is not used here (no alternative flies over it).
 fn alternatives_of(
     planning: &Planning,
     params: &RiskParams,
@@ -255,6 +256,7 @@ fn alternatives_of(
         name: format!("pop-up {name:?}"),
         centre,
         radius: radius_m as f32,
+        height: None,
     };
     let first = planning
         .score(params, radars, vec![disc.clone()], Some(centre))
@@ -302,6 +304,7 @@ fn next_alternative(
                     name: format!("{} block {}", disc.name, k + 1),
                     centre: c,
                     radius: r,
+                    height: None,
                 });
             }
         }

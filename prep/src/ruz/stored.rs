@@ -98,6 +98,7 @@ fn stored_discs(
         name: format!("pop-up {name:?}"),
         centre: p.centre,
         radius: p.radius,
+        height: None,
     }];
     for j in 0..a.discs {
         if let Some((centre, radius)) = net.blocking_disc(a, j) {
@@ -105,6 +106,7 @@ fn stored_discs(
                 name: format!("pop-up {name:?} block {}", j + 1),
                 centre,
                 radius,
+                height: None,
             });
         }
     }

@@ -51,7 +51,7 @@ struct Seen {
 
 /// The `properties` keys that features of `kind` define (`scenarios/README.md`), in the order
 /// messages list them, in a planar scenario or a `three_dimensional` one (which adds a no-fly
-/// zone's `height_m` and an endpoint's `altitude_m`); `None` for an unknown kind. Any other key
+/// zone's and a pop-up's `height_m` and an endpoint's `altitude_m`); `None` for an unknown kind. Any other key
 /// is refused (a misspelt `heading` or `heigth` would otherwise be ignored).
 fn property_keys(kind: &str, three_dimensional: bool) -> Option<&'static [&'static str]> {
     Some(match (kind, three_dimensional) {
@@ -63,7 +63,8 @@ fn property_keys(kind: &str, three_dimensional: bool) -> Option<&'static [&'stat
         ("goal" | "waypoint", false) => &["kind", "name", "heading_deg"],
         ("goal" | "waypoint", true) => &["kind", "name", "heading_deg", "altitude_m"],
         ("threat", _) => &["kind", "name", "radius_m"],
-        ("popup", _) => &["kind", "name", "radius_m", "probability"],
+        ("popup", false) => &["kind", "name", "radius_m", "probability"],
+        ("popup", true) => &["kind", "name", "radius_m", "probability", "height_m"],
         _ => return None,
     })
 }
@@ -72,7 +73,7 @@ fn property_keys(kind: &str, three_dimensional: bool) -> Option<&'static [&'stat
 fn vertical_key(kind: &str, key: &str) -> bool {
     matches!(
         (kind, key),
-        ("no_fly", "height_m") | ("start" | "goal" | "waypoint", "altitude_m")
+        ("no_fly" | "popup", "height_m") | ("start" | "goal" | "waypoint", "altitude_m")
     )
 }
 
@@ -450,12 +451,14 @@ impl Parser<'_> {
                     (0.0..=1.0).contains(&p),
                     "a probability in [0, 1]",
                 )?;
+                let height_m = self.zone_height(&at, props, three_dimensional)?;
                 s.popups.push(Popup {
                     name,
                     lon,
                     lat,
                     radius_m,
                     probability,
+                    height_m,
                 });
             }
             other => {

@@ -299,3 +299,40 @@ fn heights_and_altitudes_are_checked_by_feature() {
         );
     }
 }
+
+/// A pop-up "U1" of 60 m with the given extra properties.
+fn popup(extra: &str) -> String {
+    endpoint(
+        "popup",
+        "U1",
+        &format!(r#", "radius_m": 60, "probability": 0.5{extra}"#),
+    )
+}
+
+#[test]
+fn a_popup_height_is_read_in_three_dimensions_only() {
+    let p = start(r#", "altitude_m": 60"#);
+    let s = parsed(&text(
+        "roadmap",
+        "",
+        BAND,
+        &format!("{p}, {}", popup(r#", "height_m": 30"#)),
+    ));
+    assert_eq!(s.popups[0].height_m, Some(30.0));
+    let s = parsed(&text("roadmap", "", BAND, &format!("{p}, {}", popup(""))));
+    assert_eq!(s.popups[0].height_m, None, "absent: unbounded");
+    fails(
+        &text(
+            "roadmap",
+            "",
+            BAND,
+            &format!("{p}, {}", popup(r#", "height_m": 0"#)),
+        ),
+        &["feature 1 (U1): properties.height_m: 0 is out of range: expected a positive number"],
+    );
+    let e = fails(
+        &text("roadmap", "", "", &popup(r#", "height_m": 30"#)),
+        &["feature 0 (U1): properties.height_m: the scenario is planar"],
+    );
+    assert_eq!(e.kind, ErrorKind::Planar);
+}

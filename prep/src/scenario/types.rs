@@ -295,4 +295,7 @@ pub struct Popup {
     pub radius_m: f64,
     /// Probability that it appears, in [0, 1].
     pub probability: f64,
+    /// Its top, metres, in a three-dimensional scenario (`properties.height_m`); `None`: no
+    /// altitude clears it.
+    pub height_m: Option<f64>,
 }

@@ -1,7 +1,7 @@
 //! The three-dimensional roadmap's keys (Niendorf et al.): the altitude band
 //! (`planner.altitude_min_m`, `planner.altitude_max_m`), the vertical limits
-//! (`vehicle.climb_rate_mps`, `vehicle.vertical_accel_mps2`), the no-fly zones' `height_m` and
-//! the endpoints' `altitude_m`. A scenario with the band is three-dimensional; in any other,
+//! (`vehicle.climb_rate_mps`, `vehicle.vertical_accel_mps2`), the no-fly zones' and pop-ups'
+//! `height_m` and the endpoints' `altitude_m`. A scenario with the band is three-dimensional; in any other,
 //! each of these keys is refused by name ([`ErrorKind::Planar`]).
 
 use super::error::{compact, ErrorKind};
@@ -109,8 +109,9 @@ impl Parser<'_> {
         Ok(())
     }
 
-    /// A no-fly feature's `properties.height_m`: in a three-dimensional scenario a positive
-    /// number or absent (unbounded); `None` in a planar one (whose key check refused it).
+    /// A no-fly or pop-up feature's `properties.height_m`: in a three-dimensional scenario a
+    /// positive number or absent (unbounded); `None` in a planar one (whose key check refused
+    /// it).
     pub(super) fn zone_height(
         &self,
         at: &At,
