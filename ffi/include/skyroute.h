@@ -276,6 +276,11 @@ enum sr_status
   SR_STATUS_POPUP_NOT_SIMPLE = 304,
   // `PopupError::UnknownId`: No active pop-up has this id.
   SR_STATUS_POPUP_UNKNOWN_ID = 305,
+  // `PopupError::BadHeight`: A height is NaN, not positive, or finite beyond
+  // `MAX_ALTITUDE_M`.
+  SR_STATUS_POPUP_BAD_HEIGHT = 306,
+  // `PopupError::HeightNeedsAltitudes`: A finite height on a network without altitudes.
+  SR_STATUS_POPUP_HEIGHT_NEEDS_ALTITUDES = 307,
   // `GeoError::NonFinite`: A coordinate or heading is NaN or infinite.
   SR_STATUS_GEO_NON_FINITE = 400,
   // `GeoError::Latitude`: A latitude outside [−90, 90] degrees.
@@ -542,6 +547,21 @@ sr_status sr_route_primitives(const sr_planner *planner,
 // byte.
 sr_status sr_add_popup_circle(sr_planner *planner, float x, float y, float radius, uint8_t *id);
 
+// `sr_add_popup_circle` for a pop-up whose top is at `height_m` metres (the network's datum):
+// a three-dimensional roadmap flies over it where its altitude clears the top by the
+// clearance. `INFINITY` is a wall; a finite height on any other network is
+// `SR_STATUS_POPUP_HEIGHT_NEEDS_ALTITUDES`, and one that is NaN, not positive or beyond
+// 100 km `SR_STATUS_POPUP_BAD_HEIGHT`.
+//
+// # Safety
+// As `sr_add_popup_circle`.
+sr_status sr_add_popup_circle_with_height(sr_planner *planner,
+                                          float x,
+                                          float y,
+                                          float radius,
+                                          float height_m,
+                                          uint8_t *id);
+
 // Adds a simple polygon pop-up of `n` vertices `(xy[2i], xy[2i + 1])`, metres, in either
 // order round it (3 ≤ `n` ≤ `SR_MAX_POPUP_VERTICES`; more: `SR_STATUS_INVALID_ARGUMENT`), as
 // `sr_add_popup_circle` does.
@@ -550,6 +570,17 @@ sr_status sr_add_popup_circle(sr_planner *planner, float x, float y, float radiu
 // `planner` is NULL or a handle from `sr_planner_init`; `xy` is NULL or points to `2·n`
 // readable floats; `id` is NULL or points to a writable byte.
 sr_status sr_add_popup_polygon(sr_planner *planner, const float *xy, size_t n, uint8_t *id);
+
+// `sr_add_popup_polygon` for a pop-up whose top is at `height_m` metres, as
+// `sr_add_popup_circle_with_height` takes it.
+//
+// # Safety
+// As `sr_add_popup_polygon`.
+sr_status sr_add_popup_polygon_with_height(sr_planner *planner,
+                                           const float *xy,
+                                           size_t n,
+                                           float height_m,
+                                           uint8_t *id);
 
 // Removes pop-up `id` and re-enables the edges only it blocked
 // (`SR_STATUS_POPUP_UNKNOWN_ID` if no active pop-up has that id).
@@ -575,6 +606,32 @@ sr_status sr_worst_case_popup_work(const sr_planner *planner, uint64_t *work);
 // The name of `status` as the header spells it (`"SR_STATUS_PLAN_NO_ROUTE"`), a static
 // NUL-terminated string; `"SR_STATUS_UNKNOWN"` for a number that is no status.
 const char *sr_status_name(int32_t status);
+
+// Three-dimensional roadmap: sets the start's and the goal's altitudes (metres, in the
+// network's datum) for the `sr_plan` calls that follow; a three-dimensional roadmap refuses a
+// query until they are set (`SR_STATUS_PLAN_ALTITUDES_NEEDED`). Any other network:
+// `SR_STATUS_PLAN_NOT_THREE_DIMENSIONAL`; a value that is not finite or beyond 100 km:
+// `SR_STATUS_PLAN_INVALID_ALTITUDE` (the previous setting is kept).
+//
+// # Safety
+// `planner` is NULL or a handle from `sr_planner_init`.
+sr_status sr_set_query_altitudes(sr_planner *planner, float start_m, float goal_m);
+
+// Three-dimensional roadmap: writes to `*altitude_m` the last route's altitude, metres,
+// `s_m` metres into its primitive `index` (the order of `sr_route_primitives`; `s_m` clamped
+// to the primitive, NaN as 0). The altitude follows the climb-early, descend-late profile the
+// route was checked with, which an autopilot must fly to keep the clearance over what the
+// route passes above; it is not the straight line between the primitive's ends.
+// `SR_STATUS_INVALID_ARGUMENT` for an index past the route;
+// `SR_STATUS_PLAN_NOT_THREE_DIMENSIONAL` on any other network. Work: O(route length).
+//
+// # Safety
+// `planner` is NULL or a handle from `sr_planner_init`; `altitude_m` is NULL or points to a
+// writable float.
+sr_status sr_route_altitude_at(const sr_planner *planner,
+                               size_t index,
+                               float s_m,
+                               float *altitude_m);
 
 #ifdef __cplusplus
 }  // extern "C"

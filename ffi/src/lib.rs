@@ -37,6 +37,7 @@ mod geo;
 mod plan;
 mod popups;
 mod status;
+mod vertical;
 
 pub use geo::{geo_status, sr_geo_to_local, sr_local_to_geo, SrGeoPose, SrPose};
 pub use plan::{
@@ -45,10 +46,11 @@ pub use plan::{
     SR_SEARCH_A_STAR, SR_SEARCH_DIJKSTRA,
 };
 pub use popups::{
-    sr_add_popup_circle, sr_add_popup_polygon, sr_remove_popup, sr_remove_popups,
-    sr_worst_case_popup_work,
+    sr_add_popup_circle, sr_add_popup_circle_with_height, sr_add_popup_polygon,
+    sr_add_popup_polygon_with_height, sr_remove_popup, sr_remove_popups, sr_worst_case_popup_work,
 };
 pub use status::{load_status, plan_status, popup_status, sr_status_name, SrStatus};
+pub use vertical::{sr_route_altitude_at, sr_set_query_altitudes};
 
 use core::ffi::c_void;
 use core::mem::{align_of, size_of, MaybeUninit};

@@ -41,6 +41,27 @@ pub unsafe extern "C" fn sr_add_popup_circle(
     radius: f32,
     id: *mut u8,
 ) -> SrStatus {
+    // SAFETY: the caller's guarantees are those of `sr_add_popup_circle_with_height`.
+    unsafe { sr_add_popup_circle_with_height(planner, x, y, radius, f32::INFINITY, id) }
+}
+
+/// `sr_add_popup_circle` for a pop-up whose top is at `height_m` metres (the network's datum):
+/// a three-dimensional roadmap flies over it where its altitude clears the top by the
+/// clearance. `INFINITY` is a wall; a finite height on any other network is
+/// `SR_STATUS_POPUP_HEIGHT_NEEDS_ALTITUDES`, and one that is NaN, not positive or beyond
+/// 100 km `SR_STATUS_POPUP_BAD_HEIGHT`.
+///
+/// # Safety
+/// As `sr_add_popup_circle`.
+#[no_mangle]
+pub unsafe extern "C" fn sr_add_popup_circle_with_height(
+    planner: *mut SrPlanner,
+    x: f32,
+    y: f32,
+    radius: f32,
+    height_m: f32,
+    id: *mut u8,
+) -> SrStatus {
     // SAFETY: the caller passes NULL or a handle from `sr_planner_init`, used by this call
     // alone.
     let Some(p) = (unsafe { planner_mut(planner) }) else {
@@ -51,7 +72,7 @@ pub unsafe extern "C" fn sr_add_popup_circle(
         radius,
     };
     // SAFETY: the caller gives `id` NULL or writable.
-    unsafe { added(p.add_popup(popup), id) }
+    unsafe { added(p.add_popup_with_height(popup, height_m), id) }
 }
 
 /// Adds a simple polygon pop-up of `n` vertices `(xy[2i], xy[2i + 1])`, metres, in either
@@ -66,6 +87,23 @@ pub unsafe extern "C" fn sr_add_popup_polygon(
     planner: *mut SrPlanner,
     xy: *const f32,
     n: usize,
+    id: *mut u8,
+) -> SrStatus {
+    // SAFETY: the caller's guarantees are those of `sr_add_popup_polygon_with_height`.
+    unsafe { sr_add_popup_polygon_with_height(planner, xy, n, f32::INFINITY, id) }
+}
+
+/// `sr_add_popup_polygon` for a pop-up whose top is at `height_m` metres, as
+/// `sr_add_popup_circle_with_height` takes it.
+///
+/// # Safety
+/// As `sr_add_popup_polygon`.
+#[no_mangle]
+pub unsafe extern "C" fn sr_add_popup_polygon_with_height(
+    planner: *mut SrPlanner,
+    xy: *const f32,
+    n: usize,
+    height_m: f32,
     id: *mut u8,
 ) -> SrStatus {
     // SAFETY: the caller passes NULL or a handle from `sr_planner_init`, used by this call
@@ -90,7 +128,12 @@ pub unsafe extern "C" fn sr_add_popup_polygon(
         }
     }
     // SAFETY: the caller gives `id` NULL or writable.
-    unsafe { added(p.add_popup(Popup::Polygon(points)), id) }
+    unsafe {
+        added(
+            p.add_popup_with_height(Popup::Polygon(points), height_m),
+            id,
+        )
+    }
 }
 
 /// Removes pop-up `id` and re-enables the edges only it blocked

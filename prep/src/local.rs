@@ -118,3 +118,30 @@ pub fn local_pose(frame: &LocalFrame, lon: f64, lat: f64, compass_deg: Option<f6
         heading: compass_deg.map_or(0.0, |c| local_heading(frame, lon, lat, c)),
     }
 }
+
+/// A circular pop-up in the local frame, with a name for errors.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LocalPopup {
+    /// Name for messages.
+    pub name: String,
+    /// Centre.
+    pub centre: Vec2,
+    /// Radius, metres.
+    pub radius: f32,
+    /// Its top, metres (three-dimensional roadmaps); `None`: no altitude clears it.
+    pub height: Option<f32>,
+}
+
+impl LocalPopup {
+    /// Adds the pop-up to `planner`, with its height if it has one.
+    pub fn add_to<const V: usize, const E: usize, const P: usize, const R: usize>(
+        &self,
+        planner: &mut skyroute::Planner<'_, V, E, P, R>,
+    ) -> Result<skyroute::planner::PopupSummary, skyroute::planner::PopupError> {
+        let disc = skyroute::Popup::Circle {
+            centre: self.centre,
+            radius: self.radius,
+        };
+        planner.add_popup_with_height(disc, self.height.unwrap_or(f32::INFINITY))
+    }
+}

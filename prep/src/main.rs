@@ -57,9 +57,8 @@ struct PlanArgs {
     /// The scenario the network was built from, whose start, waypoints and goal to visit.
     #[arg(long)]
     scenario: PathBuf,
-    /// A circular pop-up obstacle, `LON,LAT,RADIUS_M[,HEIGHT_M]` (repeatable). HEIGHT_M, its
-    /// top in the scenario's datum, only on a three-dimensional roadmap, which flies over it
-    /// where it can; without it no altitude clears the pop-up.
+    /// A circular pop-up obstacle, `LON,LAT,RADIUS_M[,HEIGHT_M]` (repeatable; HEIGHT_M, its top,
+    /// on a three-dimensional roadmap only: without it no altitude clears the pop-up).
     #[arg(long, value_parser = parse_tall_popup)]
     popup: Vec<PopupArg>,
     /// Plan from `LON,LAT,HEADING_DEG` (compass heading) instead of the scenario's start:
@@ -759,7 +758,7 @@ fn run(cli: Cli) -> CliResult {
                 mode,
                 routes: route,
                 scenario: scenario_path,
-                popups: popup,
+                popups: popup.iter().map(|p| (p.lon, p.lat, p.radius_m)).collect(),
                 output,
                 png,
                 map_width_px: width,

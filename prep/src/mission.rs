@@ -9,6 +9,7 @@
 
 use crate::frame::LocalFrame;
 pub use crate::free_heading::FreeHeadingRule;
+pub use crate::local::LocalPopup;
 use crate::local::{local, local_heading};
 use crate::scenario::{Endpoint, Scenario};
 use rayon::prelude::*;
@@ -167,33 +168,6 @@ impl fmt::Display for MissionError {
 }
 
 impl std::error::Error for MissionError {}
-
-/// A circular pop-up in the local frame, with a name for errors.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LocalPopup {
-    /// Name for messages.
-    pub name: String,
-    /// Centre.
-    pub centre: Vec2,
-    /// Radius, metres.
-    pub radius: f32,
-    /// Its top, metres (three-dimensional roadmaps); `None`: no altitude clears it.
-    pub height: Option<f32>,
-}
-
-impl LocalPopup {
-    /// Adds the pop-up to `planner`, with its height if it has one.
-    pub fn add_to<const V: usize, const E: usize, const P: usize, const R: usize>(
-        &self,
-        planner: &mut Planner<'_, V, E, P, R>,
-    ) -> Result<skyroute::planner::PopupSummary, skyroute::planner::PopupError> {
-        let disc = skyroute::Popup::Circle {
-            centre: self.centre,
-            radius: self.radius,
-        };
-        planner.add_popup_with_height(disc, self.height.unwrap_or(f32::INFINITY))
-    }
-}
 
 /// How the mission connects its stages to the network.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -73,6 +73,30 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         VerticalProfile::new(from, to, self.paths.get(k)?.length(), &limits)
     }
 
+    /// Three-dimensional roadmap: the altitude, metres, `s` metres into primitive `k` of the
+    /// last route ([`Planner::route`]: the paths' lines and arcs in turn), `s` clamped to the
+    /// primitive (NaN counts as 0); `None` past the route and on any other network. The
+    /// altitude follows the profile of the path the primitive belongs to
+    /// ([`Planner::route_profile`]), so an autopilot that flies it keeps the clearance over
+    /// the buildings and pop-ups the route passes above. Work: O(route length).
+    pub fn route_altitude_at(&self, k: usize, s: f32) -> Option<f32> {
+        let mut index = 0;
+        for (p, path) in self.paths.iter().enumerate() {
+            let mut offset = 0.0;
+            for (prim, length) in path.primitives().iter().zip(path.lengths) {
+                if prim.is_some() {
+                    if index == k {
+                        let profile = self.route_profile(p)?;
+                        return Some(profile.altitude_at(offset + s.max(0.0).min(length)));
+                    }
+                    index += 1;
+                }
+                offset += length;
+            }
+        }
+        None
+    }
+
     /// Refuses a query on a three-dimensional roadmap whose altitudes were not set.
     pub(super) fn check_query_altitudes(&self) -> Result<(), PlanError> {
         match self.network.is_three_dimensional() && self.query_altitudes().is_none() {

@@ -323,3 +323,49 @@ fn a_budget_one_short_keeps_the_previous_route_and_its_altitudes() {
     assert_eq!(planner.plan(&second, needed).unwrap().work.total(), needed);
     assert_eq!(planner.route_altitudes().last(), Some(&30.0));
 }
+
+/// `route_altitude_at` walks the route's primitives in the order of `route()` and gives each
+/// point the altitude of its path's profile (checked against the f64 profile); past the route,
+/// and on a planar network, there is none.
+#[test]
+fn route_altitudes_by_primitive_follow_each_paths_profile() {
+    let solid = network(true);
+    let mut planner = Small::new();
+    planner.load(&solid).unwrap();
+    planner.set_query_altitudes(30.0, 50.0).unwrap();
+    let q = query(Vec2::new(0.0, 100.0), Vec2::new(600.0, 200.0));
+    planner.plan(&q, u64::MAX).unwrap();
+    let route = planner.route().to_vec();
+    let mut k = 0;
+    for (p, path) in planner.route_paths().iter().enumerate() {
+        let profile = planner.route_profile(p).unwrap();
+        let mut offset = 0.0;
+        for (prim, length) in path.primitives().iter().zip(path.lengths) {
+            let Some(prim) = prim else {
+                offset += length;
+                continue;
+            };
+            assert_eq!(route[k], *prim, "primitive {k}");
+            for f in [0.0, 0.3, 0.7, 1.0] {
+                let s = f * length;
+                let z = planner.route_altitude_at(k, s).unwrap() as f64;
+                let expected = vertical_altitude(&profile, &limits(), (offset + s) as f64);
+                assert!(
+                    (z - expected).abs() < 1e-3,
+                    "primitive {k} at {s}: {z} {expected}"
+                );
+            }
+            k += 1;
+            offset += length;
+        }
+    }
+    assert_eq!(k, route.len());
+    assert_eq!(planner.route_altitude_at(k, 0.0), None);
+    assert_eq!(planner.route_altitude_at(0, f32::NAN), Some(30.0));
+    assert_eq!(planner.route_altitude_at(k - 1, f32::INFINITY), Some(50.0));
+    let planar = network(false);
+    let mut flat = Small::new();
+    flat.load(&planar).unwrap();
+    flat.plan(&q, u64::MAX).unwrap();
+    assert_eq!(flat.route_altitude_at(0, 0.0), None);
+}

@@ -69,8 +69,8 @@ pub struct RenderRequest {
     pub routes: Vec<PathBuf>,
     /// A scenario for the start, waypoints, goal and pop-ups.
     pub scenario: Option<PathBuf>,
-    /// Extra pop-ups (`--popup`).
-    pub popups: Vec<crate::cli_values::PopupArg>,
+    /// Extra pop-ups, `(lon, lat, radius_m)`.
+    pub popups: Vec<(f64, f64, f64)>,
     /// The picture: SVG, or PNG when the name ends in `.png`.
     pub output: PathBuf,
     /// Also a PNG here.
@@ -233,11 +233,16 @@ pub fn render(req: &RenderRequest) -> Result<Vec<PathBuf>, Box<dyn std::error::E
             threats.push(t.clone());
         }
     }
-    popups.extend(req.popups.iter().enumerate().map(|(i, p)| PopupMark {
-        name: format!("--popup #{}", i + 1),
-        centre: frame.to_local(p.lon, p.lat),
-        radius: p.radius_m,
-    }));
+    popups.extend(
+        req.popups
+            .iter()
+            .enumerate()
+            .map(|(i, &(lon, lat, r))| PopupMark {
+                name: format!("--popup #{}", i + 1),
+                centre: frame.to_local(lon, lat),
+                radius: r,
+            }),
+    );
     let title = s
         .as_ref()
         .map(|s| s.name.clone())
