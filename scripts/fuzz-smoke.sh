@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A short run of every cargo-fuzz target (fuzz/, its own workspace, nightly toolchain):
 # writes the networks the planner target loads (fuzz/networks/: Voronoi networks of ruz-popups
-# and voronoi-dense, and the firmware fixtures' roadmap, terrain and landmark networks), seeds
+# and voronoi-dense, the firmware fixtures' roadmap, terrain and landmark networks, and the
+# three-dimensional roadmap of niendorf-urban-3d), seeds
 # the loader's corpus with the smaller of them, then runs each target for FUZZ_SECONDS (default 20) seconds.
 # A crash fails the run and leaves its input in fuzz/artifacts/TARGET/.
 #
@@ -41,6 +42,8 @@ cp firmware-example/fixture/network.bin fuzz/networks/roadmap-niendorf.bin
 cp firmware-example/fixture-terrain/network.bin fuzz/networks/terrain-jacksboro.bin
 cp firmware-example/fixture-landmark/network.bin fuzz/networks/landmark-babel-II-N.bin
 cp firmware-example/fixture-ruz/network.bin fuzz/networks/roadmap-ruz-alternatives.bin
+"$skyroute" build scenarios/niendorf-urban-3d.geojson -o fuzz/networks/roadmap-3d.bin >/dev/null
+cp fuzz/networks/roadmap-3d.bin fuzz/corpus/load/
 # The loader's seeds: the small images (a mutated megabyte image costs milliseconds a run), and
 # a sparse roadmap of niendorf-urban.
 "$skyroute" build scenarios/niendorf-urban.geojson --sample-spacing 400 -o fuzz/corpus/load/roadmap-sparse.bin >/dev/null

@@ -1,9 +1,11 @@
-//! Arbitrary sequences of planner calls on valid networks of every mode: pop-ups added and
-//! removed with arbitrary floats, pop-up threats, weights, weathers, rosette updates,
-//! altitudes, the pop-up switch (announcements decided among a network's stored alternatives,
-//! the decided or an arbitrary choice flown), and queries with arbitrary poses and budgets.
-//! Nothing may panic, a route found never counts more work than its budget nor more than the
-//! documented worst case, and a switch that fails adds no pop-up.
+//! Arbitrary sequences of planner calls on valid networks of every mode: pop-ups added (with
+//! arbitrary heights too) and removed with arbitrary floats, pop-up threats, weights, weathers,
+//! rosette updates, altitudes and a three-dimensional roadmap's query altitudes, the pop-up
+//! switch (announcements decided among a network's stored alternatives, the decided or an
+//! arbitrary choice flown), queries with arbitrary poses and budgets, and the route's
+//! altitudes read anywhere. Nothing may panic, a route found never counts more work than its
+//! budget nor more than the documented worst case, a switch that fails adds no pop-up, and an
+//! altitude read off a route is finite.
 //!
 //! The networks (`fuzz/networks/*.bin`, written by `scripts/fuzz-smoke.sh`; the directory is
 //! `SKYROUTE_FUZZ_NETWORKS` when set) are loaded once per process: each input starts by
@@ -36,10 +38,14 @@ enum Op {
         x: Coord,
         y: Coord,
         r: f32,
+        height: Option<f32>,
     },
     PopupPolygon {
         points: Vec<(Coord, Coord)>,
+        height: Option<f32>,
     },
+    QueryAltitudes(f32, f32),
+    RouteAltitude(u16, f32),
     RemovePopup(u8),
     AddThreat {
         x: Coord,
@@ -92,6 +98,8 @@ struct Loaded {
     altitude: Option<(f32, f32)>,
     weight: Option<f32>,
     landmarks: u32,
+    /// A three-dimensional roadmap's query altitudes after a reset: vertex 0's, both ways.
+    query_altitudes: Option<(f32, f32)>,
 }
 
 fn networks() -> &'static [Mutex<Loaded>] {
@@ -126,6 +134,7 @@ fn networks() -> &'static [Mutex<Loaded>] {
                 let altitude = planner.altitude();
                 let weight = planner.threat_weight();
                 let landmarks = planner.network().landmark().map_or(0, |l| l.landmark_count);
+                let query_altitudes = planner.network().vertex_altitude(0).map(|z| (z, z));
                 Mutex::new(Loaded {
                     planner,
                     lo,
@@ -133,6 +142,7 @@ fn networks() -> &'static [Mutex<Loaded>] {
                     altitude,
                     weight,
                     landmarks,
+                    query_altitudes,
                 })
             })
             .collect()
@@ -147,7 +157,8 @@ fn coord(c: Coord, lo: f32, hi: f32) -> f32 {
 }
 
 /// Back to the state after loading: no pop-ups or pop-up threats, weather 0, no rosette
-/// overrides, the network's altitude and weight.
+/// overrides, the network's altitude and weight; on a three-dimensional roadmap, query
+/// altitudes at vertex 0's.
 fn reset(l: &mut Loaded) {
     let p = &mut l.planner;
     let ids: Vec<u8> = p.popups().map(|(id, _)| id).collect();
@@ -180,6 +191,9 @@ fn reset(l: &mut Loaded) {
     if let Some(k) = l.weight {
         p.set_threat_weight(k).unwrap();
     }
+    if let Some((start, goal)) = l.query_altitudes {
+        p.set_query_altitudes(start, goal).unwrap();
+    }
 }
 
 fuzz_target!(|input: Input| {
@@ -196,18 +210,33 @@ fuzz_target!(|input: Input| {
     let p = &mut l.planner;
     for op in input.ops.into_iter().take(64) {
         match op {
-            Op::PopupCircle { x: cx, y: cy, r } => {
-                let _ = p.add_popup(Popup::Circle {
+            Op::PopupCircle {
+                x: cx,
+                y: cy,
+                r,
+                height,
+            } => {
+                let circle = Popup::Circle {
                     centre: Vec2::new(x(cx), y(cy)),
                     radius: r,
-                });
+                };
+                let _ = p.add_popup_with_height(circle, height.unwrap_or(f32::INFINITY));
             }
-            Op::PopupPolygon { points } => {
+            Op::PopupPolygon { points, height } => {
                 let mut poly = heapless::Vec::<Vec2, MAX_POPUP_VERTICES>::new();
                 for (px, py) in points.into_iter().take(MAX_POPUP_VERTICES) {
                     let _ = poly.push(Vec2::new(x(px), y(py)));
                 }
-                let _ = p.add_popup(Popup::Polygon(poly));
+                let polygon = Popup::Polygon(poly);
+                let _ = p.add_popup_with_height(polygon, height.unwrap_or(f32::INFINITY));
+            }
+            Op::QueryAltitudes(start, goal) => {
+                let _ = p.set_query_altitudes(start, goal);
+            }
+            Op::RouteAltitude(k, s) => {
+                if let Some(z) = p.route_altitude_at(k as usize, s) {
+                    assert!(z.is_finite(), "altitude {z} at {s} m into primitive {k}");
+                }
             }
             Op::RemovePopup(id) => {
                 let _ = p.remove_popup(id);
