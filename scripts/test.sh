@@ -72,6 +72,13 @@ ruz_scenario=scenarios/ruz-popups.geojson
 ruz_sample_spacing=2000
 ruz_src=target/fixture/ruz-src.bin
 ruz_fixture_dir=firmware-example/fixture-ruz
+# The three-dimensional roadmap firmware: the roadmap binary linked with niendorf-urban-3d's
+# network in its own target directory (SKYROUTE_FIXTURE_DIR), the ELF copied as roadmap-3d so
+# that its log does not replace the planar one's.
+roadmap3d_scenario=scenarios/niendorf-urban-3d.geojson
+roadmap3d_src=target/fixture/roadmap3d-src.bin
+roadmap3d_fixture_dir=firmware-example/fixture-3d
+roadmap3d_release=firmware-example/target/roadmap-3d/thumbv7em-none-eabihf/release
 # The firmware binaries' ELFs: $firmware_release/{roadmap,terrain,landmark,voronoi,ruz,slices}.
 firmware_release=firmware-example/target/thumbv7em-none-eabihf/release
 
@@ -302,6 +309,24 @@ ruz_fixture() {
         "$ruz_src" "$ruz_fixture_dir" --ruz --scenario "$ruz_scenario"
 }
 
+# The 3-D roadmap's fixture: the query from the vertex nearest the start's altitude to the
+# goal's nearest vertex's, and a 100 m pop-up on the route's longest straight reaching up to the
+# middle of the vertices' altitudes (80 m).
+roadmap3d_fixture() {
+    mkdir -p "$(dirname "$roadmap3d_src")"
+    cargo run --release -q -p skyroute-prep --bin skyroute -- build "$roadmap3d_scenario" \
+        -o "$roadmap3d_src"
+    cargo run --release -q -p host-tests --bin firmware_fixture -- \
+        "$roadmap3d_src" "$roadmap3d_fixture_dir" --popup-on-route 100
+}
+
+# The roadmap binary with the 3-D fixture, copied as roadmap-3d.
+roadmap3d_build() {
+    (cd firmware-example && SKYROUTE_FIXTURE_DIR="$root/$roadmap3d_fixture_dir" \
+        CARGO_TARGET_DIR=target/roadmap-3d cargo build --release --bin roadmap)
+    cp "$roadmap3d_release/roadmap" "$roadmap3d_release/roadmap-3d"
+}
+
 # firmware_run ELF [MACHINE]: boots the firmware ELF under QEMU (netduinoplus2 unless MACHINE
 # says otherwise); its exit code is the verdict.
 # firmware_run ELF [MACHINE]: boots ELF under QEMU; its decoded log is also kept in
@@ -359,6 +384,10 @@ step "firmware build (release, bin roadmap)" firmware_build roadmap
 step "firmware clippy (bin roadmap)" firmware_clippy roadmap
 step "firmware under QEMU (netduinoplus2)" firmware_run "$firmware_release/roadmap"
 step "firmware size" firmware_size "$firmware_release/roadmap"
+step "3-D roadmap firmware fixture (niendorf-urban-3d)" roadmap3d_fixture
+step "3-D roadmap firmware build (release, bin roadmap, fixture-3d)" roadmap3d_build
+step "3-D roadmap firmware under QEMU (netduinoplus2)" firmware_run "$roadmap3d_release/roadmap-3d"
+step "3-D roadmap firmware size" firmware_size "$roadmap3d_release/roadmap-3d"
 step "terrain firmware fixture (medeiros-jacksboro)" terrain_fixture
 step "terrain firmware build (release, bin terrain)" firmware_build terrain
 step "terrain firmware clippy (bin terrain)" firmware_clippy terrain

@@ -1,13 +1,16 @@
 //! Roadmap and terrain mode on the flight computer: a pop-up, then periodic re-planning.
 //!
-//! 1. `add_popup` with the fixture's disc (timed with SysTick); the work bound after it must be
-//!    the host's budget (a warning otherwise: the fixture is out of date);
+//! 1. on a three-dimensional roadmap, `set_query_altitudes` with the fixture's; then
+//!    `add_popup_with_height` with the fixture's disc and top (a wall in the plane; timed with
+//!    SysTick); the work bound after it must be the host's budget (a warning otherwise: the
+//!    fixture is out of date);
 //! 2. [`CYCLES`] cycles of the [`RouteTask`] every [`PERIOD_MS`](crate::PERIOD_MS): the
 //!    fixture's query, Dijkstra, budget [`RouteFixture::budget`]; each `plan` call is timed;
 //! 3. one more `plan` of the same query with [`Planner::plan_observed`], timing each [`Phase`]
 //!    (connect the start, connect the goal, search, write the route) with SysTick;
 //! 4. the verdict: every cycle's route length is within [`TOLERANCE`] (relative) of the host's
-//!    and its primitives are all in the route.
+//!    and its primitives are all in the route; on a three-dimensional roadmap, the sum of the
+//!    route's altitudes at its primitives' middles is within [`TOLERANCE`] of the host's too.
 
 use crate::autopilot::{Cycle, Next, RouteTask};
 use crate::clock::{self, Clock};
@@ -25,6 +28,13 @@ pub struct RouteFixture {
     pub goal: Goal,
     /// The pop-up disc: centre x, centre y, radius (metres).
     pub popup: (f32, f32, f32),
+    /// The pop-up's top, metres (`f32::INFINITY`: a wall).
+    pub popup_height: f32,
+    /// Three-dimensional roadmap: the start's and goal's altitudes (`None` in the plane).
+    pub altitudes: Option<(f32, f32)>,
+    /// The host's sum over the route's primitives of the altitude at each one's middle (0 in
+    /// the plane).
+    pub expected_altitude_sum: f32,
     /// Route length the host computed, metres.
     pub expected_length: f32,
     /// Route primitives the host computed.
@@ -55,21 +65,30 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
     if !convert_start(planner, clock, fixture) {
         return false;
     }
+    if let Some((from, to)) = fixture.altitudes {
+        if let Err(e) = planner.set_query_altitudes(from, to) {
+            defmt::error!("set_query_altitudes failed: {}", e);
+            return false;
+        }
+        defmt::info!("three-dimensional: from {=f32} m to {=f32} m", from, to);
+    }
     let (x, y, radius) = fixture.popup;
     let (popup, popup_ticks) = crate::with_stack_peak("add_popup", || {
         let t = clock.now();
-        let popup = planner.add_popup(Popup::Circle {
+        let disc = Popup::Circle {
             centre: Vec2::new(x, y),
             radius,
-        });
+        };
+        let popup = planner.add_popup_with_height(disc, fixture.popup_height);
         (popup, clock.now() - t)
     });
     match popup {
         Ok(s) => defmt::info!(
-            "pop-up ({=f32}, {=f32}) r={=f32} m: {} in {=u64} ticks, bound {=u64} work",
+            "pop-up ({=f32}, {=f32}) r={=f32} m up to {=f32} m: {} in {=u64} ticks, bound {=u64} work",
             x,
             y,
             radius,
+            fixture.popup_height,
             s,
             popup_ticks,
             planner.worst_case_popup_work()
@@ -161,6 +180,7 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
             }
         },
     );
+    verdict &= altitudes_match(task.planner(), fixture);
     verdict &= log_phases(task.planner(), clock, &query, fixture.budget);
     match task.planner().network().mode() {
         Mode::Terrain => defmt::info!(
@@ -181,6 +201,40 @@ pub fn run<const V: usize, const E: usize, const P: usize, const R: usize>(
         );
     }
     verdict
+}
+
+/// Whether the route's altitudes match the host's: the sum over its primitives of the altitude
+/// at each one's middle ([`Planner::route_altitude_at`]) within [`TOLERANCE`] (relative) of the
+/// fixture's. True in the plane, where there are none and the host's sum is 0.
+fn altitudes_match<const V: usize, const E: usize, const P: usize, const R: usize>(
+    planner: &Planner<'_, V, E, P, R>,
+    fixture: &RouteFixture,
+) -> bool {
+    let route = planner.route();
+    let sum: f32 = (0..route.len())
+        .filter_map(|k| {
+            let half = 0.5 * route.get(k)?.length();
+            planner.route_altitude_at(k, half)
+        })
+        .sum();
+    let expected = fixture.expected_altitude_sum;
+    let error = (sum - expected).abs() / expected.abs().max(1.0);
+    if fixture.altitudes.is_some() {
+        defmt::info!(
+            "route altitudes: sum at the primitives' middles {=f32} m (host {=f32} m)",
+            sum,
+            expected
+        );
+    }
+    if error >= TOLERANCE {
+        defmt::error!(
+            "route altitudes sum {=f32} m, host {=f32} m (relative error {=f32})",
+            sum,
+            expected,
+            error
+        );
+    }
+    error < TOLERANCE
 }
 
 /// Plans `query` once more, timing each [`Phase`] with `clock` (the observer reads SysTick at

@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! firmware_fixture NETWORK.bin OUT_DIR [--start x,y,heading] [--goal x,y[,heading]]
-//!     [--popup x,y,r | --popup-on-route r]
+//!     [--popup x,y,r | --popup-on-route r] [--altitudes zs,zg] [--popup-height h]
 //! firmware_fixture --synthetic OUT_DIR [same options]
 //! firmware_fixture LANDMARK-NETWORK.bin OUT_DIR
 //! ```
@@ -12,7 +12,10 @@
 //! firmware `include!`s). Headings are radians counter-clockwise from east. Defaults: start at
 //! vertex 0's pose, goal at the position of the vertex farthest from it with a free heading, a
 //! circular pop-up at their midpoint with a tenth of their distance as radius; when that has no
-//! route, the next farthest goal, then the next start vertex (see [`choose`]).
+//! route, the next farthest goal, then the next start vertex (see [`choose`]). On a
+//! three-dimensional roadmap the query flies from the altitude of the vertex nearest its start to
+//! that of the vertex nearest its goal, and the pop-up reaches up to the middle of the vertices'
+//! altitudes, unless `--altitudes` and `--popup-height` say otherwise ([`vertical`]).
 //!
 //! `--synthetic` builds a small grid network in place of the ground tool's output (for
 //! development, and as the fallback while `skyroute build` does not exist).
@@ -41,6 +44,7 @@
 
 mod landmark;
 mod ruz;
+mod vertical;
 mod voronoi;
 
 use skyroute::geometry::predicates::{
@@ -72,7 +76,7 @@ type HostPlanner<'n> = Planner<'n, HOST_V, HOST_E, P_CAP, R_CAP>;
 
 const USAGE: &str = "usage: firmware_fixture (NETWORK.bin | --synthetic) OUT_DIR \
 [--start x,y,heading_rad] [--goal x,y[,heading_rad]] [--popup x,y,radius | --popup-on-route radius] \
-[--scenario FILE] [--threat x,y,radius | --threat-on-route radius] [--replan-after m] (Voronoi) \
+[--altitudes start_m,goal_m] [--popup-height m] (3-D roadmap) [--scenario FILE] [--threat x,y,radius | --threat-on-route radius] [--replan-after m] (Voronoi) \
 | --ruz --scenario FILE (the Ruz decision)";
 
 #[derive(Debug, Default)]
@@ -95,6 +99,10 @@ struct Args {
     replan_after: Option<f32>,
     /// The Ruz decision's fixture (with `scenario`) instead of a route's.
     ruz: bool,
+    /// Three-dimensional roadmap: the start's and goal's altitudes.
+    altitudes: Option<(f32, f32)>,
+    /// Three-dimensional roadmap: the pop-up's top.
+    popup_height: Option<f32>,
 }
 
 fn floats(s: &str, what: &str, counts: &[usize]) -> Result<Vec<f32>, String> {
@@ -139,6 +147,14 @@ fn parse_args() -> Result<Args, String> {
             "--popup-on-route" => {
                 let v = floats(&value("--popup-on-route")?, "--popup-on-route", &[1])?;
                 args.popup_on_route = Some(v[0]);
+            }
+            "--altitudes" => {
+                let v = floats(&value("--altitudes")?, "--altitudes", &[2])?;
+                args.altitudes = Some((v[0], v[1]));
+            }
+            "--popup-height" => {
+                let v = floats(&value("--popup-height")?, "--popup-height", &[1])?;
+                args.popup_height = Some(v[0]);
             }
             "--scenario" => args.scenario = Some(PathBuf::from(value("--scenario")?)),
             "--threat" => {
@@ -268,6 +284,12 @@ struct Chosen {
     start: Pose,
     goal: Goal,
     popup: (f32, f32, f32),
+    /// Three-dimensional roadmap: the query's altitudes.
+    altitudes: Option<(f32, f32)>,
+    /// The pop-up's top (`f32::INFINITY` in the plane).
+    popup_height: f32,
+    /// The host's [`vertical::altitude_sum`] of the route with the pop-up.
+    altitude_sum: f32,
     budget: u64,
     /// Route length without the pop-up.
     before: Option<f32>,
@@ -281,19 +303,22 @@ struct Chosen {
 /// defaults in a fixed order until a route exists: start at vertex 0's pose, then vertex 1's, …
 /// (a roadmap may have dead-end vertices); goal at the position of the vertex farthest from the
 /// start, then the next farthest, …, with a free heading; pop-up at their midpoint with a tenth
-/// of their distance as radius.
+/// of their distance as radius. On a three-dimensional roadmap the query flies between
+/// `vertical.0`'s altitudes and the pop-up reaches up to `vertical.1` ([`vertical`]'s defaults
+/// when not given).
 fn choose(
     bytes: &[u8],
     start: Option<Pose>,
     goal: Option<Goal>,
-    popup: Option<(f32, f32, f32)>,
-    popup_on_route: Option<f32>,
+    (popup, popup_on_route): (Option<(f32, f32, f32)>, Option<f32>),
+    vertical: (Option<(f32, f32)>, Option<f32>),
 ) -> Result<Chosen, String> {
     let mut planner = HostPlanner::new();
     planner.load(bytes).map_err(|e| format!("load: {e}"))?;
     planner.set_config(config_for(planner.network()));
     let budget = planner.worst_case_work();
     let network = *planner.network();
+    let popup_height = vertical::popup_height(&network, vertical.1);
     let starts: Vec<Pose> = match start {
         Some(s) => vec![s],
         None => (0..network.vertex_count().min(DEFAULT_STARTS))
@@ -330,6 +355,13 @@ fn choose(
                 goal,
                 search: Search::Dijkstra,
             };
+            let altitudes =
+                vertical::query_altitudes(&network, vertical.0, start.position, goal.position);
+            if let Some((from, to)) = altitudes {
+                planner
+                    .set_query_altitudes(from, to)
+                    .map_err(|e| format!("set_query_altitudes({from}, {to}): {e}"))?;
+            }
             let before = planner.plan(&query, budget).ok().map(|s| s.length);
             let on_route = popup_on_route.and_then(|r| {
                 before?;
@@ -349,13 +381,15 @@ fn choose(
                 let r = (0.1 * start.position.distance(goal.position)).max(1.0);
                 (mid.x, mid.y, r)
             });
+            let disc = Popup::Circle {
+                centre: Vec2::new(popup.0, popup.1),
+                radius: popup.2,
+            };
             let added = planner
-                .add_popup(Popup::Circle {
-                    centre: Vec2::new(popup.0, popup.1),
-                    radius: popup.2,
-                })
-                .map_err(|e| format!("add_popup {popup:?}: {e}"))?;
+                .add_popup_with_height(disc, popup_height)
+                .map_err(|e| format!("add_popup {popup:?} up to {popup_height} m: {e}"))?;
             let planned = planner.plan(&query, budget);
+            let altitude_sum = vertical::altitude_sum(&planner);
             planner
                 .remove_popup(added.id)
                 .map_err(|e| format!("remove_popup: {e}"))?;
@@ -365,6 +399,9 @@ fn choose(
                         start,
                         goal,
                         popup,
+                        altitudes,
+                        popup_height,
+                        altitude_sum,
                         budget,
                         before,
                         added,
@@ -489,7 +526,8 @@ fn run(args: Args) -> Result<(), String> {
             let bytes = bytes.clone();
             let (start, goal, popup) = (args.start, args.goal, args.popup);
             let on_route = args.popup_on_route;
-            move || choose(&bytes, start, goal, popup, on_route)
+            let vertical = (args.altitudes, args.popup_height);
+            move || choose(&bytes, start, goal, (popup, on_route), vertical)
         })
         .map_err(|e| format!("spawning the planning thread: {e}"))?
         .join()
@@ -498,11 +536,14 @@ fn run(args: Args) -> Result<(), String> {
         start,
         goal,
         popup,
+        altitudes,
+        popup_height,
         budget,
         before,
         added,
         summary,
         rejected,
+        ..
     } = chosen;
 
     let ram = planner_bytes(v_cap, e_cap);
@@ -516,6 +557,12 @@ fn run(args: Args) -> Result<(), String> {
          ({rejected} default start/goal pairs rejected first)",
         added.edges_blocked
     );
+    if let Some((from, to)) = altitudes {
+        eprintln!(
+            "firmware_fixture: three-dimensional: from {from} m to {to} m, the pop-up's top at \
+             {popup_height} m"
+        );
+    }
     eprintln!(
         "firmware_fixture: route {} m ({} without the pop-up), {} primitives, {} network edges, \
          work {} of {budget}",
@@ -554,6 +601,9 @@ fn query_rs(
         start,
         goal,
         popup,
+        altitudes,
+        popup_height,
+        altitude_sum,
         budget,
         summary,
         ..
@@ -629,6 +679,7 @@ fn query_rs(
         "/// Work budget: the network's worst case (`Planner::worst_case_work`)."
     );
     let _ = writeln!(w, "pub const BUDGET: u64 = {budget};");
+    vertical::vertical_rs(w, altitudes, popup_height, altitude_sum);
     geo_rs(w, network, &start)?;
 
     Ok(q)
