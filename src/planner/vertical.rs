@@ -165,6 +165,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     .span_below(height + clearance)
                     .and_then(|(a, b)| prim.trimmed(a - offset, b - offset)),
             };
+            let (lo, hi) = prim.bounding_box();
             for i in 0..self.network.obstacle_count() {
                 let (Some((obstacle, obox)), Some(height)) =
                     (self.network.obstacle(i), self.network.obstacle_height(i))
@@ -172,6 +173,16 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     return false;
                 };
                 meter.work.collision_tests += 1;
+                // The whole primitive's box first: a piece of it lies within it, so boxes this
+                // far apart clear the piece too, without its span computed.
+                let (olo, ohi) = obox;
+                if lo.x - clearance > ohi.x
+                    || hi.x + clearance < olo.x
+                    || lo.y - clearance > ohi.y
+                    || hi.y + clearance < olo.y
+                {
+                    continue;
+                }
                 let Some(piece) = piece_below(height) else {
                     continue;
                 };
