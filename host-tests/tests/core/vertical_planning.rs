@@ -101,6 +101,29 @@ pub(crate) fn query(start: Vec2, goal: Vec2) -> Query {
     }
 }
 
+/// A random query with its start and goal in `[x0, x1] × [y0, y1]`, random headings (the goal's
+/// given), and the start's and goal's altitudes, 20–60 m each.
+pub(crate) fn random_query(
+    rng: &mut host_tests::Rng,
+    (x0, x1): (f32, f32),
+    (y0, y1): (f32, f32),
+) -> (Query, (f32, f32)) {
+    let mut end = || {
+        let p = Vec2::new(rng.range_f32(x0, x1), rng.range_f32(y0, y1));
+        (p, rng.range_f32(-3.1, 3.1), rng.range_f32(20.0, 60.0))
+    };
+    let ((s, sh, sz), (g, gh, gz)) = (end(), end());
+    let q = Query {
+        start: Pose::new(s.x, s.y, sh),
+        goal: Goal {
+            position: g,
+            heading: Some(gh),
+        },
+        search: Search::Dijkstra,
+    };
+    (q, (sz, gz))
+}
+
 /// Samples the planner's route every 0.25 m in 3-D; returns the least margin above the
 /// wall's height plus the clearance among points within the clearance of its footprint
 /// (+∞ when no point comes near it) and asserts each path's profile joins the altitudes.
@@ -248,20 +271,8 @@ fn random_queries_over_the_wall_keep_above_it() {
     let mut rng = host_tests::Rng(0x3D_0001);
     let (mut routed, mut over, mut exits) = (0, 0, 0);
     for case in 0..host_tests::cases(150, 1_500) {
-        let mut end = || {
-            let p = Vec2::new(rng.range_f32(150.0, 450.0), rng.range_f32(0.0, 500.0));
-            (p, rng.range_f32(-3.1, 3.1), rng.range_f32(20.0, 60.0))
-        };
-        let ((s, sh, sz), (g, gh, gz)) = (end(), end());
+        let (q, (sz, gz)) = random_query(&mut rng, (150.0, 450.0), (0.0, 500.0));
         planner.set_query_altitudes(sz, gz).unwrap();
-        let q = Query {
-            start: Pose::new(s.x, s.y, sh),
-            goal: Goal {
-                position: g,
-                heading: Some(gh),
-            },
-            search: Search::Dijkstra,
-        };
         let Ok(summary) = planner.plan(&q, u64::MAX) else {
             continue;
         };

@@ -6,11 +6,11 @@
 //! pop-up's height plus the clearance, at the altitude of the f64 profile from the
 //! definitions (`reference::vertical_altitude`).
 
-use super::vertical_planning::{limits, network, query, Small, CLEARANCE};
+use super::vertical_planning::{limits, network, query, random_query, Small, CLEARANCE};
 use host_tests::reference::{dist_polygon, vertical_altitude, P};
 use skyroute::geometry::vertical::VerticalProfile;
-use skyroute::planner::{Goal, PlanError, Popup, PopupError, Query, QueryField, Search};
-use skyroute::{DubinsPath, Pose, Vec2};
+use skyroute::planner::{PlanError, Popup, PopupError, QueryField};
+use skyroute::{DubinsPath, Vec2};
 
 /// A pop-up and its height.
 #[derive(Clone, Debug)]
@@ -146,19 +146,7 @@ fn routes_keep_out_of_popups_below_their_tops_and_fly_over_low_ones() {
     let (mut routed, mut shorter) = (0u32, 0u32);
     for case in 0..host_tests::cases(60, 600) {
         let popups = [random_popup(&mut rng), random_popup(&mut rng)];
-        let mut end = || {
-            let p = Vec2::new(rng.range_f32(0.0, 600.0), rng.range_f32(0.0, 600.0));
-            (p, rng.range_f32(-3.1, 3.1), rng.range_f32(20.0, 60.0))
-        };
-        let ((s, sh, sz), (g, gh, gz)) = (end(), end());
-        let q = Query {
-            start: Pose::new(s.x, s.y, sh),
-            goal: Goal {
-                position: g,
-                heading: Some(gh),
-            },
-            search: Search::Dijkstra,
-        };
+        let (q, (sz, gz)) = random_query(&mut rng, (0.0, 600.0), (0.0, 600.0));
         let plan = |tall: bool| {
             let mut planner = Small::new();
             planner.load(&solid).unwrap();
