@@ -153,10 +153,11 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     /// static obstacle's height) and disables the edges that fly within the clearance of it
     /// below `height_m` plus the clearance: in a three-dimensional roadmap an edge is tested
     /// only over the part of it its altitude profile flies that low
-    /// ([`span_below`](crate::geometry::vertical::VerticalProfile::span_below)). `f32::INFINITY` is a wall, as [`Planner::add_popup`].
-    /// Refused with [`PopupError::BadHeight`] for a height that is NaN, not positive or finite
-    /// beyond [`MAX_ALTITUDE_M`], and with [`PopupError::HeightNeedsAltitudes`] for a finite
-    /// height on a network without altitudes. Work: as [`Planner::add_popup`].
+    /// ([`VerticalProfile::span_below`](crate::geometry::vertical::VerticalProfile)).
+    /// `f32::INFINITY` is a wall, as [`Planner::add_popup`]. Refused with
+    /// [`PopupError::BadHeight`] for a height that is NaN, not positive or finite beyond
+    /// [`MAX_ALTITUDE_M`], and with [`PopupError::HeightNeedsAltitudes`] for a finite height on
+    /// a network without altitudes. Work: as [`Planner::add_popup`].
     pub fn add_popup_with_height(
         &mut self,
         popup: Popup,
