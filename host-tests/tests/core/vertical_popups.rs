@@ -267,3 +267,38 @@ fn popup_heights_are_checked() {
     assert_eq!(flat.popup_height(id), Some(f32::INFINITY));
     assert_eq!(flat.popup_height(id + 1), None);
 }
+
+/// The exit is flown level at the start's altitude, so a pop-up that altitude clears by the
+/// clearance is no obstacle to it: from inside a tall pop-up at 40 m, the straight exit east
+/// ends within the clearance of a low pop-up beside it whose top is at 30 m (the tall one's
+/// 40 m radius, the clearance and the 1 m margin). With the low one's top at 38 m, which 40 m
+/// does not clear by the clearance, that exit is not taken.
+#[test]
+fn a_level_exit_passes_over_a_popup_it_clears() {
+    let solid = network(true);
+    let mut planner = Small::new();
+    planner.load(&solid).unwrap();
+    let tall = Popup::Circle {
+        centre: Vec2::new(150.0, 250.0),
+        radius: 40.0,
+    };
+    let low = Popup::Polygon(
+        [(200.0, 200.0), (240.0, 200.0), (240.0, 300.0), (200.0, 300.0)]
+            .iter()
+            .map(|&(x, y)| Vec2::new(x, y))
+            .collect(),
+    );
+    planner.add_popup_with_height(tall, 60.0).unwrap();
+    let id = planner.add_popup_with_height(low.clone(), 30.0).unwrap().id;
+    let q = query(Vec2::new(150.0, 250.0), Vec2::new(500.0, 300.0));
+    planner.set_query_altitudes(40.0, 40.0).unwrap();
+    let summary = planner.plan(&q, u64::MAX).unwrap();
+    let over = summary.exit.expect("the start is inside the tall pop-up").length;
+    assert!((over - (40.0 + CLEARANCE + 1.0)).abs() < 1e-2, "{over}");
+    planner.remove_popup(id).unwrap();
+    planner.add_popup_with_height(low, 38.0).unwrap();
+    match planner.plan(&q, u64::MAX) {
+        Ok(s) => assert!(s.exit.unwrap().length > over + 0.5, "{s:?}"),
+        Err(e) => assert_eq!(e, PlanError::StartUnconnected),
+    }
+}
