@@ -283,17 +283,25 @@ fn a_level_exit_passes_over_a_popup_it_clears() {
         radius: 40.0,
     };
     let low = Popup::Polygon(
-        [(200.0, 200.0), (240.0, 200.0), (240.0, 300.0), (200.0, 300.0)]
-            .iter()
-            .map(|&(x, y)| Vec2::new(x, y))
-            .collect(),
+        [
+            (200.0, 200.0),
+            (240.0, 200.0),
+            (240.0, 300.0),
+            (200.0, 300.0),
+        ]
+        .iter()
+        .map(|&(x, y)| Vec2::new(x, y))
+        .collect(),
     );
     planner.add_popup_with_height(tall, 60.0).unwrap();
     let id = planner.add_popup_with_height(low.clone(), 30.0).unwrap().id;
     let q = query(Vec2::new(150.0, 250.0), Vec2::new(500.0, 300.0));
     planner.set_query_altitudes(40.0, 40.0).unwrap();
     let summary = planner.plan(&q, u64::MAX).unwrap();
-    let over = summary.exit.expect("the start is inside the tall pop-up").length;
+    let over = summary
+        .exit
+        .expect("the start is inside the tall pop-up")
+        .length;
     assert!((over - (40.0 + CLEARANCE + 1.0)).abs() < 1e-2, "{over}");
     planner.remove_popup(id).unwrap();
     planner.add_popup_with_height(low, 38.0).unwrap();
