@@ -34,6 +34,9 @@ use static_cell::ConstStaticCell;
 #[path = "../log_transport.rs"]
 mod log_transport;
 
+// The roadmap fixture's 3-D constants (altitudes, pop-up height, altitude sum) are the
+// `roadmap` binary's; this one plans the planar query.
+#[allow(dead_code)]
 mod fixture {
     include!(concat!(env!("ROADMAP_FIXTURE"), "/query.rs"));
 }
