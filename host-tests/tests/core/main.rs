@@ -25,6 +25,9 @@ mod elevation_coding;
 mod geo;
 /// `geometry::grid` traversals against sampled and exact f64 references.
 mod grid_traversal;
+/// The loader's header checks: each parameter refused by name, each limit tried on both
+/// sides; the grid's reach beyond the vertices; a negative edge cost.
+mod header_validation;
 /// Quintic Hermite segments against f64 derivations.
 mod hermite;
 /// The loader: round trips, each damage its own error, random mutations never panic.
