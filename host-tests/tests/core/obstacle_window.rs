@@ -96,14 +96,34 @@ fn an_endpoint_window_keeps_the_nearest_obstacles_in_any_listing_order() {
                 search: Search::Dijkstra,
             }
         })
+        .chain((0..4).map(|k| {
+            // From one corner of the lattice to the opposite one: the corner lies 290 m from
+            // the centre, so its connections reach past 500 m, as far as the near obstacles.
+            let corner = |k: usize| {
+                let (x, y) = [(20.0, 20.0), (430.0, 20.0), (430.0, 430.0), (20.0, 430.0)][k % 4];
+                Vec2::new(x, y)
+            };
+            let (from, to) = (corner(k), corner(k + 2));
+            Query {
+                start: Pose {
+                    position: from,
+                    heading: (to - from).y.atan2((to - from).x) + PI,
+                },
+                goal: Goal {
+                    position: to,
+                    heading: None,
+                },
+                search: Search::Dijkstra,
+            }
+        }))
         .collect();
 
     let near_last: Vec<ObstacleSpec> = far.iter().chain(&near).cloned().collect();
     let reference = plan_all(near_last, &queries);
     let routed = reference.iter().filter(|r| r.is_ok()).count();
     assert!(
-        routed >= 10,
-        "only {routed} of 12 queries routed: {reference:?}"
+        routed >= 14,
+        "only {routed} of 16 queries routed: {reference:?}"
     );
 
     let near_first: Vec<ObstacleSpec> = near.iter().chain(&far).cloned().collect();
