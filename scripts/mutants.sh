@@ -42,6 +42,9 @@ if [ -n "${RE:-}" ]; then
     re_args=(--re "$RE")
 fi
 rm -rf "$out"
+# `--cargo-arg` (not `--cargo-test-arg`) so that each mutant's build, too, compiles only the
+# chosen test binary, not every target of host-tests; the `mutants` profile (Cargo.toml) is the
+# test profile without debug information.
 exec nice cargo mutants --file "$file" --test-package host-tests \
-    --cargo-test-arg=--test --cargo-test-arg="$binary" --baseline skip \
+    --cargo-arg=--test --cargo-arg="$binary" --profile mutants --baseline skip \
     --timeout "${TIMEOUT:-120}" "${re_args[@]}" -o "$out" -- -- "$@"
