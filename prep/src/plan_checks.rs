@@ -138,8 +138,9 @@ fn km(m: f64) -> String {
 /// Refuses, by name, a start, waypoint or goal outside the network's extent, and a pop-up
 /// whose disc does not reach it (such a pop-up can change nothing, so it is most likely a
 /// mistake: the message says when swapping its longitude and latitude would put it on the
-/// map). In landmark mode, also a scenario with waypoints (a landmark network plans its stored
-/// start to its stored goal, so it could not visit them).
+/// map), and a pop-up with a height on a network without altitudes. In landmark mode, also a
+/// scenario with waypoints (a landmark network plans its stored start to its stored goal, so it
+/// could not visit them).
 pub fn check_query(
     s: &Scenario,
     net: &Network,
@@ -177,6 +178,13 @@ pub fn check_query(
         }
     }
     for p in popups {
+        if let Some(h) = p.height_m.filter(|_| !net.is_three_dimensional()) {
+            return Err(format!(
+                "{} has a height ({h} m) but the network has no altitudes (not a 3-D \
+                 roadmap): without the height it is a wall",
+                p.name
+            ));
+        }
         let out = extent.distance_outside(frame, p.lon, p.lat);
         if out > p.radius_m {
             let swapped = p.lat.abs() <= 180.0

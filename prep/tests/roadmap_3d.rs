@@ -529,6 +529,7 @@ fn pop_ups_with_heights_are_flown_over_when_low_and_round_when_tall() {
         e.contains("--popup #1") && e.contains("the network has no altitudes"),
         "{e}"
     );
+    assert!(!stdout(&o).contains("applied"), "{}", stdout(&o));
 }
 
 /// `skyroute plan` on the 3-D network (waypoint headings by the paper's rule, to keep it quick):
