@@ -162,7 +162,8 @@ impl<'a> Network<'a> {
                 OBSTACLE_CIRCLE => o.circle[2] > 0.0,
                 _ => false,
             };
-            if !ok || o.bbox[0] > o.bbox[2] || o.bbox[1] > o.bbox[3] || !self.box_encloses(&o) {
+            // A box that encloses a point is not inverted, so this refuses inverted boxes too.
+            if !ok || !self.box_encloses(&o) {
                 return Err(LoadError::BadObstacle { obstacle: i });
             }
         }
