@@ -9,6 +9,7 @@
 
 use host_tests::reference::{dist_point_segment, dist_segment_polygon, P};
 use host_tests::{cases, Rng};
+use skyroute::geometry::predicates::point_segment_distance;
 use skyroute::network::dubins_hull;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec};
 use skyroute::planner::Popup;
@@ -326,6 +327,60 @@ fn a_listed_edge_costs_one_predicate_test_when_its_hull_is_far() {
             3 * (n + 1),
             "{n} vertices: {summary:?}"
         );
+        p.remove_popup(summary.id).unwrap();
+    }
+
+    // At the hull test's bound: a square of half-side 20 m, whose bounding circle (its box's
+    // half-diagonal, 28.3 m) is what the test widens by, placed on the perpendicular through the
+    // hull segment's middle where its centre lies `gap` beyond the bound the core computes
+    // (`hull_is_far`: radius + clearance + reach + 10⁻⁴·(size + reach + radius) + 1 cm, in
+    // f32). 1 m beyond, the hull test alone decides; 1 cm inside, within the 1 cm term, every
+    // primitive is tested (and the square, 30 m from the path's band, is not in conflict).
+    let middle = (hull.start + hull.end) * 0.5;
+    let along = hull.end - hull.start;
+    let normal = Vec2::new(-along.y, along.x) * (1.0 / along.norm());
+    let square = |c: Vec2| {
+        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+        let points: Vec<Vec2> = corners
+            .iter()
+            .map(|&(x, y)| c + Vec2::new(20.0 * x, 20.0 * y))
+            .collect();
+        Popup::Polygon(heapless::Vec::from_slice(&points).unwrap())
+    };
+    let beyond_bound = |t: f32| {
+        let c = middle + normal * t;
+        let (lo, hi) = square(c).bounding_box();
+        let radius = (hi - lo).norm() * 0.5;
+        let size = [hull.start, hull.end, c]
+            .iter()
+            .fold(0.0f32, |m, q| m.max(q.x.abs()).max(q.y.abs()));
+        let margin = 1e-4 * (size + reach + radius) + 0.01;
+        point_segment_distance(c, &hull) - (radius + CLEARANCE + reach + margin)
+    };
+    // The offset along the normal whose centre lies `gap` beyond the bound (bisection: the
+    // excess grows with the offset).
+    let at_gap = |gap: f32| {
+        let (mut lo, mut hi) = (0.0f32, 500.0f32);
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if beyond_bound(mid) < gap {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        hi
+    };
+    for (gap, tests) in [(1.0f32, 1u32), (-0.01, 3 * 5)] {
+        let t = at_gap(gap);
+        assert!(
+            (beyond_bound(t) - gap).abs() < 1e-3,
+            "gap {gap}: {}",
+            beyond_bound(t)
+        );
+        let summary = p.add_popup(square(middle + normal * t)).unwrap();
+        assert_eq!(summary.edges_blocked, 0, "gap {gap}");
+        assert_eq!(summary.predicate_tests, tests, "gap {gap}: {summary:?}");
         p.remove_popup(summary.id).unwrap();
     }
 }
