@@ -91,9 +91,42 @@ fn each_cell_list_damage_has_its_own_error() {
         "{e:?}"
     );
 
-    // Six continuation bytes in a cell of at least six bytes: longer than any u32 varint.
+    // A first entry naming edge E itself, one past the last edge: a cell whose first varint
+    // has as many bytes as E's gets E in its place.
     let (offsets, lists) = grid_at(&net);
     let h = net.header();
+    let mut count_varint = Vec::new();
+    let mut x = e_count;
+    loop {
+        let byte = (x & 0x7f) as u8;
+        x >>= 7;
+        if x == 0 {
+            count_varint.push(byte);
+            break;
+        }
+        count_varint.push(byte | 0x80);
+    }
+    let (c, s) = (0..h.grid_nx * h.grid_ny)
+        .find_map(|c| {
+            let s = lists + get_u32(&good, offsets + 4 * c as usize) as usize;
+            let t = lists + get_u32(&good, offsets + 4 * (c as usize + 1)) as usize;
+            let len = good[s..t].iter().position(|x| x & 0x80 == 0)? + 1;
+            (len == count_varint.len()).then_some((c, s))
+        })
+        .expect("a cell whose first varint is as long as the edge count's");
+    let mut b = good.clone();
+    b[s..s + count_varint.len()].copy_from_slice(&count_varint);
+    assert_eq!(
+        refused(&mut b),
+        LoadError::IndexOutOfRange {
+            section: Section::CellEntries,
+            index: c,
+            value: e_count,
+            limit: e_count
+        }
+    );
+
+    // Six continuation bytes in a cell of at least six bytes: longer than any u32 varint.
     let long = (0..h.grid_nx * h.grid_ny).find(|&c| {
         let s = get_u32(&good, offsets + 4 * c as usize) as usize;
         let t = get_u32(&good, offsets + 4 * (c as usize + 1)) as usize;
