@@ -335,8 +335,9 @@ fn a_listed_edge_costs_one_predicate_test_when_its_hull_is_far() {
     // hull segment's middle where its centre lies `gap` beyond the bound the core computes
     // (`hull_is_far`: radius + clearance + reach + 10⁻⁴·(size + reach + radius) + 1 cm, in
     // f32). 1 m and 1 mm beyond, the hull test alone decides; 1 mm inside, every primitive is
-    // tested (and the square, 30 m from the path's band, is not in conflict). So a bound moved
-    // by a millimetre either way, a radius widened or a margin narrowed, shows in the count.
+    // tested (and the square, 30 m from the path's band, is not in conflict), and on the bound
+    // itself too. So a bound moved by a millimetre either way, a radius widened, a margin
+    // narrowed or the strict comparison relaxed, shows in the count.
     let middle = (hull.start + hull.end) * 0.5;
     let along = hull.end - hull.start;
     let normal = Vec2::new(-along.y, along.x) * (1.0 / along.norm());
@@ -384,4 +385,19 @@ fn a_listed_edge_costs_one_predicate_test_when_its_hull_is_far() {
         assert_eq!(summary.predicate_tests, tests, "gap {gap}: {summary:?}");
         p.remove_popup(summary.id).unwrap();
     }
+    // On the bound itself (an offset whose distance equals it in f32, found among the offsets
+    // next to the bisection's): not far, so the primitives are tested.
+    let mut t = at_gap(0.0);
+    for _ in 0..16 {
+        t = t.next_down();
+    }
+    let on_bound = (0..32)
+        .scan(t, |t, _| {
+            *t = t.next_up();
+            Some(*t)
+        })
+        .find(|&t| beyond_bound(t) == 0.0)
+        .expect("an offset whose centre lies exactly on the bound");
+    let summary = p.add_popup(square(middle + normal * on_bound)).unwrap();
+    assert_eq!(summary.predicate_tests, 3 * 5, "on the bound: {summary:?}");
 }
