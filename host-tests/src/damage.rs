@@ -31,6 +31,16 @@ pub fn replace_unique(bytes: &[u8], stored: &[u8], new: &[u8]) -> Vec<u8> {
     out
 }
 
+/// Unsigned LEB128 (7 bits a byte, least significant first, the high bit set on every byte but
+/// the last), written out here as the format's reference for the cell lists.
+pub fn leb128(mut x: u32, out: &mut Vec<u8>) {
+    while x >= 0x80 {
+        out.push((x as u8 & 0x7f) | 0x80);
+        x >>= 7;
+    }
+    out.push(x as u8);
+}
+
 fn get_u32(b: &[u8], at: usize) -> u32 {
     u32::from_le_bytes(b[at..at + 4].try_into().unwrap())
 }

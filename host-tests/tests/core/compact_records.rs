@@ -5,7 +5,7 @@
 //! from the origin; the edge source the loader derives from the offsets, against a scan; and
 //! the on-demand checksum pass that finds a byte corrupted after load.
 
-use host_tests::damage::fix_crc;
+use host_tests::damage::{fix_crc, leb128};
 use host_tests::world::world;
 use host_tests::Rng;
 use skyroute::network::format::{
@@ -96,16 +96,7 @@ fn each_cell_list_damage_has_its_own_error() {
     let (offsets, lists) = grid_at(&net);
     let h = net.header();
     let mut count_varint = Vec::new();
-    let mut x = e_count;
-    loop {
-        let byte = (x & 0x7f) as u8;
-        x >>= 7;
-        if x == 0 {
-            count_varint.push(byte);
-            break;
-        }
-        count_varint.push(byte | 0x80);
-    }
+    leb128(e_count, &mut count_varint);
     let (c, s) = (0..h.grid_nx * h.grid_ny)
         .find_map(|c| {
             let s = lists + get_u32(&good, offsets + 4 * c as usize) as usize;

@@ -4,7 +4,7 @@
 //! each is refused as `BadOffsets` at the offending index. (The landmark chain offsets get the
 //! same damages in `modes::landmark_load`, which has a landmark image built.)
 
-use host_tests::damage::{check_offset_rules_refused, OffsetTable};
+use host_tests::damage::{check_offset_rules_refused, leb128, OffsetTable};
 use host_tests::world::world;
 use skyroute::network::format::{
     EdgeRecord, Header, ObstacleRecord, PointRecord, U32Record, VertexRecord,
@@ -75,14 +75,4 @@ fn cell_offsets_must_start_at_zero_never_decrease_and_end_at_the_list_bytes() {
         );
     }
     check_offset_rules_refused(&w.bytes, &table);
-}
-
-/// Unsigned LEB128 (7 bits a byte, least significant first, the high bit set on every byte but
-/// the last), written out here as the format's reference for the cell lists.
-fn leb128(mut x: u32, out: &mut Vec<u8>) {
-    while x >= 0x80 {
-        out.push((x as u8 & 0x7f) | 0x80);
-        x >>= 7;
-    }
-    out.push(x as u8);
 }
