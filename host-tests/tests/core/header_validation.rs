@@ -176,17 +176,39 @@ fn unknown_flags_are_refused() {
     }
 }
 
-/// The positions and turn radius the loader compares with the grid.
-fn vertices_and_reach(good: &[u8]) -> (Vec<(f32, f32)>, f32, Header) {
-    let net = Network::from_bytes(good).unwrap();
-    let h = *net.header();
-    let points = (0..h.vertex_count)
+/// The vertices' coordinates along `axis` (0: x, 1: y), the reach the loader asks of the grid
+/// beyond them (4r), and the bounds it gives: the lowest coordinate − 4r and the highest + 4r,
+/// in f32 as the loader computes them.
+struct AxisBounds {
+    coordinates: Vec<f32>,
+    reach: f32,
+    low: f32,
+    high: f32,
+}
+
+fn axis_bounds(net: &Network, axis: usize) -> AxisBounds {
+    let h = net.header();
+    let reach = 4.0 * h.turn_radius_m;
+    let coordinates: Vec<f32> = (0..h.vertex_count)
         .map(|i| {
             let p = net.vertex(i).unwrap().position;
-            (p.x, p.y)
+            [p.x, p.y][axis]
         })
         .collect();
-    (points, 4.0 * h.turn_radius_m, h)
+    let low = coordinates
+        .iter()
+        .map(|&c| c - reach)
+        .fold(f32::INFINITY, f32::min);
+    let high = coordinates
+        .iter()
+        .map(|&c| c + reach)
+        .fold(f32::NEG_INFINITY, f32::max);
+    AxisBounds {
+        coordinates,
+        reach,
+        low,
+        high,
+    }
 }
 
 /// Every Dubins path from a vertex stays within 4r of it, so the grid must cover each vertex
@@ -195,21 +217,14 @@ fn vertices_and_reach(good: &[u8]) -> (Vec<(f32, f32)>, f32, Header) {
 #[test]
 fn the_grid_must_reach_four_turn_radii_beyond_every_vertex_on_the_low_sides() {
     let good = good();
-    let (points, reach, _) = vertices_and_reach(&good);
-    for (at, coordinate) in [
-        (
-            GRID_ORIGIN_X,
-            (|p: (f32, f32)| p.0) as fn((f32, f32)) -> f32,
-        ),
-        (GRID_ORIGIN_Y, |p: (f32, f32)| p.1),
-    ] {
-        let low = points
+    let net = Network::from_bytes(&good).unwrap();
+    for (axis, at) in [(0, GRID_ORIGIN_X), (1, GRID_ORIGIN_Y)] {
+        let b = axis_bounds(&net, axis);
+        let low = b.low;
+        let first = b
+            .coordinates
             .iter()
-            .map(|&p| coordinate(p) - reach)
-            .fold(f32::INFINITY, f32::min);
-        let first = points
-            .iter()
-            .position(|&p| coordinate(p) - reach == low)
+            .position(|&c| c - b.reach == low)
             .unwrap() as u32;
         assert_eq!(with_f32(&good, at, low), Ok(()), "byte {at} at the bound");
         assert_eq!(
@@ -226,21 +241,15 @@ fn the_grid_must_reach_four_turn_radii_beyond_every_vertex_on_the_low_sides() {
 #[test]
 fn the_grid_must_reach_four_turn_radii_beyond_every_vertex_on_the_high_sides() {
     let good = good();
-    let (points, reach, h) = vertices_and_reach(&good);
+    let net = Network::from_bytes(&good).unwrap();
+    let h = *net.header();
     let sides = [
-        (GRID_ORIGIN_X, h.grid_origin_x, h.grid_nx, true),
-        (GRID_ORIGIN_Y, h.grid_origin_y, h.grid_ny, false),
+        (0, GRID_ORIGIN_X, h.grid_origin_x, h.grid_nx),
+        (1, GRID_ORIGIN_Y, h.grid_origin_y, h.grid_ny),
     ];
-    for (at, origin, n, east) in sides {
-        let coordinate = |p: (f32, f32)| if east { p.0 } else { p.1 };
-        let high = points
-            .iter()
-            .map(|&p| coordinate(p) + reach)
-            .fold(f32::NEG_INFINITY, f32::max);
-        let low = points
-            .iter()
-            .map(|&p| coordinate(p) - reach)
-            .fold(f32::INFINITY, f32::min);
+    for (axis, at, origin, n) in sides {
+        let b = axis_bounds(&net, axis);
+        let (low, high) = (b.low, b.high);
         let far = |o: f32| o + h.grid_cell_m * n as f32;
         assert!(
             origin <= low && far(origin) >= high,
@@ -254,9 +263,10 @@ fn the_grid_must_reach_four_turn_radii_beyond_every_vertex_on_the_high_sides() {
         }
         assert_eq!(far(o), high, "the far edge lands on the bound");
         assert!(o <= low, "the near edge still covers every vertex");
-        let first = points
+        let first = b
+            .coordinates
             .iter()
-            .position(|&p| coordinate(p) + reach > far(o.next_down()))
+            .position(|&c| c + b.reach > far(o.next_down()))
             .unwrap() as u32;
         assert_eq!(with_f32(&good, at, o), Ok(()), "byte {at} at the bound");
         assert_eq!(
