@@ -18,7 +18,9 @@ pub(super) type Candidates = Vec<(f32, u32), MAX_CANDIDATES>;
 
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
     /// Rejects a start or goal that lies inside a static obstacle or an active pop-up (in a
-    /// three-dimensional roadmap, one whose height its altitude does not reach above).
+    /// three-dimensional roadmap, one whose height its altitude does not reach above). Work:
+    /// a box test per obstacle, a containment test per obstacle whose box holds `p` and per
+    /// pop-up; at most 2O + P.
     pub(super) fn check_free(
         &self,
         p: Vec2,
@@ -41,6 +43,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             if self.end_is_above(end, height, 0.0) {
                 continue;
             }
+            meter.work.collision_tests += 1; // the containment test
             let inside = match obstacle {
                 Obstacle::Polygon(poly) => point_in_polygon(p, &poly),
                 Obstacle::Circle { centre, radius } => p.distance(centre) <= radius,

@@ -102,6 +102,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                     conflicts_with_polygon(&point, &poly, c)
                 }
                 Obstacle::Circle { centre, radius } => {
+                    meter.work.collision_tests += 1;
                     conflicts_with_circle(&point, centre, radius, c)
                 }
             };

@@ -111,7 +111,8 @@ pub struct WorkBoundInputs {
 
 /// The most work one [`Planner::plan`](super::Planner::plan) can count:
 ///
-/// * free-space checks of start and goal: 2(O + P) collision tests;
+/// * free-space checks of start and goal: 2(2O + P) collision tests (a box test per obstacle,
+///   a containment test per obstacle whose box holds the point and per pop-up);
 /// * candidate search: 2|V| vertex scans (start and goal);
 /// * connections: N = 2C + C·H + H paths (start candidates, one probe per goal candidate,
 ///   goal candidates over each heading, direct start–goal over each heading), each one Dubins
@@ -142,7 +143,7 @@ pub fn plan_work_bound(n: &WorkBoundInputs) -> u64 {
     let connecting = solves + windows + 3 * connections * per_primitive;
     let search = v + (v + n.start_links + n.edges) * levels + n.edges + v * n.goal_links;
     let route = route_walks(n) * (v + 1);
-    let endpoints_free = 2 * (n.obstacles + n.popups);
+    let endpoints_free = 2 * (2 * n.obstacles + n.popups);
     endpoints_free + candidates + connecting + search + route + exit_work_bound(n)
 }
 
@@ -158,7 +159,7 @@ fn route_walks(n: &WorkBoundInputs) -> u64 {
 /// `g = 2H + H·c` finding the shortest clear path from a point to the goal over H headings, the
 /// units are:
 ///
-/// * begin: the goal's free-space check, O + P; the exit, [`exit_work_bound`]; the start's
+/// * begin: the goal's free-space check, 2O + P; the exit, [`exit_work_bound`]; the start's
 ///   obstacle window, O; its candidates, |V|;
 /// * one start candidate: 1 + c;
 /// * the goal's candidates and obstacle window: |V| + O;
@@ -178,7 +179,7 @@ pub fn roadmap_step_unit_bound(n: &WorkBoundInputs, most_out_degree: u64) -> u64
     let path = 3 * (2 * n.obstacles + n.obstacle_points + n.popups * (n.popup_vertices + 1));
     let to_goal = 2 * n.goal_headings + n.goal_headings * path;
     let units = [
-        n.obstacles + n.popups + exit_work_bound(n) + n.obstacles + v,
+        2 * n.obstacles + n.popups + exit_work_bound(n) + n.obstacles + v,
         1 + path,
         v + n.obstacles,
         1 + path + to_goal,
@@ -199,13 +200,13 @@ pub fn roadmap_step_unit_bound(n: &WorkBoundInputs, most_out_degree: u64) -> u64
 ///   2·(points + P·popup_vertices) (an interval and a crossing per edge); the sort of at most
 ///   MAX_EXIT_INTERVALS intervals, counted as its square; its ≤ 3 primitives checked against
 ///   the rest, 3Q; the regions its end lies in, Q;
-/// * a refusal when no candidate is kept: O + P free-space tests and Q.
+/// * a refusal when no candidate is kept: the start's free-space check, 2O + P, and Q.
 pub fn exit_work_bound(n: &WorkBoundInputs) -> u64 {
     let q = 2 * n.obstacles + n.obstacle_points + n.popups * (n.popup_vertices + 1);
     let candidates = 2 * super::EXIT_TURN_STEPS as u64 + 1;
     let trace = 2 * (n.obstacle_points + n.popups * n.popup_vertices);
     let sort = (super::MAX_EXIT_INTERVALS * super::MAX_EXIT_INTERVALS) as u64;
-    q + candidates * (trace + sort + 4 * q) + n.obstacles + n.popups + q
+    q + candidates * (trace + sort + 4 * q) + 2 * n.obstacles + n.popups + q
 }
 
 /// The most work one [`Planner::add_popup`](super::Planner::add_popup) can count: every grid
@@ -370,7 +371,8 @@ pub struct VoronoiBoundInputs {
 /// The most work one Voronoi [`Planner::plan`](super::Planner::plan) can count. With
 /// `c = points + 2·O + P·(p + 1)` the tests of one segment against the zones and pop-ups, and
 /// `x = 3·T` the exposure terms of one segment:
-/// * the start and goal inside a zone or pop-up: 2(O + P);
+/// * the start and goal inside a zone or pop-up: 2(2O + P) (a box and a containment test per
+///   zone, a containment test per pop-up);
 /// * pricing: every graph edge, x + c;
 /// * links: 2·|V_g| vertex scans, ≤ 2C candidates and the direct segment, x + c each;
 /// * search: |V_g| heap resets; ≤ |V_g| pops, ≤ 3 + 2|E_g| pushes or decreases, each ≤
@@ -385,7 +387,7 @@ pub fn voronoi_plan_work_bound(n: &VoronoiBoundInputs) -> u64 {
     let segment = n.obstacle_points + 2 * n.obstacles + n.popups * (n.popup_vertices + 1);
     let exposure = 3 * n.threats;
     let per_segment = segment + exposure;
-    let endpoints = 2 * (n.obstacles + n.popups);
+    let endpoints = 2 * (2 * n.obstacles + n.popups);
     let pricing = e.saturating_mul(per_segment);
     let links = (2 * v).saturating_add((2 * n.candidates + 1).saturating_mul(per_segment));
     let search = v

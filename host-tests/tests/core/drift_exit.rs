@@ -8,7 +8,7 @@ use host_tests::world::{world, World};
 use host_tests::{cases, Rng};
 use skyroute::network::write::ObstacleSpec;
 use skyroute::planner::{
-    Exit, Goal, PlanError, Popup, Query, QueryField, Search, Violation, EXIT_MARGIN_M,
+    Exit, Goal, Phase, PlanError, Popup, Query, QueryField, Search, Violation, EXIT_MARGIN_M,
     EXIT_TURN_STEPS,
 };
 use skyroute::{DubinsPath, Planner, Pose, Vec2};
@@ -318,4 +318,135 @@ fn a_start_in_more_regions_than_the_limit_is_refused_naming_the_first() {
         .unwrap();
     let exit = p.plan(&q, u64::MAX).map(|s| s.exit);
     assert!(matches!(exit, Ok(Some(e)) if e.regions == 4), "{exit:?}");
+}
+
+/// Whether `p` lies in the box `lo..hi` widened by `w`, and whether it lies within 1 cm of
+/// one of its sides (where f32 rounding could decide either way).
+fn in_widened_box(p: Vec2, (lo, hi): (P, P), w: f64) -> (bool, bool) {
+    let (x, y) = (p.x as f64, p.y as f64);
+    let sides = [lo.0 - w, lo.1 - w, hi.0 + w, hi.1 + w];
+    let near = [x, y, x, y]
+        .iter()
+        .zip(sides)
+        .any(|(v, s)| (v - s).abs() < 0.01);
+    let inside = x >= sides[0] && y >= sides[1] && x <= sides[2] && y <= sides[3];
+    (inside, near)
+}
+
+/// A region's bounding box and the exact tests the exit counts for a point within the
+/// clearance of that box: a polygon's n edges and its inside, n + 1; a disc's one.
+fn box_and_exact_tests(o: &ObstacleSpec) -> ((P, P), u64) {
+    match o {
+        ObstacleSpec::Polygon(pts) => {
+            let xs = pts.iter().map(|v| v.x as f64);
+            let ys = pts.iter().map(|v| v.y as f64);
+            let lo = (
+                xs.clone().fold(f64::MAX, f64::min),
+                ys.clone().fold(f64::MAX, f64::min),
+            );
+            let hi = (xs.fold(f64::MIN, f64::max), ys.fold(f64::MIN, f64::max));
+            ((lo, hi), pts.len() as u64 + 1)
+        }
+        ObstacleSpec::Circle { centre, radius } => {
+            let (x, y, r) = (centre.x as f64, centre.y as f64, *radius as f64);
+            (((x - r, y - r), (x + r, y + r)), 1)
+        }
+    }
+}
+
+/// The work of the checks before the connections, counted exactly. With a start and goal
+/// outside every obstacle and pop-up and its clearance, the `CheckFree` phase counts:
+///
+/// * for the goal's free-space check, a box test per obstacle, a containment test per
+///   obstacle whose box holds the goal, and one per pop-up;
+/// * for the regions the start lies in, a box test per obstacle widened by the clearance, the
+///   exact tests of each obstacle whose widened box holds the start (n + 1 for a polygon of
+///   n vertices, 1 for a disc), and each pop-up's exact tests (n + 1, or 1).
+#[test]
+fn the_checks_before_the_connections_count_each_box_and_exact_test() {
+    let w = world(41, 1500.0, 50.0, 40.0, 6);
+    let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
+    p.load(&w.bytes).unwrap();
+    let triangle: Vec<Vec2> = [(100.0, 100.0), (160.0, 110.0), (120.0, 170.0)]
+        .iter()
+        .map(|&(x, y)| Vec2::new(x, y))
+        .collect();
+    let popups = [
+        Popup::Circle {
+            centre: Vec2::new(1400.0, 1400.0),
+            radius: 30.0,
+        },
+        Popup::Polygon(triangle.iter().copied().collect()),
+    ];
+    for popup in &popups {
+        p.add_popup(popup.clone()).unwrap();
+    }
+    let popup_regions = [
+        Region::Disc((1400.0, 1400.0), 30.0),
+        Region::Polygon(triangle.iter().map(|v| (v.x as f64, v.y as f64)).collect()),
+    ];
+    let popup_tests: u64 = 1 + (triangle.len() as u64 + 1);
+    let c = w.spec.clearance_m as f64;
+    let obstacles: Vec<((P, P), u64)> = w.obstacles.iter().map(box_and_exact_tests).collect();
+    let regions: Vec<Region> = w.obstacles.iter().map(Region::from_spec).collect();
+    let free = |q: Vec2| {
+        let q = (q.x as f64, q.y as f64);
+        regions
+            .iter()
+            .chain(&popup_regions)
+            .all(|g| g.distance(q) > c + 0.05)
+    };
+    let mut rng = Rng(0xC0DE);
+    let (mut checked, mut start_in_box, mut goal_in_box) = (0, 0, 0);
+    while checked < cases(60, 400) {
+        // Points near a random obstacle, so that they often lie in its (widened) box.
+        let near = |rng: &mut Rng, widen: f64| {
+            let ((lo, hi), _) = obstacles[rng.below(obstacles.len() as u64) as usize];
+            let (x0, y0) = (lo.0 - widen, lo.1 - widen);
+            let (x1, y1) = (hi.0 + widen, hi.1 + widen);
+            Vec2::new(
+                rng.range_f32(x0 as f32, x1 as f32),
+                rng.range_f32(y0 as f32, y1 as f32),
+            )
+        };
+        let (s, g) = (near(&mut rng, 2.0 * c), near(&mut rng, c));
+        if !free(s) || !free(g) {
+            continue;
+        }
+        let mut expected = popup_tests + popups.len() as u64;
+        let mut ambiguous = false;
+        for &(bounds, exact) in &obstacles {
+            let (goal_in, goal_near) = in_widened_box(g, bounds, 0.0);
+            let (start_in, start_near) = in_widened_box(s, bounds, c);
+            ambiguous |= goal_near || start_near;
+            expected += 2 + goal_in as u64 + start_in as u64 * exact;
+            goal_in_box += goal_in as usize;
+            start_in_box += start_in as usize;
+        }
+        if ambiguous {
+            continue;
+        }
+        let q = Query {
+            start: Pose {
+                position: s,
+                heading: rng.range_f32(-3.1, 3.1),
+            },
+            goal: Goal {
+                position: g,
+                heading: None,
+            },
+            search: Search::Dijkstra,
+        };
+        let mut marks = Vec::new();
+        let _ = p.plan_observed(&q, u64::MAX, &mut |phase, work| {
+            marks.push((phase, work.collision_tests))
+        });
+        let at = |phase| marks.iter().find(|m| m.0 == phase).map(|m| m.1);
+        let (Some(before), Some(after)) = (at(Phase::CheckFree), at(Phase::ConnectStart)) else {
+            panic!("{q:?}: phases {marks:?}");
+        };
+        assert_eq!(after - before, expected, "{q:?}");
+        checked += 1;
+    }
+    assert!(start_in_box >= checked / 4 && goal_in_box >= checked / 4);
 }

@@ -36,7 +36,13 @@ fn each_rebuilt_piece_costs_its_chords_times_the_shape_tests() {
     let c = piece.position(piece.t_max() * 0.5).unwrap();
     let chords = POPUP_CHORDS_PER_PIECE as u32;
     let shapes = [
-        (Popup::Circle { centre: c, radius: 400.0 }, 1),
+        (
+            Popup::Circle {
+                centre: c,
+                radius: 400.0,
+            },
+            1,
+        ),
         (regular_polygon(c, 400.0, 3), 3 + 1),
         (regular_polygon(c, 400.0, 4), 4 + 1),
         (regular_polygon(c, 400.0, 7), 7 + 1),
