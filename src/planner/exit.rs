@@ -220,6 +220,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         trace_polygon(o, u, &poly, c, &mut intervals)?
                     }
                     Obstacle::Circle { centre, radius } => {
+                        meter.work.collision_tests += 1;
                         if let Some(i) = disc_interval(o, u, centre, radius + c) {
                             intervals.push(i).ok()?;
                         }
@@ -231,6 +232,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
                         trace_polygon(o, u, points.as_slice(), c, &mut intervals)?
                     }
                     Popup::Circle { centre, radius } => {
+                        meter.work.collision_tests += 1;
                         if let Some(i) = disc_interval(o, u, *centre, radius + c) {
                             intervals.push(i).ok()?;
                         }

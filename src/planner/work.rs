@@ -197,14 +197,15 @@ pub fn roadmap_step_unit_bound(n: &WorkBoundInputs, most_out_degree: u64) -> u64
 ///
 /// * the regions the start lies in: Q;
 /// * each of the 2·EXIT_TURN_STEPS + 1 candidates: the trace of the regions, at most
-///   2·(points + P·popup_vertices) (an interval and a crossing per edge); the sort of at most
-///   MAX_EXIT_INTERVALS intervals, counted as its square; its ≤ 3 primitives checked against
-///   the rest, 3Q; the regions its end lies in, Q;
+///   2·(points + P·popup_vertices) + MAX_EXIT_REGIONS (an interval and a crossing per edge,
+///   an interval per disc); the sort of at most MAX_EXIT_INTERVALS intervals, counted as its
+///   square; its ≤ 3 primitives checked against the rest, 3Q; the regions its end lies in, Q;
 /// * a refusal when no candidate is kept: the start's free-space check, 2O + P, and Q.
 pub fn exit_work_bound(n: &WorkBoundInputs) -> u64 {
     let q = 2 * n.obstacles + n.obstacle_points + n.popups * (n.popup_vertices + 1);
     let candidates = 2 * super::EXIT_TURN_STEPS as u64 + 1;
-    let trace = 2 * (n.obstacle_points + n.popups * n.popup_vertices);
+    let trace =
+        2 * (n.obstacle_points + n.popups * n.popup_vertices) + super::MAX_EXIT_REGIONS as u64;
     let sort = (super::MAX_EXIT_INTERVALS * super::MAX_EXIT_INTERVALS) as u64;
     q + candidates * (trace + sort + 4 * q) + 2 * n.obstacles + n.popups + q
 }
