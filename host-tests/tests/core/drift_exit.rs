@@ -362,6 +362,9 @@ fn box_and_exact_tests(o: &ObstacleSpec) -> ((P, P), u64) {
 /// * for the regions the start lies in, a box test per obstacle widened by the clearance, the
 ///   exact tests of each obstacle whose widened box holds the start (n + 1 for a polygon of
 ///   n vertices, 1 for a disc), and each pop-up's exact tests (n + 1, or 1).
+///
+/// Random starts and goals near the obstacles, then starts exactly on a side of a widened box
+/// and goals exactly on a corner of a disc's box: a box holds the points on its sides.
 #[test]
 fn the_checks_before_the_connections_count_each_box_and_exact_test() {
     let w = world(41, 1500.0, 50.0, 40.0, 6);
@@ -426,27 +429,112 @@ fn the_checks_before_the_connections_count_each_box_and_exact_test() {
         if ambiguous {
             continue;
         }
-        let q = Query {
-            start: Pose {
-                position: s,
-                heading: rng.range_f32(-3.1, 3.1),
-            },
-            goal: Goal {
-                position: g,
-                heading: None,
-            },
-            search: Search::Dijkstra,
-        };
-        let mut marks = Vec::new();
-        let _ = p.plan_observed(&q, u64::MAX, &mut |phase, work| {
-            marks.push((phase, work.collision_tests))
-        });
-        let at = |phase| marks.iter().find(|m| m.0 == phase).map(|m| m.1);
-        let (Some(before), Some(after)) = (at(Phase::CheckFree), at(Phase::ConnectStart)) else {
-            panic!("{q:?}: phases {marks:?}");
-        };
-        assert_eq!(after - before, expected, "{q:?}");
+        let heading = rng.range_f32(-3.1, 3.1);
+        assert_eq!(
+            checks_work(&mut p, s, heading, g),
+            expected,
+            "{s:?} to {g:?}"
+        );
         checked += 1;
     }
     assert!(start_in_box >= checked / 4 && goal_in_box >= checked / 4);
+
+    // Starts exactly on a side of an obstacle's box widened by the clearance (in f32, as the
+    // box is stored and widened), half the clearance past the next side: √1.25 clearances
+    // from the box's corner, so outside every clearance, yet in the widened box, whose sides
+    // belong to it: the obstacle's exact tests are counted.
+    let goal = Vec2::new(1000.0, 1000.0);
+    let c32 = w.spec.clearance_m;
+    let h = 0.5 * c32;
+    let mut on_sides = 0;
+    for (o, &(_, exact)) in w.obstacles.iter().zip(&obstacles) {
+        let (lo, hi) = o.bounding_box();
+        for s in [
+            Vec2::new(lo.x - c32, lo.y - h),
+            Vec2::new(lo.x - h, lo.y - c32),
+            Vec2::new(hi.x + c32, hi.y + h),
+            Vec2::new(hi.x + h, hi.y + c32),
+        ] {
+            if !free(s) {
+                continue; // near another obstacle
+            }
+            let mut expected = popup_tests + popups.len() as u64;
+            for (other, &(_, exact_other)) in w.obstacles.iter().zip(&obstacles) {
+                let (lo, hi) = other.bounding_box();
+                let in_goal_box =
+                    goal.x >= lo.x && goal.y >= lo.y && goal.x <= hi.x && goal.y <= hi.y;
+                let in_start_box = s.x >= lo.x - c32
+                    && s.y >= lo.y - c32
+                    && s.x <= hi.x + c32
+                    && s.y <= hi.y + c32;
+                expected += 2 + in_goal_box as u64 + in_start_box as u64 * exact_other;
+            }
+            assert!(expected >= popup_tests + popups.len() as u64 + exact);
+            assert_eq!(
+                checks_work(&mut p, s, 0.0, goal),
+                expected,
+                "{s:?} on {o:?}"
+            );
+            on_sides += 1;
+        }
+    }
+    assert!(
+        free(goal) && on_sides >= 12,
+        "{on_sides} starts on a box side"
+    );
+
+    // Goals on the corners of a disc's box: outside the disc, in its box (whose sides belong
+    // to it), so the goal's containment test is counted. The start is the free point above.
+    let start = goal;
+    let mut on_corners = 0;
+    for o in &w.obstacles {
+        let ObstacleSpec::Circle { .. } = o else {
+            continue;
+        };
+        let (lo, hi) = o.bounding_box();
+        for g in [lo, hi] {
+            let mut expected = popup_tests + popups.len() as u64;
+            for (other, &(_, exact)) in w.obstacles.iter().zip(&obstacles) {
+                let (lo, hi) = other.bounding_box();
+                let in_goal_box = g.x >= lo.x && g.y >= lo.y && g.x <= hi.x && g.y <= hi.y;
+                let in_start_box = start.x >= lo.x - c32
+                    && start.y >= lo.y - c32
+                    && start.x <= hi.x + c32
+                    && start.y <= hi.y + c32;
+                expected += 2 + in_goal_box as u64 + in_start_box as u64 * exact;
+            }
+            assert_eq!(
+                checks_work(&mut p, start, 0.0, g),
+                expected,
+                "goal {g:?} on {o:?}"
+            );
+            on_corners += 1;
+        }
+    }
+    assert!(on_corners >= 2);
+}
+
+/// The collision tests a roadmap query from `start` (heading `heading`) to `goal` counts from
+/// the start of its [`Phase::CheckFree`] to the start of its [`Phase::ConnectStart`].
+fn checks_work(p: &mut TestPlanner<'_>, start: Vec2, heading: f32, goal: Vec2) -> u64 {
+    let q = Query {
+        start: Pose {
+            position: start,
+            heading,
+        },
+        goal: Goal {
+            position: goal,
+            heading: None,
+        },
+        search: Search::Dijkstra,
+    };
+    let mut marks = Vec::new();
+    let _ = p.plan_observed(&q, u64::MAX, &mut |phase, work| {
+        marks.push((phase, work.collision_tests))
+    });
+    let at = |phase| marks.iter().find(|m| m.0 == phase).map(|m| m.1);
+    match (at(Phase::CheckFree), at(Phase::ConnectStart)) {
+        (Some(before), Some(after)) => after - before,
+        _ => panic!("{q:?}: phases {marks:?}"),
+    }
 }
