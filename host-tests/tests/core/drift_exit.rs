@@ -516,7 +516,12 @@ fn the_checks_before_the_connections_count_each_box_and_exact_test() {
 
 /// The collision tests a roadmap query from `start` (heading `heading`) to `goal` counts from
 /// the start of its [`Phase::CheckFree`] to the start of its [`Phase::ConnectStart`].
-fn checks_work(p: &mut TestPlanner<'_>, start: Vec2, heading: f32, goal: Vec2) -> u64 {
+pub(crate) fn checks_work<const VN: usize, const EN: usize, const PN: usize, const RN: usize>(
+    p: &mut Planner<'_, VN, EN, PN, RN>,
+    start: Vec2,
+    heading: f32,
+    goal: Vec2,
+) -> u64 {
     let q = Query {
         start: Pose {
             position: start,

@@ -6,6 +6,7 @@
 //! pop-up's height plus the clearance, at the altitude of the f64 profile from the
 //! definitions (`reference::vertical_altitude`).
 
+use super::drift_exit::checks_work;
 use super::vertical_planning::{limits, network, query, random_query, Small, CLEARANCE};
 use host_tests::reference::{dist_polygon, vertical_altitude, P};
 use skyroute::geometry::vertical::VerticalProfile;
@@ -237,6 +238,12 @@ fn an_end_above_a_popup_is_free_and_one_below_it_is_inside() {
         below.exit.is_some(),
         "a start within the clearance of the top"
     );
+    // A start above the top by the clearance: the start's region test counts the pop-up once
+    // (its height compared), and the goal's free-space check once (its containment test).
+    planner.set_query_altitudes(50.0, 40.0).unwrap();
+    let with_popup = checks_work(&mut planner, near, 0.0, far);
+    planner.remove_popup(id).unwrap();
+    assert_eq!(with_popup - checks_work(&mut planner, near, 0.0, far), 2);
 }
 
 /// Heights are checked: NaN, not positive, finite beyond 10⁵ m, and finite on a planar
