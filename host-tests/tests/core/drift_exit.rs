@@ -154,6 +154,17 @@ fn check_route(p: &TestPlanner<'_>, w: &World, start: Pose, exit: &Exit) {
     assert!((first.length() - exit.length).abs() < 1e-3);
     let c = w.spec.clearance_m as f64;
     let regions: Vec<Region> = w.obstacles.iter().map(Region::from_spec).collect();
+    // The exit keeps the clearance from every obstacle the start is not within the clearance
+    // of (those it leaves, it may cross).
+    let s = (start.position.x as f64, start.position.y as f64);
+    let others: Vec<&Region> = regions
+        .iter()
+        .filter(|g| g.distance(s) > c + 0.05)
+        .collect();
+    assert!(
+        path_clearance(&first, &others) > c - 0.05,
+        "the exit {first:?} comes within the clearance of an obstacle it did not start in"
+    );
     for path in &paths[1..] {
         let n = (path.length() / 0.5).ceil().max(1.0) as usize;
         for i in 0..=n {
@@ -167,6 +178,19 @@ fn check_route(p: &TestPlanner<'_>, w: &World, start: Pose, exit: &Exit) {
             }
         }
     }
+}
+
+/// The least distance from `path` (sampled every 5 cm) to any of `regions`, metres.
+fn path_clearance(path: &DubinsPath, regions: &[&Region]) -> f64 {
+    let n = (path.length() / 0.05).ceil().max(1.0) as usize;
+    (0..=n)
+        .map(|i| path.sample(path.length() * i as f32 / n as f32).position)
+        .flat_map(|q| {
+            regions
+                .iter()
+                .map(move |g| g.distance((q.x as f64, q.y as f64)))
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 #[test]
@@ -277,6 +301,63 @@ fn a_popup_over_the_aircraft_is_left_by_at_most_the_straight_ahead_exit() {
         p.remove_popup(id).unwrap();
     }
     assert!(exits >= cases(20, 200) / 2, "{exits} exits");
+}
+
+/// A pop-up over the aircraft with a second one beside the end of its straight-ahead exit:
+/// the straight exit would end within the clearance of the second, so the exit turns away,
+/// and keeps the clearance from it (sampled in f64).
+#[test]
+fn an_exit_that_would_end_near_another_popup_turns_away_from_it() {
+    let w = world(41, 1500.0, 50.0, 40.0, 6);
+    let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
+    p.load(&w.bytes).unwrap();
+    let c = w.spec.clearance_m;
+    let mut rng = Rng(0xE417);
+    let mut turned = 0;
+    for _ in 0..cases(10, 60) {
+        let start = host_tests::world::free_pose(&mut rng, &w, 200.0);
+        let ahead = Vec2::from_angle(start.heading);
+        // The straight exit from the first disc ends at E, 8 + c + 1 m ahead. The second
+        // disc lies to the left of E with its clearance reaching 1 m past E, and √((9 + c)² +
+        // (7 + c)²) m from the start, outside its clearance: exits that turn right stay clear.
+        let left = Vec2::new(-ahead.y, ahead.x);
+        let end = start.position + ahead * (8.0 + c + EXIT_MARGIN_M);
+        let first = (start.position, 8.0);
+        let second = (end + left * (8.0 + c - 1.0), 8.0);
+        let ids: Vec<u8> = [first, second]
+            .iter()
+            .map(|&(centre, radius)| p.add_popup(Popup::Circle { centre, radius }).unwrap().id)
+            .collect();
+        let goal = host_tests::world::free_pose(&mut rng, &w, 10.0);
+        let q = Query {
+            start,
+            goal: Goal {
+                position: goal.position,
+                heading: None,
+            },
+            search: Search::Dijkstra,
+        };
+        match p.plan(&q, u64::MAX) {
+            Ok(summary) => {
+                let exit = summary.exit.expect("the start lies in the first pop-up");
+                assert_eq!((exit.violated, exit.regions), (Violation::Popup(ids[0]), 1));
+                let other = Region::Disc((second.0.x as f64, second.0.y as f64), second.1 as f64);
+                let path = p.route_paths()[0];
+                assert!(
+                    path_clearance(&path, &[&other]) > c as f64 - 0.05,
+                    "{path:?}"
+                );
+                assert!(exit.length > 8.0 + c + EXIT_MARGIN_M, "{exit:?}");
+                turned += 1;
+            }
+            Err(PlanError::StartUnconnected | PlanError::GoalUnconnected | PlanError::NoRoute) => {}
+            Err(e) => panic!("{e:?}"),
+        }
+        for id in ids {
+            p.remove_popup(id).unwrap();
+        }
+    }
+    assert!(turned >= cases(10, 60) / 2, "{turned} exits");
 }
 
 #[test]
