@@ -360,6 +360,91 @@ fn an_exit_that_would_end_near_another_popup_turns_away_from_it() {
     assert!(turned >= cases(10, 60) / 2, "{turned} exits");
 }
 
+/// The same beside each disc obstacle of the network, from 16 headings: a pop-up over the
+/// aircraft is placed so that its straight-ahead exit would pass 1 m within the obstacle's
+/// clearance at its middle, with the obstacle to its left, and end outside it (so that only
+/// the check of the exit's line, not of its end, refuses it). A refusal, when no exit of the
+/// family keeps the clearance, is allowed; an exit that does not keep it is not.
+#[test]
+fn an_exit_that_would_end_near_an_obstacle_turns_away_from_it() {
+    let w = world(41, 1500.0, 50.0, 40.0, 6);
+    let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
+    p.load(&w.bytes).unwrap();
+    let c = w.spec.clearance_m;
+    // The pop-up's radius: its straight exit, RHO + c + 1 m long, ends outside the clearance
+    // of an obstacle of radius up to 90 m beside its middle, and the exits that turn away on
+    // the 40 m turn radius keep the clearance.
+    const RHO: f32 = 39.0;
+    let regions: Vec<Region> = w.obstacles.iter().map(Region::from_spec).collect();
+    let mut rng = Rng(0x0B57);
+    let (mut tried, mut turned) = (0, 0);
+    for (i, o) in w.obstacles.iter().enumerate() {
+        let ObstacleSpec::Circle { centre, radius } = *o else {
+            continue;
+        };
+        for k in 0..16 {
+            let heading = k as f32 * std::f32::consts::TAU / 16.0;
+            let ahead = Vec2::from_angle(heading);
+            let left = Vec2::new(-ahead.y, ahead.x);
+            let start =
+                centre - left * (radius + c - 1.0) - ahead * (0.5 * (RHO + c + EXIT_MARGIN_M));
+            let s = (start.x as f64, start.y as f64);
+            let clear_of_others = regions
+                .iter()
+                .enumerate()
+                .all(|(j, g)| j == i || g.distance(s) > (RHO + 2.0 * c) as f64);
+            if !clear_of_others || regions[i].distance(s) <= c as f64 + 0.05 {
+                continue;
+            }
+            let id = p
+                .add_popup(Popup::Circle {
+                    centre: start,
+                    radius: RHO,
+                })
+                .unwrap()
+                .id;
+            let goal = host_tests::world::free_pose(&mut rng, &w, 10.0);
+            let q = Query {
+                start: Pose {
+                    position: start,
+                    heading,
+                },
+                goal: Goal {
+                    position: goal.position,
+                    heading: None,
+                },
+                search: Search::Dijkstra,
+            };
+            tried += 1;
+            match p.plan(&q, u64::MAX) {
+                Ok(summary) => {
+                    let exit = summary.exit.expect("the start lies in the pop-up");
+                    assert_eq!((exit.violated, exit.regions), (Violation::Popup(id), 1));
+                    let path = p.route_paths()[0];
+                    assert!(
+                        path_clearance(&path, &[&regions[i]]) > c as f64 - 0.05,
+                        "obstacle {i}, heading {heading}: {path:?}"
+                    );
+                    turned += 1;
+                }
+                // No exit of the family keeps the clearance, or none connects after it.
+                Err(
+                    PlanError::InsidePopup { .. }
+                    | PlanError::StartUnconnected
+                    | PlanError::GoalUnconnected
+                    | PlanError::NoRoute,
+                ) => {}
+                Err(e) => panic!("{e:?}"),
+            }
+            p.remove_popup(id).unwrap();
+        }
+    }
+    assert!(
+        turned >= 8 && turned >= tried / 2,
+        "{turned} exits of {tried}"
+    );
+}
+
 #[test]
 fn a_start_in_more_regions_than_the_limit_is_refused_naming_the_first() {
     let w = world(41, 1500.0, 50.0, 40.0, 6);
