@@ -32,7 +32,7 @@ fn build_plan_export_render_end_to_end() {
         "V >= 1445 (search states), E >= 18342",
         "provenance: 63 digests",
         // The bound of a planner with the RAM line's capacities (P = 4 pop-ups).
-        "worst-case work with P = 4 and R = 128: a query 2083470,",
+        "worst-case work with P = 4 and R = 128: a query 2083910,",
     ] {
         assert!(
             stdout(&o).contains(part),
