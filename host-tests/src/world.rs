@@ -3,6 +3,7 @@
 
 use crate::Rng;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec};
+use skyroute::planner::{Goal, Query, Search};
 use skyroute::{DubinsPath, Pose, Vec2};
 use skyroute_prep::roadmap::{build_roadmap, CollisionCheck, RoadmapInput, RoadmapParams};
 use std::f32::consts::{FRAC_PI_2, PI};
@@ -152,5 +153,17 @@ pub fn lattice_spec(n: usize, spacing: f32, origin: f32, radius: f32) -> Network
         voronoi: None,
         terrain: None,
         provenance: Vec::new(),
+    }
+}
+
+/// A Dijkstra query from `start` to `goal`, any arrival heading.
+pub fn query_to(start: Pose, goal: Vec2) -> Query {
+    Query {
+        start,
+        goal: Goal {
+            position: goal,
+            heading: None,
+        },
+        search: Search::Dijkstra,
     }
 }

@@ -4,7 +4,7 @@
 //! stays within the bound.
 
 use host_tests::reference::{dist, dist_point_segment, inside};
-use host_tests::world::{world, World};
+use host_tests::world::{query_to, world, World};
 use host_tests::{cases, Rng};
 use skyroute::network::write::ObstacleSpec;
 use skyroute::planner::{
@@ -329,15 +329,7 @@ fn an_exit_that_would_end_near_another_popup_turns_away_from_it() {
             .map(|&(centre, radius)| p.add_popup(Popup::Circle { centre, radius }).unwrap().id)
             .collect();
         let goal = host_tests::world::free_pose(&mut rng, &w, 10.0);
-        let q = Query {
-            start,
-            goal: Goal {
-                position: goal.position,
-                heading: None,
-            },
-            search: Search::Dijkstra,
-        };
-        match p.plan(&q, u64::MAX) {
+        match p.plan(&query_to(start, goal.position), u64::MAX) {
             Ok(summary) => {
                 let exit = summary.exit.expect("the start lies in the first pop-up");
                 assert_eq!((exit.violated, exit.regions), (Violation::Popup(ids[0]), 1));
@@ -366,7 +358,7 @@ fn an_exit_that_would_end_near_another_popup_turns_away_from_it() {
 /// the check of the exit's line, not of its end, refuses it). A refusal, when no exit of the
 /// family keeps the clearance, is allowed; an exit that does not keep it is not.
 #[test]
-fn an_exit_that_would_end_near_an_obstacle_turns_away_from_it() {
+fn an_exit_that_would_pass_near_an_obstacle_turns_away_from_it() {
     let w = world(41, 1500.0, 50.0, 40.0, 6);
     let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
     p.load(&w.bytes).unwrap();
@@ -404,19 +396,12 @@ fn an_exit_that_would_end_near_an_obstacle_turns_away_from_it() {
                 .unwrap()
                 .id;
             let goal = host_tests::world::free_pose(&mut rng, &w, 10.0);
-            let q = Query {
-                start: Pose {
-                    position: start,
-                    heading,
-                },
-                goal: Goal {
-                    position: goal.position,
-                    heading: None,
-                },
-                search: Search::Dijkstra,
+            let start = Pose {
+                position: start,
+                heading,
             };
             tried += 1;
-            match p.plan(&q, u64::MAX) {
+            match p.plan(&query_to(start, goal.position), u64::MAX) {
                 Ok(summary) => {
                     let exit = summary.exit.expect("the start lies in the pop-up");
                     assert_eq!((exit.violated, exit.regions), (Violation::Popup(id), 1));
@@ -688,17 +673,13 @@ pub(crate) fn checks_work<const VN: usize, const EN: usize, const PN: usize, con
     heading: f32,
     goal: Vec2,
 ) -> u64 {
-    let q = Query {
-        start: Pose {
+    let q = query_to(
+        Pose {
             position: start,
             heading,
         },
-        goal: Goal {
-            position: goal,
-            heading: None,
-        },
-        search: Search::Dijkstra,
-    };
+        goal,
+    );
     let mut marks = Vec::new();
     let _ = p.plan_observed(&q, u64::MAX, &mut |phase, work| {
         marks.push((phase, work.collision_tests))

@@ -5,10 +5,11 @@
 //! from the start pose to the goal, and with every sample of its centre line over a cell that
 //! is free at the altitude in force.
 
+use host_tests::world::query_to;
 use skyroute::geometry::grid::CellGrid;
 use skyroute::network::elevation::ElevationCoding;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec};
-use skyroute::planner::{Goal, PlanError, PlannerConfig, Popup, Query, Search, TurnRule};
+use skyroute::planner::{PlanError, PlannerConfig, Popup, TurnRule};
 use skyroute::{Planner, Pose, Primitive, Vec2};
 
 /// Codes of free and high cells; with base 0, step 1, altitude 150 and safety height 0 every
@@ -100,17 +101,6 @@ fn network(
 
 fn chord(nodes: &[Vec2], a: u32, b: u32) -> (u32, u32, f32) {
     (a, b, nodes[a as usize].distance(nodes[b as usize]))
-}
-
-fn query(start: Pose, goal: Vec2) -> Query {
-    Query {
-        start,
-        goal: Goal {
-            position: goal,
-            heading: None,
-        },
-        search: Search::Dijkstra,
-    }
 }
 
 fn angle_diff(a: f32, b: f32) -> f32 {
@@ -212,7 +202,7 @@ fn u_turn_at_collinear_nodes_is_not_accepted_with_a_zero_cut() {
     p.load(&bytes).unwrap();
     let start = Pose::new(100.0, 0.0, 0.0);
     let goal = Vec2::new(-400.0, 0.0);
-    match p.plan(&query(start, goal), u64::MAX) {
+    match p.plan(&query_to(start, goal), u64::MAX) {
         Err(_) => {} // correct: no turn-feasible route exists
         Ok(_) => {
             let problems = route_problems(p.route(), start, goal, &t);
@@ -249,7 +239,7 @@ fn zero_length_edge_does_not_allow_an_instant_reversal() {
     p.load(&bytes).unwrap();
     let start = Pose::new(100.0, 0.0, 0.0);
     let goal = Vec2::new(-400.0, 0.0);
-    match p.plan(&query(start, goal), u64::MAX) {
+    match p.plan(&query_to(start, goal), u64::MAX) {
         Err(_) => {}
         Ok(_) => {
             let problems = route_problems(p.route(), start, goal, &t);
@@ -290,10 +280,10 @@ fn goal_exactly_on_a_node_is_reached_from_any_direction() {
     let goal = nodes[2];
     // The same goal 1 m short of the node is planned.
     let near = Vec2::new(3000.0, 3001.0);
-    let r = p.plan(&query(start, near), u64::MAX);
+    let r = p.plan(&query_to(start, near), u64::MAX);
     assert!(r.is_ok(), "goal next to the node: {r:?}");
     assert!(route_problems(p.route(), start, near, &t).is_empty());
-    let r = p.plan(&query(start, goal), u64::MAX);
+    let r = p.plan(&query_to(start, goal), u64::MAX);
     assert!(r.is_ok(), "goal exactly on node 2: {r:?}");
     let problems = route_problems(p.route(), start, goal, &t);
     assert!(problems.is_empty(), "{problems:#?}");
@@ -345,7 +335,7 @@ fn turn_arc_popup_tests_are_within_the_work_bound() {
             }
             let start = Pose::new(8000.0, 4990.0, std::f32::consts::FRAC_PI_2);
             let goal = Vec2::new(1000.0, 1000.0);
-            let q = query(start, goal);
+            let q = query_to(start, goal);
             for turn_rule in [TurnRule::Paper, TurnRule::SharedEqually] {
                 p.set_config(PlannerConfig {
                     goal_candidates: 1,
@@ -414,7 +404,7 @@ fn terrain_network_obstacles_are_refused_or_within_the_work_bound() {
     }
     let start = Pose::new(-300.0, 0.0, 0.0);
     let goal = Vec2::new(1200.0, 0.0);
-    let summary = p.plan(&query(start, goal), u64::MAX).unwrap();
+    let summary = p.plan(&query_to(start, goal), u64::MAX).unwrap();
     let bound = p.worst_case_work();
     assert!(
         summary.work.total() <= bound,
@@ -450,7 +440,7 @@ fn terrain_network_obstacles_are_refused_or_avoided() {
     });
     let start = Pose::new(-200.0, 0.0, 0.0);
     let goal = Vec2::new(1100.0, 0.0);
-    if p.plan(&query(start, goal), u64::MAX).is_err() {
+    if p.plan(&query_to(start, goal), u64::MAX).is_err() {
         return;
     }
     for prim in p.route() {
@@ -507,7 +497,7 @@ fn start_exactly_on_a_node_needs_no_loop() {
             heading: d.angle(),
         };
         let goal = offset + Vec2::new(3300.0, -300.0);
-        let r = p.plan(&query(start, goal), u64::MAX);
+        let r = p.plan(&query_to(start, goal), u64::MAX);
         assert!(r.is_ok(), "start on node 0 at {offset:?}: {r:?}");
         let problems = route_problems(p.route(), start, goal, &t);
         assert!(problems.is_empty(), "{problems:#?}");
