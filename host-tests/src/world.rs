@@ -20,20 +20,44 @@ pub fn rect(x0: f32, y0: f32, x1: f32, y1: f32) -> Vec<Vec2> {
 
 /// A test world: a square area with rectangular and circular obstacles.
 pub struct World {
+    /// The area's lower-left corner.
+    pub origin: Vec2,
+    /// The area's side, metres.
     pub size: f32,
     pub obstacles: Vec<ObstacleSpec>,
     pub spec: NetworkSpec,
     pub bytes: Vec<u8>,
 }
 
-/// Builds a roadmap over a `size` × `size` area with `n_obstacles` random obstacles.
+/// Builds a roadmap over the `size` × `size` area from (0, 0) with `n_obstacles` random
+/// obstacles.
 pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize) -> World {
+    world_at(
+        seed,
+        Vec2::new(0.0, 0.0),
+        size,
+        spacing,
+        radius,
+        n_obstacles,
+    )
+}
+
+/// [`world`] over the area whose lower-left corner is `origin` (with a negative origin, a
+/// world whose coordinates are all negative).
+pub fn world_at(
+    seed: u64,
+    origin: Vec2,
+    size: f32,
+    spacing: f32,
+    radius: f32,
+    n_obstacles: usize,
+) -> World {
     let mut rng = Rng(seed);
     let mut obstacles = Vec::new();
     for i in 0..n_obstacles {
         let (x, y) = (
-            rng.range_f32(0.1 * size, 0.9 * size),
-            rng.range_f32(0.1 * size, 0.9 * size),
+            origin.x + rng.range_f32(0.1 * size, 0.9 * size),
+            origin.y + rng.range_f32(0.1 * size, 0.9 * size),
         );
         let s = rng.range_f32(0.02 * size, 0.06 * size);
         if i % 3 == 2 {
@@ -51,8 +75,8 @@ pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize
         }
     }
     let input = RoadmapInput {
-        area_min: Vec2::new(0.0, 0.0),
-        area_max: Vec2::new(size, size),
+        area_min: origin,
+        area_max: origin + Vec2::new(size, size),
         obstacles: obstacles.clone(),
         fixed_vertices: Vec::new(),
     };
@@ -83,6 +107,7 @@ pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize
     };
     let bytes = encode(&spec).expect("test network encodes");
     World {
+        origin,
         size,
         obstacles,
         spec,
@@ -93,7 +118,7 @@ pub fn world(seed: u64, size: f32, spacing: f32, radius: f32, n_obstacles: usize
 /// A random pose in the world, outside every obstacle by `margin`.
 pub fn free_pose(rng: &mut Rng, w: &World, margin: f32) -> Pose {
     loop {
-        let p = Vec2::new(rng.range_f32(0.0, w.size), rng.range_f32(0.0, w.size));
+        let p = w.origin + Vec2::new(rng.range_f32(0.0, w.size), rng.range_f32(0.0, w.size));
         let clear = w.obstacles.iter().all(|o| match o {
             ObstacleSpec::Polygon(poly) => {
                 !skyroute::geometry::predicates::point_in_polygon(p, poly.as_slice())

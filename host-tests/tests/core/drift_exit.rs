@@ -4,7 +4,7 @@
 //! stays within the bound.
 
 use host_tests::reference::{dist, dist_point_segment, inside};
-use host_tests::world::{query_to, world, World};
+use host_tests::world::{query_to, world, world_at, World};
 use host_tests::{cases, Rng};
 use skyroute::network::write::ObstacleSpec;
 use skyroute::planner::{
@@ -193,12 +193,22 @@ fn path_clearance(path: &DubinsPath, regions: &[&Region]) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// The area of every other world below lies in negative coordinates, where a box test that
+/// scales a coordinate instead of shifting it by the clearance would narrow the box.
+fn world_of_seed(seed: u64) -> World {
+    let origin = match seed % 2 {
+        0 => Vec2::new(0.0, 0.0),
+        _ => Vec2::new(-2300.0, -1900.0),
+    };
+    world_at(seed, origin, 1500.0, 50.0, 40.0, 6)
+}
+
 #[test]
 fn a_start_in_an_obstacle_leaves_by_the_shortest_exit_of_the_family() {
     let mut rng = Rng(0x5EED_0E1D);
     let (mut exits, mut refused) = (0, 0);
     for seed in 0..cases(4, 24) as u64 {
-        let w = world(300 + seed, 1500.0, 50.0, 40.0, 6);
+        let w = world_of_seed(300 + seed);
         let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
         p.load(&w.bytes).unwrap();
         let regions: Vec<Region> = w.obstacles.iter().map(Region::from_spec).collect();
@@ -356,10 +366,15 @@ fn an_exit_that_would_end_near_another_popup_turns_away_from_it() {
 /// aircraft is placed so that its straight-ahead exit would pass 1 m within the obstacle's
 /// clearance at its middle, with the obstacle to its left, and end outside it (so that only
 /// the check of the exit's line, not of its end, refuses it). A refusal, when no exit of the
-/// family keeps the clearance, is allowed; an exit that does not keep it is not.
+/// family keeps the clearance, is allowed; an exit that does not keep it is not. In a world
+/// at positive coordinates and in one at negative coordinates.
 #[test]
 fn an_exit_that_would_pass_near_an_obstacle_turns_away_from_it() {
-    let w = world(41, 1500.0, 50.0, 40.0, 6);
+    exits_pass_clear_of_obstacles(&world(41, 1500.0, 50.0, 40.0, 6));
+    exits_pass_clear_of_obstacles(&world_of_seed(41));
+}
+
+fn exits_pass_clear_of_obstacles(w: &World) {
     let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
     p.load(&w.bytes).unwrap();
     let c = w.spec.clearance_m;
@@ -395,7 +410,7 @@ fn an_exit_that_would_pass_near_an_obstacle_turns_away_from_it() {
                 })
                 .unwrap()
                 .id;
-            let goal = host_tests::world::free_pose(&mut rng, &w, 10.0);
+            let goal = host_tests::world::free_pose(&mut rng, w, 10.0);
             let start = Pose {
                 position: start,
                 heading,
