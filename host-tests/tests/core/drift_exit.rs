@@ -445,6 +445,84 @@ fn exits_pass_clear_of_obstacles(w: &World) {
     );
 }
 
+/// A U-shaped pop-up over the aircraft, which sits in one arm heading across the gap toward
+/// the other: the exit's straight leaves the arm, and the union of the regions it is in ends
+/// there, so the exit ends in the gap (1 m past the arm's clearance), not past the far arm.
+/// The gap is wide enough for the aircraft to turn up it and out, so that the query goes on
+/// to a route.
+/// Checked against the f64 reference, which marches along the line until it first leaves the
+/// regions, in 16 orientations.
+#[test]
+fn a_concave_popup_is_left_at_the_first_gap_on_the_exit_line() {
+    let w = world(41, 1500.0, 50.0, 40.0, 6);
+    let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
+    p.load(&w.bytes).unwrap();
+    let c = w.spec.clearance_m;
+    // Arms 20 m wide and 180 m tall, 150 m apart, joined at the bottom; the start in the left
+    // arm, 130 m up, heading across the gap: the straight reaches the arm's side 10 m ahead,
+    // its clearance c further, and the gap is 150 − 2c m wide.
+    let u_shape = [
+        (0.0, 0.0),
+        (190.0, 0.0),
+        (190.0, 200.0),
+        (170.0, 200.0),
+        (170.0, 20.0),
+        (20.0, 20.0),
+        (20.0, 200.0),
+        (0.0, 200.0),
+    ];
+    let mut rng = Rng(0x0C0C);
+    let mut regions: Vec<Region> = w.obstacles.iter().map(Region::from_spec).collect();
+    let mut exits = 0;
+    for k in 0..16 {
+        let at = host_tests::world::free_pose(&mut rng, &w, 320.0).position;
+        let heading = k as f32 * std::f32::consts::TAU / 16.0;
+        // Local (x across the arms, y along them) to world: rotated by `heading`, the start at `at`.
+        let (cos, sin) = (heading.cos(), heading.sin());
+        let place = |(x, y): (f32, f32)| {
+            let (x, y) = (x - 10.0, y - 130.0);
+            at + Vec2::new(x * cos - y * sin, x * sin + y * cos)
+        };
+        let points: Vec<Vec2> = u_shape.iter().map(|&v| place(v)).collect();
+        let id = p
+            .add_popup(Popup::Polygon(points.iter().copied().collect()))
+            .unwrap()
+            .id;
+        regions.push(Region::Polygon(
+            points.iter().map(|v| (v.x as f64, v.y as f64)).collect(),
+        ));
+        let start = Pose {
+            position: at,
+            heading,
+        };
+        let goal = host_tests::world::free_pose(&mut rng, &w, 10.0);
+        let strict = reference_exit(start, 40.0, c as f64, &regions, 0.03);
+        let lenient = reference_exit(start, 40.0, c as f64, &regions, -0.03)
+            .expect("the straight exit into the gap");
+        // The straight exit ends in the gap: 10 m to the arm's side, then c, then the margin.
+        assert!(
+            (lenient - (10.0 + c + EXIT_MARGIN_M) as f64).abs() < 0.05,
+            "{lenient}"
+        );
+        match p.plan(&query_to(start, goal.position), u64::MAX) {
+            Ok(summary) => {
+                let exit = summary.exit.expect("the start lies in the pop-up");
+                assert_eq!((exit.violated, exit.regions), (Violation::Popup(id), 1));
+                assert!(exit.length as f64 >= lenient - 0.03, "{exit:?} < {lenient}");
+                if let Some(strict) = strict {
+                    assert!(exit.length as f64 <= strict + 0.03, "{exit:?} > {strict}");
+                }
+                exits += 1;
+            }
+            Err(PlanError::StartUnconnected | PlanError::GoalUnconnected | PlanError::NoRoute) => {}
+            Err(e) => panic!("heading {heading}: {e:?}"),
+        }
+        regions.pop();
+        p.remove_popup(id).unwrap();
+    }
+    assert!(exits >= 8, "{exits} exits");
+}
+
 #[test]
 fn a_start_in_more_regions_than_the_limit_is_refused_naming_the_first() {
     let w = world(41, 1500.0, 50.0, 40.0, 6);
