@@ -8,10 +8,11 @@
 //! * A pop-up visits exactly the grid cells its box, widened by the clearance, overlaps
 //!   (computed here in f64 from the header's grid), every entry of those cells, and at least
 //!   one predicate per distinct edge listed there.
+//! * Finding the start's and the goal's nearest vertices scans every vertex once each, exactly.
 
 use host_tests::world::{free_pose, world};
 use host_tests::{cases, Rng};
-use skyroute::planner::{Goal, PlannerConfig, Popup, Query, Search};
+use skyroute::planner::{Goal, Phase, PlannerConfig, Popup, Query, Search};
 use skyroute::{Network, Planner, Vec2};
 use std::cmp::Reverse;
 use std::collections::{BTreeSet, BinaryHeap, HashMap};
@@ -239,4 +240,44 @@ fn popups_count_every_cell_entry_and_edge_of_their_widened_box() {
         checked >= cases(200, 2000) * 9 / 10,
         "only {checked} checked"
     );
+}
+
+/// The start's nearest vertices are found once [`Phase::ConnectStart`] begins, the goal's once
+/// [`Phase::ConnectGoal`] begins: each scan counts one vertex scan per vertex of the network,
+/// and nothing else before the direct path counts one.
+#[test]
+fn the_nearest_vertex_scans_count_every_vertex_once_per_end() {
+    let w = world(61, 1200.0, 60.0, 40.0, 4);
+    let mut p = load(&w.bytes);
+    let vertices = p.network().vertex_count() as u64;
+    let mut rng = Rng(0x5CA7);
+    for _ in 0..cases(10, 50) {
+        let start = free_pose(&mut rng, &w, 10.0);
+        let goal = free_pose(&mut rng, &w, 10.0).position;
+        let q = host_tests::world::query_to(start, goal);
+        let mut marks = Vec::new();
+        let _ = p.plan_observed(&q, u64::MAX, &mut |phase, work| {
+            marks.push((phase, work.vertex_scans))
+        });
+        let at = |phase| marks.iter().find(|m| m.0 == phase).map(|m| m.1);
+        let phases = [
+            Phase::CheckFree,
+            Phase::ConnectStart,
+            Phase::ConnectGoal,
+            Phase::ConnectDirect,
+        ]
+        .map(at);
+        let [Some(free), Some(start_links), Some(goal_links), Some(direct)] = phases else {
+            panic!("{q:?}: phases {marks:?}");
+        };
+        assert_eq!(
+            (
+                start_links - free,
+                goal_links - start_links,
+                direct - goal_links
+            ),
+            (0, vertices, vertices),
+            "{q:?}"
+        );
+    }
 }
