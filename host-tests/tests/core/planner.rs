@@ -754,3 +754,58 @@ fn the_best_chain_keeps_a_whole_route_within_a_small_route_capacity() {
         "{planned} planned, {shortened} shortened"
     );
 }
+
+/// The start's candidates are its [`skyroute::planner::MAX_CANDIDATES`] nearest vertices,
+/// equally near ones in index order. A network of 28 vertices 150 m from the start (under a
+/// pop-up, so no link reaches them), 8 vertices 200 m from it at one position (vertices
+/// 28–35, whose links are all clear), and a vertex near the goal that only one of the eight
+/// has an edge to: the 32 candidates are the 28 and vertices 28–31, so a route exists through
+/// vertex 31 and none through 32 or 35.
+#[test]
+fn equally_near_start_candidates_are_taken_in_index_order() {
+    use skyroute::network::write::{encode, EdgeSpec, NetworkSpec};
+    let radius = 40.0;
+    let near_goal = Pose::new(500.0, 0.0, 0.0);
+    let spec = |through: u32| {
+        let mut vertices: Vec<Pose> = (0..28)
+            .map(|k| Pose::new(0.0, 150.0, k as f32 * std::f32::consts::TAU / 28.0))
+            .collect();
+        vertices.extend((0..8).map(|k| Pose::new(200.0, 0.0, 0.1 * k as f32 - 0.35)));
+        let path = DubinsPath::shortest(&vertices[through as usize], &near_goal, radius).unwrap();
+        vertices.push(near_goal);
+        NetworkSpec {
+            origin_lat_deg: 48.0,
+            origin_lon_deg: 11.6,
+            turn_radius_m: radius,
+            clearance_m: 5.0,
+            vertices,
+            edges: vec![EdgeSpec::dubins(through, 36, &path)],
+            obstacles: Vec::new(),
+            grid_cell_m: 2.0 * radius,
+            landmark: None,
+            voronoi: None,
+            terrain: None,
+            provenance: Vec::new(),
+        }
+    };
+    let q = host_tests::world::query_to(Pose::new(0.0, 0.0, 0.0), Vec2::new(650.0, 0.0));
+    for (through, routed) in [(28, true), (31, true), (32, false), (35, false)] {
+        let bytes = encode(&spec(through)).unwrap();
+        let mut p = planner(&bytes);
+        p.set_config(PlannerConfig {
+            start_candidates: 16,
+            connect_radius_m: 300.0,
+            ..PlannerConfig::DEFAULT
+        });
+        p.add_popup(Popup::Circle {
+            centre: Vec2::new(0.0, 150.0),
+            radius: 30.0,
+        })
+        .unwrap();
+        let outcome = p.plan(&q, u64::MAX);
+        match routed {
+            true => assert!(outcome.is_ok(), "through {through}: {outcome:?}"),
+            false => assert_eq!(outcome, Err(PlanError::NoRoute), "through {through}"),
+        }
+    }
+}
