@@ -12,6 +12,8 @@ mod checksum;
 /// Format v4's compact records: damaged cell lists, Dubins words and edge costs each refused
 /// by name; the end check far from the origin; the in-flight checksum pass.
 mod compact_records;
+/// The collision tests of the start links, counted exactly per primitive and obstacle.
+mod connect_work;
 /// The pop-up decision (Ruz et al.) against a brute force over every combination.
 mod decision;
 /// A start inside an obstacle or pop-up: the exit against a marching f64 reference.
