@@ -64,10 +64,11 @@ fn each_start_link_counts_its_box_and_exact_tests_per_primitive() {
             .collect();
         'query: for _ in 0..cases(20, 60) {
             let start: Pose = free_pose(&mut rng, &w, 10.0);
-            if start.position.distance(centre) <= 60.0 + c + 1.0 {
+            let goal = free_pose(&mut rng, &w, 10.0).position;
+            let clear_of_popup = |q: Vec2| q.distance(centre) > 60.0 + c + 1.0;
+            if !clear_of_popup(start.position) || !clear_of_popup(goal) {
                 continue;
             }
-            let goal = free_pose(&mut rng, &w, 10.0).position;
             // The candidates: the 32 nearest within the connect radius, ties in index order.
             let mut near: Vec<(f32, u32)> = (0..net.vertex_count())
                 .map(|v| (net.vertex(v).unwrap().position.distance(start.position), v))
