@@ -756,21 +756,33 @@ fn the_best_chain_keeps_a_whole_route_within_a_small_route_capacity() {
 }
 
 /// The start's candidates are its [`skyroute::planner::MAX_CANDIDATES`] nearest vertices,
-/// equally near ones in index order. A network of 28 vertices 150 m from the start (under a
-/// pop-up, so no link reaches them), 8 vertices 200 m from it at one position (vertices
-/// 28–35, whose links are all clear), and a vertex near the goal that only one of the eight
-/// has an edge to: the 32 candidates are the 28 and vertices 28–31, so a route exists through
-/// vertex 31 and none through 32 or 35.
+/// equally near ones (the same f32 distance) in index order. The network: 28 vertices 100 m
+/// from the start (under a pop-up, so no link reaches them); vertices 28–31 at (150, 0);
+/// vertices 32–35 at (150 − 1 ulp, 0.048), whose squared distance is one ulp less than
+/// 28–31's (22 499.998 against 22 500) yet whose distance, after the square root, is the same
+/// 150 m; and a vertex near the goal that only one of 28–35 has an edge to. Every link to
+/// 28–35 is clear, so the 32 candidates are the 28 and vertices 28–31: a route exists through
+/// 28 or 31 and none through 32 or 35.
 #[test]
 fn equally_near_start_candidates_are_taken_in_index_order() {
     use skyroute::network::write::{encode, EdgeSpec, NetworkSpec};
     let radius = 40.0;
-    let near_goal = Pose::new(500.0, 0.0, 0.0);
+    let near_goal = Pose::new(450.0, 0.0, 0.0);
+    let nearer_square = Vec2::new(f32::from_bits(150.0f32.to_bits() - 1), 0.048);
+    let (square, nearer) = (22_500.0f32, nearer_square.norm_sq());
+    assert!(
+        nearer < square && nearer.sqrt() == square.sqrt(),
+        "{nearer}"
+    );
     let spec = |through: u32| {
         let mut vertices: Vec<Pose> = (0..28)
-            .map(|k| Pose::new(0.0, 150.0, k as f32 * std::f32::consts::TAU / 28.0))
+            .map(|k| Pose::new(0.0, 100.0, k as f32 * std::f32::consts::TAU / 28.0))
             .collect();
-        vertices.extend((0..8).map(|k| Pose::new(200.0, 0.0, 0.1 * k as f32 - 0.35)));
+        vertices.extend((0..4).map(|k| Pose::new(150.0, 0.0, 0.1 * k as f32 - 0.15)));
+        vertices.extend((0..4).map(|k| Pose {
+            position: nearer_square,
+            heading: 0.1 * k as f32 - 0.15,
+        }));
         let path = DubinsPath::shortest(&vertices[through as usize], &near_goal, radius).unwrap();
         vertices.push(near_goal);
         NetworkSpec {
@@ -788,17 +800,25 @@ fn equally_near_start_candidates_are_taken_in_index_order() {
             provenance: Vec::new(),
         }
     };
-    let q = host_tests::world::query_to(Pose::new(0.0, 0.0, 0.0), Vec2::new(650.0, 0.0));
+    let q = host_tests::world::query_to(Pose::new(0.0, 0.0, 0.0), Vec2::new(600.0, 0.0));
     for (through, routed) in [(28, true), (31, true), (32, false), (35, false)] {
-        let bytes = encode(&spec(through)).unwrap();
+        let spec = spec(through);
+        let bytes = encode(&spec).unwrap();
         let mut p = planner(&bytes);
+        // The positions are stored exactly.
+        for (v, pose) in spec.vertices.iter().enumerate() {
+            assert_eq!(
+                p.network().vertex(v as u32).unwrap().position,
+                pose.position
+            );
+        }
         p.set_config(PlannerConfig {
             start_candidates: 16,
             connect_radius_m: 300.0,
             ..PlannerConfig::DEFAULT
         });
         p.add_popup(Popup::Circle {
-            centre: Vec2::new(0.0, 150.0),
+            centre: Vec2::new(0.0, 100.0),
             radius: 30.0,
         })
         .unwrap();
