@@ -5,7 +5,8 @@
 //! of n vertices, 1 for a disc), until one conflicts; then each pop-up's tests, as the pop-up
 //! counts them ([`Popup::conflicts`]). The boxes and the overlap are recomputed here in f64 from the
 //! stored boxes; whether a primitive conflicts is the ground tool's predicate (it decides only
-//! where the count stops). Candidates are tried nearest first until 8 links are made.
+//! where the count stops). Candidates are tried nearest first until 8 links are made, each
+//! with one Dubins solve.
 
 use host_tests::world::{free_pose, world};
 use host_tests::{cases, Rng};
@@ -77,11 +78,12 @@ fn each_start_link_counts_its_box_and_exact_tests_per_primitive() {
             near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             near.truncate(MAX_CANDIDATES);
             let mut expected = w.obstacles.len() as u64; // the start's window
-            let mut links = 0;
+            let (mut links, mut tried) = (0, 0);
             for &(_, v) in &near {
                 if links == 8 {
                     break;
                 }
+                tried += 1;
                 let Some(path) = DubinsPath::shortest(&start, &net.vertex(v).unwrap(), 40.0) else {
                     continue;
                 };
@@ -118,13 +120,17 @@ fn each_start_link_counts_its_box_and_exact_tests_per_primitive() {
             let _ = p.plan_observed(
                 &host_tests::world::query_to(start, goal),
                 u64::MAX,
-                &mut |phase, work| marks.push((phase, work.collision_tests)),
+                &mut |phase, work| marks.push((phase, (work.collision_tests, work.dubins_solves))),
             );
             let at = |phase| marks.iter().find(|m| m.0 == phase).map(|m| m.1);
             let (Some(from), Some(to)) = (at(Phase::ConnectStart), at(Phase::ConnectGoal)) else {
                 panic!("{start:?}: phases {marks:?}");
             };
-            assert_eq!(to - from, expected, "{start:?}");
+            assert_eq!(
+                (to.0 - from.0, to.1 - from.1),
+                (expected, tried),
+                "{start:?}"
+            );
             checked += 1;
         }
     }
