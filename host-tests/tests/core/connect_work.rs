@@ -1,15 +1,22 @@
-//! The collision tests of the start links, counted exactly. After the start's obstacle window
-//! (one box distance per obstacle), each candidate tried costs, for each primitive of its
-//! Dubins path in order, a box test per obstacle, and for each obstacle whose box the
-//! primitive's box, widened by the clearance, overlaps, its exact tests (n + 1 for a polygon
-//! of n vertices, 1 for a disc), until one conflicts; then each pop-up's tests, as the pop-up
-//! counts them ([`Popup::conflicts`]). The boxes and the overlap are recomputed here in f64 from the
-//! stored boxes; whether a primitive conflicts is the ground tool's predicate (it decides only
-//! where the count stops). Candidates are tried nearest first until 8 links are made, each
-//! with one Dubins solve.
+//! The collision tests and Dubins solves of the start and goal links, counted exactly.
+//!
+//! A path's check costs, for each of its primitives in order, a box test per obstacle, and for
+//! each obstacle whose box the primitive's box, widened by the clearance, overlaps, its exact
+//! tests (n + 1 for a polygon of n vertices, 1 for a disc), until one conflicts; then each
+//! pop-up's tests, as the pop-up counts them ([`Popup::conflicts`]). The boxes and the overlap
+//! are recomputed here in f64 from the stored boxes; whether a primitive conflicts is the
+//! ground tool's predicate (it decides only where the count stops).
+//!
+//! Each end reads its obstacle window first (one box distance per obstacle), then tries its
+//! candidates, nearest first, until 8 links are made. A start candidate costs one Dubins solve
+//! and its path's check. A goal candidate with free arrival headings first probes the heading
+//! nearest the bearing to the goal (one solve and a check); if that path is blocked, it solves
+//! every heading (one each) and checks them shortest first, ties in heading order, each pick
+//! counting one solve more, until one is clear.
 
 use host_tests::world::{free_pose, world};
 use host_tests::{cases, Rng};
+use skyroute::geometry::wrap_to_tau;
 use skyroute::network::write::ObstacleSpec;
 use skyroute::planner::{Phase, PlannerConfig, Popup, MAX_CANDIDATES};
 use skyroute::{DubinsPath, Planner, Pose, Vec2};
@@ -40,18 +47,148 @@ fn exact_tests(o: &ObstacleSpec) -> u64 {
     }
 }
 
+/// The obstacles and the pop-up a path is checked against, with what it counted.
+struct Checks<'a> {
+    obstacles: &'a [ObstacleSpec],
+    boxes: Vec<(Vec2, Vec2)>,
+    popup: Popup,
+    clearance: f32,
+    exact_counted: u64,
+    blocked: u64,
+}
+
+impl Checks<'_> {
+    /// The collision tests checking `path` counts, and whether it is clear; `None` when a box
+    /// comparison lies within 1 mm of going the other way.
+    fn path(&mut self, path: &DubinsPath) -> Option<(u64, bool)> {
+        let c = self.clearance;
+        let mut tests = 0;
+        for prim in path.primitives().into_iter().flatten() {
+            let bbox = prim.bounding_box();
+            for (o, &obox) in self.obstacles.iter().zip(&self.boxes) {
+                tests += 1;
+                let (overlaps, ambiguous) = overlap(bbox, obox, c as f64);
+                if ambiguous {
+                    return None;
+                }
+                if overlaps {
+                    tests += exact_tests(o);
+                    self.exact_counted += 1;
+                    if skyroute_prep::roadmap::primitive_conflicts(&prim, o, c) {
+                        self.blocked += 1;
+                        return Some((tests, false));
+                    }
+                }
+            }
+            let (conflict, popup_tests) = self.popup.conflicts(&prim, c);
+            tests += popup_tests as u64;
+            if conflict {
+                self.blocked += 1;
+                return Some((tests, false));
+            }
+        }
+        Some((tests, true))
+    }
+}
+
+/// The 32 vertices nearest `at` within `radius`, ties in index order.
+fn candidates(p: &TestPlanner<'_>, at: Vec2, radius: f32) -> Vec<u32> {
+    let net = p.network();
+    let mut near: Vec<(f32, u32)> = (0..net.vertex_count())
+        .map(|v| (net.vertex(v).unwrap().position.distance(at), v))
+        .filter(|&(d, _)| d <= radius)
+        .collect();
+    near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    near.into_iter()
+        .take(MAX_CANDIDATES)
+        .map(|(_, v)| v)
+        .collect()
+}
+
+/// The (collision tests, Dubins solves) of the start's connection, `None` if ambiguous.
+fn start_links(p: &TestPlanner<'_>, checks: &mut Checks<'_>, start: Pose) -> Option<(u64, u64)> {
+    let mut counted = (checks.obstacles.len() as u64, 0); // the window
+    let mut links = 0;
+    for v in candidates(p, start.position, RADIUS) {
+        if links == 8 {
+            break;
+        }
+        counted.1 += 1;
+        let Some(path) = DubinsPath::shortest(&start, &p.network().vertex(v).unwrap(), 40.0) else {
+            continue;
+        };
+        let (tests, clear) = checks.path(&path)?;
+        counted.0 += tests;
+        links += clear as u32;
+    }
+    Some(counted)
+}
+
+/// The (collision tests, Dubins solves) of the goal's connection over `HEADINGS` free arrival
+/// headings, `None` if ambiguous.
+fn goal_links(p: &TestPlanner<'_>, checks: &mut Checks<'_>, goal: Vec2) -> Option<(u64, u64)> {
+    use std::f32::consts::TAU;
+    let pose = |k: u16| Pose {
+        position: goal,
+        heading: k as f32 * TAU / HEADINGS as f32,
+    };
+    let mut counted = (checks.obstacles.len() as u64, 0); // the window
+    let mut links = 0;
+    for v in candidates(p, goal, RADIUS) {
+        if links == 8 {
+            break;
+        }
+        let from = p.network().vertex(v).unwrap();
+        // The probe: the heading nearest the bearing from the vertex to the goal.
+        let bearing = wrap_to_tau((goal - from.position).angle());
+        let k = (bearing / (TAU / HEADINGS as f32) + 0.5) as u16 % HEADINGS;
+        counted.1 += 1;
+        if let Some(path) = DubinsPath::shortest(&from, &pose(k), 40.0) {
+            let (tests, clear) = checks.path(&path)?;
+            counted.0 += tests;
+            if clear {
+                links += 1;
+                continue;
+            }
+        }
+        // Every heading solved, then checked shortest first (ties: heading order).
+        counted.1 += HEADINGS as u64;
+        let mut paths: Vec<(f32, u16, DubinsPath)> = (0..HEADINGS)
+            .filter_map(|k| DubinsPath::shortest(&from, &pose(k), 40.0).map(|p| (p.length(), k, p)))
+            .collect();
+        paths.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        for (_, _, path) in paths {
+            counted.1 += 1;
+            let (tests, clear) = checks.path(&path)?;
+            counted.0 += tests;
+            if clear {
+                links += 1;
+                break;
+            }
+        }
+    }
+    Some(counted)
+}
+
+/// The connect radius of the tests.
+const RADIUS: f32 = 400.0;
+/// The free arrival headings of a goal ([`PlannerConfig::DEFAULT`]'s).
+const HEADINGS: u16 = 36;
+
 #[test]
-fn each_start_link_counts_its_box_and_exact_tests_per_primitive() {
+fn each_link_counts_its_box_and_exact_tests_per_primitive_and_its_solves() {
     let mut rng = Rng(0x11AC);
-    let (mut checked, mut exact_counted, mut blocked) = (0, 0u64, 0);
+    let mut checked = 0;
+    let (mut exact_counted, mut blocked) = (0, 0);
     for seed in 0..cases(3, 12) as u64 {
         let w = world(90 + seed, 1200.0, 60.0, 40.0, 12);
         let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
         p.load(&w.bytes).unwrap();
         p.set_config(PlannerConfig {
-            connect_radius_m: 400.0,
+            connect_radius_m: RADIUS,
             ..PlannerConfig::DEFAULT
         });
+        assert_eq!(p.config().free_goal_headings, HEADINGS);
         let centre = free_pose(&mut rng, &w, 80.0).position;
         let popup = Popup::Circle {
             centre,
@@ -59,63 +196,29 @@ fn each_start_link_counts_its_box_and_exact_tests_per_primitive() {
         };
         p.add_popup(popup.clone()).unwrap();
         let net = *p.network();
-        let c = net.clearance();
-        let boxes: Vec<(Vec2, Vec2)> = (0..net.obstacle_count())
-            .map(|i| net.obstacle(i).unwrap().1)
-            .collect();
-        'query: for _ in 0..cases(20, 60) {
+        let mut checks = Checks {
+            obstacles: &w.obstacles,
+            boxes: (0..net.obstacle_count())
+                .map(|i| net.obstacle(i).unwrap().1)
+                .collect(),
+            popup,
+            clearance: net.clearance(),
+            exact_counted: 0,
+            blocked: 0,
+        };
+        for _ in 0..cases(20, 60) {
             let start: Pose = free_pose(&mut rng, &w, 10.0);
             let goal = free_pose(&mut rng, &w, 10.0).position;
-            let clear_of_popup = |q: Vec2| q.distance(centre) > 60.0 + c + 1.0;
+            let clear_of_popup = |q: Vec2| q.distance(centre) > 60.0 + net.clearance() + 1.0;
             if !clear_of_popup(start.position) || !clear_of_popup(goal) {
                 continue;
             }
-            // The candidates: the 32 nearest within the connect radius, ties in index order.
-            let mut near: Vec<(f32, u32)> = (0..net.vertex_count())
-                .map(|v| (net.vertex(v).unwrap().position.distance(start.position), v))
-                .filter(|&(d, _)| d <= 400.0)
-                .collect();
-            near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            near.truncate(MAX_CANDIDATES);
-            let mut expected = w.obstacles.len() as u64; // the start's window
-            let (mut links, mut tried) = (0, 0);
-            for &(_, v) in &near {
-                if links == 8 {
-                    break;
-                }
-                tried += 1;
-                let Some(path) = DubinsPath::shortest(&start, &net.vertex(v).unwrap(), 40.0) else {
-                    continue;
-                };
-                let mut clear = true;
-                'path: for prim in path.primitives().into_iter().flatten() {
-                    let bbox = prim.bounding_box();
-                    for (o, &obox) in w.obstacles.iter().zip(&boxes) {
-                        expected += 1;
-                        let (overlaps, ambiguous) = overlap(bbox, obox, c as f64);
-                        if ambiguous {
-                            continue 'query;
-                        }
-                        if overlaps {
-                            expected += exact_tests(o);
-                            exact_counted += 1;
-                            if skyroute_prep::roadmap::primitive_conflicts(&prim, o, c) {
-                                clear = false;
-                                blocked += 1;
-                                break 'path;
-                            }
-                        }
-                    }
-                    let (conflict, tests) = popup.conflicts(&prim, c);
-                    expected += tests as u64;
-                    if conflict {
-                        clear = false;
-                        blocked += 1;
-                        break 'path;
-                    }
-                }
-                links += clear as u32;
-            }
+            let (Some(start_counts), Some(goal_counts)) = (
+                start_links(&p, &mut checks, start),
+                goal_links(&p, &mut checks, goal),
+            ) else {
+                continue;
+            };
             let mut marks = Vec::new();
             let _ = p.plan_observed(
                 &host_tests::world::query_to(start, goal),
@@ -123,19 +226,27 @@ fn each_start_link_counts_its_box_and_exact_tests_per_primitive() {
                 &mut |phase, work| marks.push((phase, (work.collision_tests, work.dubins_solves))),
             );
             let at = |phase| marks.iter().find(|m| m.0 == phase).map(|m| m.1);
-            let (Some(from), Some(to)) = (at(Phase::ConnectStart), at(Phase::ConnectGoal)) else {
+            let phases = [
+                Phase::ConnectStart,
+                Phase::ConnectGoal,
+                Phase::ConnectDirect,
+            ]
+            .map(at);
+            let [Some(a), Some(b), Some(c)] = phases else {
                 panic!("{start:?}: phases {marks:?}");
             };
             assert_eq!(
-                (to.0 - from.0, to.1 - from.1),
-                (expected, tried),
-                "{start:?}"
+                ((b.0 - a.0, b.1 - a.1), (c.0 - b.0, c.1 - b.1)),
+                (start_counts, goal_counts),
+                "{start:?} to {goal:?}"
             );
             checked += 1;
         }
+        exact_counted += checks.exact_counted;
+        blocked += checks.blocked;
     }
     assert!(
         checked >= cases(3, 12) * 15 && exact_counted >= 50 && blocked >= 5,
-        "{checked} queries, {exact_counted} exact checks, {blocked} blocked links"
+        "{checked} queries, {exact_counted} exact checks, {blocked} blocked paths"
     );
 }
