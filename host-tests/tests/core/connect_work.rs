@@ -12,7 +12,8 @@
 //! and its path's check. A goal candidate with free arrival headings first probes the heading
 //! nearest the bearing to the goal (one solve and a check); if that path is blocked, it solves
 //! every heading (one each) and checks them shortest first, ties in heading order, each pick
-//! counting one solve more, until one is clear.
+//! counting one solve more, until one is clear. A goal with its own heading has no probe: one
+//! solve, one more for the pick, and the check.
 
 use host_tests::world::{free_pose, world};
 use host_tests::{cases, Rng};
@@ -124,13 +125,19 @@ fn start_links(p: &TestPlanner<'_>, checks: &mut Checks<'_>, start: Pose) -> Opt
     Some(counted)
 }
 
-/// The (collision tests, Dubins solves) of the goal's connection over `HEADINGS` free arrival
-/// headings, `None` if ambiguous.
-fn goal_links(p: &TestPlanner<'_>, checks: &mut Checks<'_>, goal: Vec2) -> Option<(u64, u64)> {
+/// The (collision tests, Dubins solves) of the goal's connection, at `heading` or, if it is
+/// `None`, over `HEADINGS` free arrival headings; `None` if ambiguous.
+fn goal_links(
+    p: &TestPlanner<'_>,
+    checks: &mut Checks<'_>,
+    goal: Vec2,
+    heading: Option<f32>,
+) -> Option<(u64, u64)> {
     use std::f32::consts::TAU;
+    let headings = if heading.is_some() { 1 } else { HEADINGS };
     let pose = |k: u16| Pose {
         position: goal,
-        heading: k as f32 * TAU / HEADINGS as f32,
+        heading: heading.unwrap_or(k as f32 * TAU / HEADINGS as f32),
     };
     let mut counted = (checks.obstacles.len() as u64, 0); // the window
     let mut links = 0;
@@ -140,20 +147,22 @@ fn goal_links(p: &TestPlanner<'_>, checks: &mut Checks<'_>, goal: Vec2) -> Optio
         }
         let from = p.network().vertex(v).unwrap();
         // The probe: the heading nearest the bearing from the vertex to the goal.
-        let bearing = wrap_to_tau((goal - from.position).angle());
-        let k = (bearing / (TAU / HEADINGS as f32) + 0.5) as u16 % HEADINGS;
-        counted.1 += 1;
-        if let Some(path) = DubinsPath::shortest(&from, &pose(k), 40.0) {
-            let (tests, clear) = checks.path(&path)?;
-            counted.0 += tests;
-            if clear {
-                links += 1;
-                continue;
+        if headings > 1 {
+            let bearing = wrap_to_tau((goal - from.position).angle());
+            let k = (bearing / (TAU / HEADINGS as f32) + 0.5) as u16 % HEADINGS;
+            counted.1 += 1;
+            if let Some(path) = DubinsPath::shortest(&from, &pose(k), 40.0) {
+                let (tests, clear) = checks.path(&path)?;
+                counted.0 += tests;
+                if clear {
+                    links += 1;
+                    continue;
+                }
             }
         }
         // Every heading solved, then checked shortest first (ties: heading order).
-        counted.1 += HEADINGS as u64;
-        let mut paths: Vec<(f32, u16, DubinsPath)> = (0..HEADINGS)
+        counted.1 += headings as u64;
+        let mut paths: Vec<(f32, u16, DubinsPath)> = (0..headings)
             .filter_map(|k| DubinsPath::shortest(&from, &pose(k), 40.0).map(|p| (p.length(), k, p)))
             .collect();
         paths.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
@@ -208,23 +217,26 @@ fn each_link_counts_its_box_and_exact_tests_per_primitive_and_its_solves() {
         };
         for _ in 0..cases(20, 60) {
             let start: Pose = free_pose(&mut rng, &w, 10.0);
-            let goal = free_pose(&mut rng, &w, 10.0).position;
+            let goal_pose = free_pose(&mut rng, &w, 10.0);
+            let goal = goal_pose.position;
+            // Every other goal with its own heading.
+            let heading = (checked % 2 == 1).then_some(goal_pose.heading);
             let clear_of_popup = |q: Vec2| q.distance(centre) > 60.0 + net.clearance() + 1.0;
             if !clear_of_popup(start.position) || !clear_of_popup(goal) {
                 continue;
             }
             let (Some(start_counts), Some(goal_counts)) = (
                 start_links(&p, &mut checks, start),
-                goal_links(&p, &mut checks, goal),
+                goal_links(&p, &mut checks, goal, heading),
             ) else {
                 continue;
             };
             let mut marks = Vec::new();
-            let _ = p.plan_observed(
-                &host_tests::world::query_to(start, goal),
-                u64::MAX,
-                &mut |phase, work| marks.push((phase, (work.collision_tests, work.dubins_solves))),
-            );
+            let mut query = host_tests::world::query_to(start, goal);
+            query.goal.heading = heading;
+            let _ = p.plan_observed(&query, u64::MAX, &mut |phase, work| {
+                marks.push((phase, (work.collision_tests, work.dubins_solves)))
+            });
             let at = |phase| marks.iter().find(|m| m.0 == phase).map(|m| m.1);
             let phases = [
                 Phase::ConnectStart,
