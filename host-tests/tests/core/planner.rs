@@ -785,19 +785,11 @@ fn equally_near_start_candidates_are_taken_in_index_order() {
         }));
         let path = DubinsPath::shortest(&vertices[through as usize], &near_goal, radius).unwrap();
         vertices.push(near_goal);
+        // An empty lattice's header (radius, clearance, grid), with these vertices and edge.
         NetworkSpec {
-            origin_lat_deg: 48.0,
-            origin_lon_deg: 11.6,
-            turn_radius_m: radius,
-            clearance_m: 5.0,
             vertices,
             edges: vec![EdgeSpec::dubins(through, 36, &path)],
-            obstacles: Vec::new(),
-            grid_cell_m: 2.0 * radius,
-            landmark: None,
-            voronoi: None,
-            terrain: None,
-            provenance: Vec::new(),
+            ..host_tests::world::lattice_spec(0, 1.0, 0.0, radius)
         }
     };
     let q = host_tests::world::query_to(Pose::new(0.0, 0.0, 0.0), Vec2::new(600.0, 0.0));
