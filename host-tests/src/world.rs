@@ -3,8 +3,9 @@
 
 use crate::Rng;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec};
-use skyroute::planner::{Goal, Query, Search};
+use skyroute::planner::{Goal, Phase, Query, Search, Work, MAX_CANDIDATES};
 use skyroute::{DubinsPath, Pose, Vec2};
+use skyroute::{Network, Planner};
 use skyroute_prep::roadmap::{build_roadmap, CollisionCheck, RoadmapInput, RoadmapParams};
 use std::f32::consts::{FRAC_PI_2, PI};
 
@@ -191,4 +192,43 @@ pub fn query_to(start: Pose, goal: Vec2) -> Query {
         },
         search: Search::Dijkstra,
     }
+}
+
+/// The vertices a query end at `at` tries, by brute force: the [`MAX_CANDIDATES`] nearest
+/// within `radius`, equally near ones in index order.
+pub fn nearest_vertices(net: &Network<'_>, at: Vec2, radius: f32) -> Vec<u32> {
+    let mut near: Vec<(f32, u32)> = (0..net.vertex_count())
+        .map(|v| (net.vertex(v).unwrap().position.distance(at), v))
+        .filter(|&(d, _)| d <= radius)
+        .collect();
+    near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    near.into_iter()
+        .take(MAX_CANDIDATES)
+        .map(|(_, v)| v)
+        .collect()
+}
+
+/// `read` of the work counted when each of `phases` began, planning `q` with `p` (roadmap or
+/// terrain, which report their phases); panics naming the query if a phase is not reached.
+pub fn work_at_phases<
+    T: Copy + std::fmt::Debug,
+    const N: usize,
+    const V: usize,
+    const E: usize,
+    const P: usize,
+    const R: usize,
+>(
+    p: &mut Planner<'_, V, E, P, R>,
+    q: &Query,
+    phases: [Phase; N],
+    read: impl Fn(&Work) -> T,
+) -> [T; N] {
+    let mut marks = Vec::new();
+    let _ = p.plan_observed(q, u64::MAX, &mut |phase, work| {
+        marks.push((phase, read(work)))
+    });
+    phases.map(|phase| match marks.iter().find(|m| m.0 == phase) {
+        Some(&(_, value)) => value,
+        None => panic!("{q:?}: phases {marks:?}"),
+    })
 }

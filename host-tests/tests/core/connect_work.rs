@@ -15,11 +15,11 @@
 //! counting one solve more, until one is clear. A goal with its own heading has no probe: one
 //! solve, one more for the pick, and the check.
 
-use host_tests::world::{free_pose, world};
+use host_tests::world::{free_pose, nearest_vertices, work_at_phases, world};
 use host_tests::{cases, Rng};
 use skyroute::geometry::wrap_to_tau;
 use skyroute::network::write::ObstacleSpec;
-use skyroute::planner::{Phase, PlannerConfig, Popup, MAX_CANDIDATES};
+use skyroute::planner::{Phase, PlannerConfig, Popup};
 use skyroute::{DubinsPath, Planner, Pose, Vec2};
 
 type TestPlanner<'n> = Planner<'n, 4096, 65536, 4, 1024>;
@@ -92,25 +92,11 @@ impl Checks<'_> {
     }
 }
 
-/// The 32 vertices nearest `at` within `radius`, ties in index order.
-fn candidates(p: &TestPlanner<'_>, at: Vec2, radius: f32) -> Vec<u32> {
-    let net = p.network();
-    let mut near: Vec<(f32, u32)> = (0..net.vertex_count())
-        .map(|v| (net.vertex(v).unwrap().position.distance(at), v))
-        .filter(|&(d, _)| d <= radius)
-        .collect();
-    near.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    near.into_iter()
-        .take(MAX_CANDIDATES)
-        .map(|(_, v)| v)
-        .collect()
-}
-
 /// The (collision tests, Dubins solves) of the start's connection, `None` if ambiguous.
 fn start_links(p: &TestPlanner<'_>, checks: &mut Checks<'_>, start: Pose) -> Option<(u64, u64)> {
     let mut counted = (checks.obstacles.len() as u64, 0); // the window
     let mut links = 0;
-    for v in candidates(p, start.position, RADIUS) {
+    for v in nearest_vertices(p.network(), start.position, RADIUS) {
         if links == 8 {
             break;
         }
@@ -141,7 +127,7 @@ fn goal_links(
     };
     let mut counted = (checks.obstacles.len() as u64, 0); // the window
     let mut links = 0;
-    for v in candidates(p, goal, RADIUS) {
+    for v in nearest_vertices(p.network(), goal, RADIUS) {
         if links == 8 {
             break;
         }
@@ -231,22 +217,16 @@ fn each_link_counts_its_box_and_exact_tests_per_primitive_and_its_solves() {
             ) else {
                 continue;
             };
-            let mut marks = Vec::new();
             let mut query = host_tests::world::query_to(start, goal);
             query.goal.heading = heading;
-            let _ = p.plan_observed(&query, u64::MAX, &mut |phase, work| {
-                marks.push((phase, (work.collision_tests, work.dubins_solves)))
-            });
-            let at = |phase| marks.iter().find(|m| m.0 == phase).map(|m| m.1);
             let phases = [
                 Phase::ConnectStart,
                 Phase::ConnectGoal,
                 Phase::ConnectDirect,
-            ]
-            .map(at);
-            let [Some(a), Some(b), Some(c)] = phases else {
-                panic!("{start:?}: phases {marks:?}");
-            };
+            ];
+            let [a, b, c] = work_at_phases(&mut p, &query, phases, |work| {
+                (work.collision_tests, work.dubins_solves)
+            });
             assert_eq!(
                 ((b.0 - a.0, b.1 - a.1), (c.0 - b.0, c.1 - b.1)),
                 (start_counts, goal_counts),

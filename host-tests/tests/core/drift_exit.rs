@@ -4,7 +4,7 @@
 //! stays within the bound.
 
 use host_tests::reference::{dist, dist_point_segment, inside};
-use host_tests::world::{query_to, world, world_at, World};
+use host_tests::world::{query_to, work_at_phases, world, world_at, World};
 use host_tests::{cases, Rng};
 use skyroute::network::write::ObstacleSpec;
 use skyroute::planner::{
@@ -773,13 +773,7 @@ pub(crate) fn checks_work<const VN: usize, const EN: usize, const PN: usize, con
         },
         goal,
     );
-    let mut marks = Vec::new();
-    let _ = p.plan_observed(&q, u64::MAX, &mut |phase, work| {
-        marks.push((phase, work.collision_tests))
-    });
-    let at = |phase| marks.iter().find(|m| m.0 == phase).map(|m| m.1);
-    match (at(Phase::CheckFree), at(Phase::ConnectStart)) {
-        (Some(before), Some(after)) => after - before,
-        _ => panic!("{q:?}: phases {marks:?}"),
-    }
+    let phases = [Phase::CheckFree, Phase::ConnectStart];
+    let [before, after] = work_at_phases(p, &q, phases, |work| work.collision_tests);
+    after - before
 }

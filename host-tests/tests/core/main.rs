@@ -12,7 +12,7 @@ mod checksum;
 /// Format v4's compact records: damaged cell lists, Dubins words and edge costs each refused
 /// by name; the end check far from the origin; the in-flight checksum pass.
 mod compact_records;
-/// The collision tests of the start links, counted exactly per primitive and obstacle.
+/// The collision tests and Dubins solves of the start and goal links, counted exactly.
 mod connect_work;
 /// The pop-up decision (Ruz et al.) against a brute force over every combination.
 mod decision;

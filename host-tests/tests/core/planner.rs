@@ -35,15 +35,7 @@ fn bellman_ford(p: &TestPlanner<'_>, w: &World, q: &Query) -> Option<f32> {
     };
     // The planner tries the MAX_CANDIDATES nearest vertices in order and keeps the first K
     // that a clear path connects.
-    let nearest = |at: Vec2| {
-        let mut c: Vec<(f32, u32)> = (0..n as u32)
-            .map(|v| (net.vertex(v).unwrap().position.distance(at), v))
-            .filter(|(d, _)| *d <= cfg.connect_radius_m)
-            .collect();
-        c.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        c.truncate(skyroute::planner::MAX_CANDIDATES);
-        c
-    };
+    let nearest = |at: Vec2| host_tests::world::nearest_vertices(net, at, cfg.connect_radius_m);
     let headings: Vec<f32> = match q.goal.heading {
         Some(h) => vec![h],
         None => (0..cfg.free_goal_headings)
@@ -69,7 +61,7 @@ fn bellman_ford(p: &TestPlanner<'_>, w: &World, q: &Query) -> Option<f32> {
     };
     let mut dist = vec![f64::INFINITY; n];
     let mut kept = 0;
-    for (_, v) in nearest(q.start.position) {
+    for v in nearest(q.start.position) {
         if kept == cfg.start_candidates {
             break;
         }
@@ -104,7 +96,7 @@ fn bellman_ford(p: &TestPlanner<'_>, w: &World, q: &Query) -> Option<f32> {
         }
     }
     let mut kept = 0;
-    for (_, v) in nearest(q.goal.position) {
+    for v in nearest(q.goal.position) {
         if kept == cfg.goal_candidates {
             break;
         }

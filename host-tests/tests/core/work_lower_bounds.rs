@@ -10,7 +10,7 @@
 //!   one predicate per distinct edge listed there.
 //! * Finding the start's and the goal's nearest vertices scans every vertex once each, exactly.
 
-use host_tests::world::{free_pose, world};
+use host_tests::world::{free_pose, work_at_phases, world};
 use host_tests::{cases, Rng};
 use skyroute::planner::{Goal, Phase, PlannerConfig, Popup, Query, Search};
 use skyroute::{Network, Planner, Vec2};
@@ -255,21 +255,14 @@ fn the_nearest_vertex_scans_count_every_vertex_once_per_end() {
         let start = free_pose(&mut rng, &w, 10.0);
         let goal = free_pose(&mut rng, &w, 10.0).position;
         let q = host_tests::world::query_to(start, goal);
-        let mut marks = Vec::new();
-        let _ = p.plan_observed(&q, u64::MAX, &mut |phase, work| {
-            marks.push((phase, work.vertex_scans))
-        });
-        let at = |phase| marks.iter().find(|m| m.0 == phase).map(|m| m.1);
         let phases = [
             Phase::CheckFree,
             Phase::ConnectStart,
             Phase::ConnectGoal,
             Phase::ConnectDirect,
-        ]
-        .map(at);
-        let [Some(free), Some(start_links), Some(goal_links), Some(direct)] = phases else {
-            panic!("{q:?}: phases {marks:?}");
-        };
+        ];
+        let [free, start_links, goal_links, direct] =
+            work_at_phases(&mut p, &q, phases, |work| work.vertex_scans);
         assert_eq!(
             (
                 start_links - free,
