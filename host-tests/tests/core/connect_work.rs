@@ -22,7 +22,7 @@ use skyroute::network::write::ObstacleSpec;
 use skyroute::planner::{Phase, PlannerConfig, Popup};
 use skyroute::{DubinsPath, Planner, Pose, Vec2};
 
-type TestPlanner<'n> = Planner<'n, 4096, 65536, 4, 1024>;
+pub type TestPlanner<'n> = Planner<'n, 4096, 65536, 4, 1024>;
 
 /// Whether boxes `a` (widened by `c`) and `b` overlap, in f64, and whether a side lies within
 /// 1 mm of deciding the other way (where f32 rounding could).
@@ -49,19 +49,19 @@ fn exact_tests(o: &ObstacleSpec) -> u64 {
 }
 
 /// The obstacles and the pop-up a path is checked against, with what it counted.
-struct Checks<'a> {
-    obstacles: &'a [ObstacleSpec],
-    boxes: Vec<(Vec2, Vec2)>,
-    popup: Popup,
-    clearance: f32,
-    exact_counted: u64,
-    blocked: u64,
+pub struct Checks<'a> {
+    pub obstacles: &'a [ObstacleSpec],
+    pub boxes: Vec<(Vec2, Vec2)>,
+    pub popup: Popup,
+    pub clearance: f32,
+    pub exact_counted: u64,
+    pub blocked: u64,
 }
 
 impl Checks<'_> {
     /// The collision tests checking `path` counts, and whether it is clear; `None` when a box
     /// comparison lies within 1 mm of going the other way.
-    fn path(&mut self, path: &DubinsPath) -> Option<(u64, bool)> {
+    pub fn path(&mut self, path: &DubinsPath) -> Option<(u64, bool)> {
         let c = self.clearance;
         let mut tests = 0;
         for prim in path.primitives().into_iter().flatten() {
@@ -92,12 +92,27 @@ impl Checks<'_> {
     }
 }
 
-/// The (collision tests, Dubins solves) of the start's connection, `None` if ambiguous.
-fn start_links(p: &TestPlanner<'_>, checks: &mut Checks<'_>, start: Pose) -> Option<(u64, u64)> {
+/// A goal link as the search sees it: its vertex, its cost (for a pending link, the lower bound
+/// of its length) and, if pending, what resolving it counts and costs.
+#[derive(Clone, Copy, Debug)]
+pub struct GoalLink {
+    pub vertex: u32,
+    pub cost: f32,
+    /// A pending link's resolution: its (collision tests, Dubins solves) and exact cost.
+    pub resolution: Option<((u64, u64), f32)>,
+}
+
+/// The (collision tests, Dubins solves) of the start's connection and its links (vertex, cost)
+/// in the order they were made; `None` if ambiguous.
+pub fn start_links(
+    p: &TestPlanner<'_>,
+    checks: &mut Checks<'_>,
+    start: Pose,
+) -> Option<((u64, u64), Vec<(u32, f32)>)> {
     let mut counted = (checks.obstacles.len() as u64, 0); // the window
-    let mut links = 0;
+    let mut links = Vec::new();
     for v in nearest_vertices(p.network(), start.position, RADIUS) {
-        if links == 8 {
+        if links.len() == 8 {
             break;
         }
         counted.1 += 1;
@@ -106,69 +121,104 @@ fn start_links(p: &TestPlanner<'_>, checks: &mut Checks<'_>, start: Pose) -> Opt
         };
         let (tests, clear) = checks.path(&path)?;
         counted.0 += tests;
-        links += clear as u32;
+        if clear {
+            links.push((v, path.length()));
+        }
     }
-    Some(counted)
+    Some((counted, links))
+}
+
+/// The goal's pose at arrival heading `k` of `headings`, or at its own `heading`.
+fn goal_pose(goal: Vec2, heading: Option<f32>, k: u16) -> Pose {
+    Pose {
+        position: goal,
+        heading: heading.unwrap_or(k as f32 * std::f32::consts::TAU / HEADINGS as f32),
+    }
+}
+
+/// The shortest clear path from `from` to the goal over its arrival headings: every heading
+/// solved, then checked shortest first (ties: heading order), each pick one solve more. Its
+/// (collision tests, Dubins solves) and length, if any is clear; `None` if ambiguous.
+pub fn clear_over_headings(
+    checks: &mut Checks<'_>,
+    from: &Pose,
+    goal: Vec2,
+    heading: Option<f32>,
+) -> Option<((u64, u64), Option<f32>)> {
+    let headings = if heading.is_some() { 1 } else { HEADINGS };
+    let mut counted = (0, headings as u64);
+    let mut paths: Vec<(f32, u16, DubinsPath)> = (0..headings)
+        .filter_map(|k| {
+            DubinsPath::shortest(from, &goal_pose(goal, heading, k), 40.0)
+                .map(|p| (p.length(), k, p))
+        })
+        .collect();
+    paths.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    for (length, _, path) in paths {
+        counted.1 += 1;
+        let (tests, clear) = checks.path(&path)?;
+        counted.0 += tests;
+        if clear {
+            return Some((counted, Some(length)));
+        }
+    }
+    Some((counted, None))
 }
 
 /// The (collision tests, Dubins solves) of the goal's connection, at `heading` or, if it is
-/// `None`, over `HEADINGS` free arrival headings; `None` if ambiguous.
-fn goal_links(
+/// `None`, over `HEADINGS` free arrival headings, and its links in the order they were made;
+/// `None` if ambiguous.
+pub fn goal_links(
     p: &TestPlanner<'_>,
     checks: &mut Checks<'_>,
     goal: Vec2,
     heading: Option<f32>,
-) -> Option<(u64, u64)> {
+) -> Option<((u64, u64), Vec<GoalLink>)> {
     use std::f32::consts::TAU;
-    let headings = if heading.is_some() { 1 } else { HEADINGS };
-    let pose = |k: u16| Pose {
-        position: goal,
-        heading: heading.unwrap_or(k as f32 * TAU / HEADINGS as f32),
-    };
     let mut counted = (checks.obstacles.len() as u64, 0); // the window
-    let mut links = 0;
+    let mut links = Vec::new();
     for v in nearest_vertices(p.network(), goal, RADIUS) {
-        if links == 8 {
+        if links.len() == 8 {
             break;
         }
         let from = p.network().vertex(v).unwrap();
-        // The probe: the heading nearest the bearing from the vertex to the goal.
-        if headings > 1 {
+        // The probe: the heading nearest the bearing from the vertex to the goal. A clear probe
+        // makes the link pending, at the lower bound of its length.
+        if heading.is_none() {
             let bearing = wrap_to_tau((goal - from.position).angle());
             let k = (bearing / (TAU / HEADINGS as f32) + 0.5) as u16 % HEADINGS;
             counted.1 += 1;
-            if let Some(path) = DubinsPath::shortest(&from, &pose(k), 40.0) {
+            if let Some(path) = DubinsPath::shortest(&from, &goal_pose(goal, None, k), 40.0) {
                 let (tests, clear) = checks.path(&path)?;
                 counted.0 += tests;
                 if clear {
-                    links += 1;
+                    let (resolved, length) = clear_over_headings(checks, &from, goal, None)?;
+                    links.push(GoalLink {
+                        vertex: v,
+                        cost: DubinsPath::length_lower_bound(from.position, goal, 40.0),
+                        resolution: Some((resolved, length?)),
+                    });
                     continue;
                 }
             }
         }
-        // Every heading solved, then checked shortest first (ties: heading order).
-        counted.1 += headings as u64;
-        let mut paths: Vec<(f32, u16, DubinsPath)> = (0..headings)
-            .filter_map(|k| DubinsPath::shortest(&from, &pose(k), 40.0).map(|p| (p.length(), k, p)))
-            .collect();
-        paths.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        for (_, _, path) in paths {
-            counted.1 += 1;
-            let (tests, clear) = checks.path(&path)?;
-            counted.0 += tests;
-            if clear {
-                links += 1;
-                break;
-            }
+        let ((tests, solves), length) = clear_over_headings(checks, &from, goal, heading)?;
+        counted = (counted.0 + tests, counted.1 + solves);
+        if let Some(cost) = length {
+            links.push(GoalLink {
+                vertex: v,
+                cost,
+                resolution: None,
+            });
         }
     }
-    Some(counted)
+    Some((counted, links))
 }
 
 /// The connect radius of the tests.
-const RADIUS: f32 = 400.0;
+pub const RADIUS: f32 = 400.0;
 /// The free arrival headings of a goal ([`PlannerConfig::DEFAULT`]'s).
-const HEADINGS: u16 = 36;
+pub const HEADINGS: u16 = 36;
 
 #[test]
 fn each_link_counts_its_box_and_exact_tests_per_primitive_and_its_solves() {
@@ -211,7 +261,7 @@ fn each_link_counts_its_box_and_exact_tests_per_primitive_and_its_solves() {
             if !clear_of_popup(start.position) || !clear_of_popup(goal) {
                 continue;
             }
-            let (Some(start_counts), Some(goal_counts)) = (
+            let (Some((start_counts, _)), Some((goal_counts, _))) = (
                 start_links(&p, &mut checks, start),
                 goal_links(&p, &mut checks, goal, heading),
             ) else {

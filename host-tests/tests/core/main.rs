@@ -54,6 +54,9 @@ mod risk;
 /// Bad input and budgets: over-budget reports, overlapping records, huge pop-ups, non-finite
 /// routes, degenerate capacities and random extreme call sequences never panic.
 mod robustness;
+/// The roadmap search's heap levels, relaxations and goal-link resolutions counted exactly by
+/// an independent Dijkstra and A*.
+mod search_work;
 /// Cubic spline smoothing: the corner table and the fit against dense f64 sampling.
 mod spline;
 /// The pop-up alternatives stored in a network image and the onboard switch (Ruz et al.):
