@@ -32,6 +32,8 @@ mod grid_traversal;
 mod header_validation;
 /// Quintic Hermite segments against f64 derivations.
 mod hermite;
+/// The loader's error messages: each names its numbers, none reads like another.
+mod load_messages;
 /// The loader: round trips, each damage its own error, random mutations never panic.
 mod network_load;
 /// The loader's obstacle checks: each bad obstacle record refused with its own error.
