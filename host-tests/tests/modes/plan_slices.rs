@@ -2,13 +2,14 @@
 //! call, in every mode on the shipped networks: for random queries and slices of 1, 7, 1000
 //! and unlimited work, the same result (route, summary and work, or error) bit for bit; every
 //! step within its slice plus the documented unit bound; pop-ups and other changes mid-query
-//! cancel it and keep the previous route.
+//! cancel it and keep the previous route; roadmap and terrain queries report their phases to
+//! an observer, landmark and Voronoi ones only their end.
 
 use host_tests::rng::Rng;
 use host_tests::scenarios;
 use host_tests::tier::cases;
 use skyroute::geometry::Pose;
-use skyroute::planner::{PlanStep, VoronoiStorage};
+use skyroute::planner::{Phase, PlanStep, VoronoiStorage};
 use skyroute::{Goal, PlanError, Planner, Popup, Query, RouteSummary, Search, Vec2};
 use skyroute_prep::build::{build, BuildOptions};
 use skyroute_prep::scenario::Mode;
@@ -77,21 +78,47 @@ fn stepped<const V: usize, const E: usize, const P: usize, const R: usize>(
     }
 }
 
+/// The phases `plan_observed` reports for `query`, in order, and its result.
+fn phases<const V: usize, const E: usize, const P: usize, const R: usize>(
+    p: &mut Planner<'_, V, E, P, R>,
+    query: &Query,
+    budget: u64,
+) -> (Vec<Phase>, Result<RouteSummary, PlanError>) {
+    let mut seen = Vec::new();
+    let result = p.plan_observed(query, budget, &mut |phase, _| seen.push(phase));
+    (seen, result)
+}
+
 /// Plans every query once with `plan` and once per slice with `start_plan` + `step`, and
-/// checks they agree. Returns the most work one step of
+/// checks they agree; and that the query's observer is told the search and route phases, then
+/// the end, if `reports_phases`, and only the end otherwise. Returns the most work one step of
 /// slice 1 counted (one unit) and the results' kinds seen.
 fn compare<const V: usize, const E: usize, const P: usize, const R: usize>(
     name: &str,
     p: &mut Planner<'_, V, E, P, R>,
     queries: &[(Query, u64)],
+    reports_phases: bool,
 ) -> (u64, usize, usize) {
     let unit = p.step_unit_bound();
     let (mut most_unit, mut ok, mut err, mut largest) = (0u64, 0usize, 0usize, 0u64);
     for (q, budget) in queries {
+        let (seen, observed) = phases(p, q, *budget);
+        if !reports_phases {
+            assert_eq!(seen, [Phase::Done], "{name}: {q:?}");
+        } else if observed.is_ok() {
+            let n = seen.len();
+            assert!(n >= 3, "{name}: {seen:?} for {q:?}");
+            assert_eq!(
+                seen[n - 3..],
+                [Phase::Search, Phase::Route, Phase::Done],
+                "{name}: {q:?}"
+            );
+        }
         let want = {
             let r = p.plan(q, *budget);
             outcome(p, r)
         };
+        assert_eq!(want.0, observed, "{name}: plan_observed differs from plan");
         match want.0 {
             Ok(s) => {
                 ok += 1;
@@ -193,7 +220,7 @@ fn roadmap_slices_match_one_call() {
     p.load(&built.bytes).unwrap();
     let mut rng = Rng(0x511CE);
     let queries = random_queries(&mut *p, &mut rng, cases(40, 400), 300.0);
-    let (most, ok, err) = compare("niendorf-urban", &mut *p, &queries);
+    let (most, ok, err) = compare("niendorf-urban", &mut *p, &queries, true);
     assert!(
         ok > queries.len() / 4 && err > 0,
         "{ok} routes, {err} refusals"
@@ -219,7 +246,7 @@ fn roadmap_slices_with_a_popup_and_exits_match_one_call() {
     for (q, _) in queries.iter_mut().step_by(3) {
         q.start.position = centre + Vec2::new(rng.range_f32(-160.0, 160.0), 0.0);
     }
-    compare("niendorf-urban with a pop-up", &mut *p, &queries);
+    compare("niendorf-urban with a pop-up", &mut *p, &queries, true);
 }
 
 #[test]
@@ -332,7 +359,7 @@ fn voronoi_slices_match_one_call() {
     p.load_voronoi(&bytes, storage).unwrap();
     let mut rng = Rng(0xF00D);
     let queries = random_queries(&mut *p, &mut rng, cases(12, 120), 500.0);
-    let (_, ok, _) = compare("ruz-popups (voronoi)", &mut *p, &queries);
+    let (_, ok, _) = compare("ruz-popups (voronoi)", &mut *p, &queries, false);
     assert!(ok > 0);
 }
 
@@ -369,7 +396,7 @@ fn landmark_slices_match_one_call() {
         };
         queries.push((q, if k % 4 == 3 { budget / 1000 } else { budget }));
     }
-    let (_, ok, _) = compare(name, &mut *p, &queries);
+    let (_, ok, _) = compare(name, &mut *p, &queries, false);
     assert!(ok > 0);
 }
 
@@ -413,7 +440,7 @@ fn terrain_slices_match_one_call() {
             let mut rng = Rng(0x7E44);
             let mut queries = vec![(scenario, u64::MAX)];
             queries.extend(random_queries(&mut *p, &mut rng, cases(5, 30), 1000.0));
-            let (most, ok, _) = compare("medeiros-jacksboro (terrain)", &mut *p, &queries);
+            let (most, ok, _) = compare("medeiros-jacksboro (terrain)", &mut *p, &queries, true);
             assert!(ok > 0 && most > 0);
         })
         .unwrap()
