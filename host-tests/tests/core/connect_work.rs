@@ -92,6 +92,9 @@ impl Checks<'_> {
     }
 }
 
+/// (collision tests, Dubins solves).
+pub type Counts = (u64, u64);
+
 /// A goal link as the search sees it: its vertex, its cost (for a pending link, the lower bound
 /// of its length) and, if pending, what resolving it counts and costs.
 #[derive(Clone, Copy, Debug)]
@@ -99,7 +102,7 @@ pub struct GoalLink {
     pub vertex: u32,
     pub cost: f32,
     /// A pending link's resolution: its (collision tests, Dubins solves) and exact cost.
-    pub resolution: Option<((u64, u64), f32)>,
+    pub resolution: Option<(Counts, f32)>,
 }
 
 /// The (collision tests, Dubins solves) of the start's connection and its links (vertex, cost)
@@ -108,7 +111,7 @@ pub fn start_links(
     p: &TestPlanner<'_>,
     checks: &mut Checks<'_>,
     start: Pose,
-) -> Option<((u64, u64), Vec<(u32, f32)>)> {
+) -> Option<(Counts, Vec<(u32, f32)>)> {
     let mut counted = (checks.obstacles.len() as u64, 0); // the window
     let mut links = Vec::new();
     for v in nearest_vertices(p.network(), start.position, RADIUS) {
@@ -144,7 +147,7 @@ pub fn clear_over_headings(
     from: &Pose,
     goal: Vec2,
     heading: Option<f32>,
-) -> Option<((u64, u64), Option<f32>)> {
+) -> Option<(Counts, Option<f32>)> {
     let headings = if heading.is_some() { 1 } else { HEADINGS };
     let mut counted = (0, headings as u64);
     let mut paths: Vec<(f32, u16, DubinsPath)> = (0..headings)
@@ -173,7 +176,7 @@ pub fn goal_links(
     checks: &mut Checks<'_>,
     goal: Vec2,
     heading: Option<f32>,
-) -> Option<((u64, u64), Vec<GoalLink>)> {
+) -> Option<(Counts, Vec<GoalLink>)> {
     use std::f32::consts::TAU;
     let mut counted = (checks.obstacles.len() as u64, 0); // the window
     let mut links = Vec::new();
