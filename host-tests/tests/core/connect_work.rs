@@ -15,7 +15,7 @@
 //! counting one solve more, until one is clear. A goal with its own heading has no probe: one
 //! solve, one more for the pick, and the check.
 
-use host_tests::world::{free_pose, nearest_vertices, work_at_phases, world};
+use host_tests::world::{free_pose, nearest_vertices, work_at_phases, world, World};
 use host_tests::{cases, Rng};
 use skyroute::geometry::wrap_to_tau;
 use skyroute::network::write::ObstacleSpec;
@@ -90,6 +90,37 @@ impl Checks<'_> {
         }
         Some((tests, true))
     }
+}
+
+/// A planner on `w` with the tests' connect radius and a disc pop-up of `radius` at a random
+/// place clear of the obstacles, the checks that model it, and the pop-up's centre.
+pub fn planner_with_popup<'w>(
+    w: &'w World,
+    rng: &mut Rng,
+    radius: f32,
+) -> (Box<TestPlanner<'w>>, Checks<'w>, Vec2) {
+    let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
+    p.load(&w.bytes).unwrap();
+    p.set_config(PlannerConfig {
+        connect_radius_m: RADIUS,
+        ..PlannerConfig::DEFAULT
+    });
+    assert_eq!(p.config().free_goal_headings, HEADINGS);
+    let centre = free_pose(rng, w, 80.0).position;
+    let popup = Popup::Circle { centre, radius };
+    p.add_popup(popup.clone()).unwrap();
+    let net = *p.network();
+    let checks = Checks {
+        obstacles: &w.obstacles,
+        boxes: (0..net.obstacle_count())
+            .map(|i| net.obstacle(i).unwrap().1)
+            .collect(),
+        popup,
+        clearance: net.clearance(),
+        exact_counted: 0,
+        blocked: 0,
+    };
+    (p, checks, centre)
 }
 
 /// (collision tests, Dubins solves).
@@ -230,30 +261,8 @@ fn each_link_counts_its_box_and_exact_tests_per_primitive_and_its_solves() {
     let (mut exact_counted, mut blocked) = (0, 0);
     for seed in 0..cases(3, 12) as u64 {
         let w = world(90 + seed, 1200.0, 60.0, 40.0, 12);
-        let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
-        p.load(&w.bytes).unwrap();
-        p.set_config(PlannerConfig {
-            connect_radius_m: RADIUS,
-            ..PlannerConfig::DEFAULT
-        });
-        assert_eq!(p.config().free_goal_headings, HEADINGS);
-        let centre = free_pose(&mut rng, &w, 80.0).position;
-        let popup = Popup::Circle {
-            centre,
-            radius: 60.0,
-        };
-        p.add_popup(popup.clone()).unwrap();
+        let (mut p, mut checks, centre) = planner_with_popup(&w, &mut rng, 60.0);
         let net = *p.network();
-        let mut checks = Checks {
-            obstacles: &w.obstacles,
-            boxes: (0..net.obstacle_count())
-                .map(|i| net.obstacle(i).unwrap().1)
-                .collect(),
-            popup,
-            clearance: net.clearance(),
-            exact_counted: 0,
-            blocked: 0,
-        };
         for _ in 0..cases(20, 60) {
             let start: Pose = free_pose(&mut rng, &w, 10.0);
             let goal_pose = free_pose(&mut rng, &w, 10.0);

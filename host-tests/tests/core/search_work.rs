@@ -18,13 +18,13 @@
 //! tests: this test counts what the search asks of it, in the order the search must ask.
 
 use super::connect_work::{
-    clear_over_headings, goal_links, start_links, Checks, GoalLink, TestPlanner, RADIUS,
+    clear_over_headings, goal_links, planner_with_popup, start_links, GoalLink, TestPlanner, RADIUS,
 };
 use host_tests::world::{free_pose, world};
 use host_tests::{cases, Rng};
 use skyroute::planner::heap::{IndexedHeap, ItemState};
-use skyroute::planner::{Phase, PlannerConfig, Popup, Query, Search, Work};
-use skyroute::{Planner, Pose};
+use skyroute::planner::{Phase, Query, Search, Work};
+use skyroute::Pose;
 
 /// The search's work planning `query` on `p`, given its start links (vertex, length), its goal
 /// links, the direct path's length if it is clear, and the number of static obstacles (a goal
@@ -133,29 +133,8 @@ fn the_search_counts_its_heap_levels_relaxations_and_goal_link_resolutions() {
     let (mut checked, mut resolved, mut astar, mut direct_clear) = (0, 0, 0, 0);
     for seed in 0..cases(3, 12) as u64 {
         let w = world(190 + seed, 1200.0, 60.0, 40.0, 12);
-        let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
-        p.load(&w.bytes).unwrap();
-        p.set_config(PlannerConfig {
-            connect_radius_m: RADIUS,
-            ..PlannerConfig::DEFAULT
-        });
-        let centre = free_pose(&mut rng, &w, 80.0).position;
-        let popup = Popup::Circle {
-            centre,
-            radius: 80.0,
-        };
-        p.add_popup(popup.clone()).unwrap();
+        let (mut p, mut checks, centre) = planner_with_popup(&w, &mut rng, 80.0);
         let net = *p.network();
-        let mut checks = Checks {
-            obstacles: &w.obstacles,
-            boxes: (0..net.obstacle_count())
-                .map(|i| net.obstacle(i).unwrap().1)
-                .collect(),
-            popup,
-            clearance: net.clearance(),
-            exact_counted: 0,
-            blocked: 0,
-        };
         for i in 0..cases(20, 60) {
             let start: Pose = free_pose(&mut rng, &w, 10.0);
             // Every third goal near the start, so that the direct path takes part.
