@@ -68,7 +68,9 @@ fn splice_obstacles(image: &[u8], obstacles: &[Vec<u8>], points: &[Vec2]) -> Vec
     out
 }
 
-fn plan_route(p: &mut Big<'_>) -> skyroute::RouteSummary {
+fn plan_route<const V: usize, const E: usize, const P: usize, const R: usize>(
+    p: &mut Planner<'_, V, E, P, R>,
+) -> skyroute::RouteSummary {
     // A short connect radius: no direct start–goal path, the route runs through the network.
     p.set_config(PlannerConfig {
         connect_radius_m: 150.0,
@@ -285,6 +287,22 @@ fn loader_rejects_edge_geometry_that_misses_its_target() {
             );
         }
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// EDGE CASE: a network with exactly as many vertices as the planner holds. The search's states
+// fill its heap and tables to the last slot; the route is the one a larger planner finds.
+// ---------------------------------------------------------------------------------------------
+#[test]
+fn a_network_filling_the_vertex_capacity_exactly_plans_as_a_larger_planner() {
+    let spec = lattice_spec(5, 100.0, 300.0, 30.0);
+    assert_eq!(spec.vertices.len(), 100);
+    let bytes = encode(&spec).unwrap();
+    let mut big: Box<Big<'_>> = boxed(&bytes);
+    let want = plan_route(&mut big);
+    let mut exact: Box<Planner<'_, 100, 16384, 16, 1024>> = boxed(&bytes);
+    assert_eq!(plan_route(&mut exact), want);
+    assert_eq!(exact.route(), big.route());
 }
 
 // ---------------------------------------------------------------------------------------------
