@@ -1,5 +1,5 @@
 //! The roadmap search's work counted exactly, from the [`Phase::Search`] mark to the route's
-//! (or, when no route is found, to the end), by an independent Dijkstra and A* over the same
+//! (or, when no route is found, to the end), and the route writer's, by an independent Dijkstra and A* over the same
 //! network, links and pop-up.
 //!
 //! The search clears the heap (one vertex scan per vertex), queues each start link's vertex at
@@ -12,7 +12,9 @@
 //! obstacle) and then counting as [`super::connect_work::clear_over_headings`] does. Then every
 //! out-edge counts one relaxation, and an edge no pop-up blocks lowers its target's distance
 //! if it is unseen or still queued at a larger one. A* adds the chord to the goal, shrunk by
-//! 1e-4, to every key.
+//! 1e-4, to every key. Writing a route through the network then walks its states back twice
+//! (to count its paths, then to copy them): a vertex scan per network edge and one for the
+//! start, each time; the direct path is written without a walk.
 //!
 //! The heap is the core's [`IndexedHeap`], checked against its own reference in the crate's
 //! tests: this test counts what the search asks of it, in the order the search must ask.
@@ -24,11 +26,12 @@ use host_tests::world::{free_pose, world};
 use host_tests::{cases, Rng};
 use skyroute::planner::heap::{IndexedHeap, ItemState};
 use skyroute::planner::{Phase, Query, Search, Work};
-use skyroute::Pose;
+use skyroute::{PlanError, Pose, RouteSummary};
 
 /// The search's work planning `query` on `p`, given its start links (vertex, length), its goal
 /// links, the direct path's length if it is clear, and the number of static obstacles (a goal
-/// window's read); with the best route's cost, if any.
+/// window's read); with the best route's cost and, if it runs through the network, its
+/// network edges (`None`: the direct path).
 fn search_work(
     p: &TestPlanner<'_>,
     query: &Query,
@@ -36,7 +39,7 @@ fn search_work(
     goals: &[GoalLink],
     direct: Option<f32>,
     obstacles: u64,
-) -> (Work, Option<f32>) {
+) -> (Work, Option<(f32, Option<u32>)>) {
     let net = p.network();
     let n = net.vertex_count() as usize;
     let goal = query.goal.position;
@@ -49,17 +52,19 @@ fn search_work(
     heap.clear(n);
     work.vertex_scans += n as u64;
     let mut dist = vec![f32::INFINITY; n];
+    let mut hops = vec![0u32; n];
     for &(v, cost) in starts {
         if heap.state(v) == ItemState::Unseen || cost < dist[v as usize] {
             dist[v as usize] = cost;
+            hops[v as usize] = 0;
             work.heap_steps += heap.push_or_decrease(v, cost + heuristic(v)) as u64;
         }
     }
-    let mut best = direct;
+    let mut best = direct.map(|d| (d, None));
     let mut window_read = false;
     while let Some((u, key, levels)) = heap.pop() {
         work.heap_steps += levels as u64;
-        if best.is_some_and(|b| key >= b) {
+        if best.is_some_and(|(b, _)| key >= b) {
             break;
         }
         let du = dist[u as usize];
@@ -67,7 +72,7 @@ fn search_work(
         for link in goals.iter().filter(|l| l.vertex == u) {
             let cost = match link.resolution {
                 None => link.cost,
-                Some(_) if best.is_some_and(|b| du + link.cost >= b) => continue,
+                Some(_) if best.is_some_and(|(b, _)| du + link.cost >= b) => continue,
                 Some(((tests, solves), exact)) => {
                     if !window_read {
                         work.collision_tests += obstacles;
@@ -78,8 +83,8 @@ fn search_work(
                     exact
                 }
             };
-            if best.is_none_or(|b| du + cost < b) {
-                best = Some(du + cost);
+            if best.is_none_or(|(b, _)| du + cost < b) {
+                best = Some((du + cost, Some(hops[u as usize])));
             }
         }
         let edges = net.out_edges(u);
@@ -92,6 +97,7 @@ fn search_work(
                 || (state == ItemState::Queued && candidate < dist[t as usize])
             {
                 dist[t as usize] = candidate;
+                hops[t as usize] = hops[u as usize] + 1;
                 work.heap_steps += heap.push_or_decrease(t, candidate + heuristic(t)) as u64;
             }
         }
@@ -99,18 +105,29 @@ fn search_work(
     (work, best)
 }
 
-/// The work counted from `from` to the route's mark (the end's, if there is none), planning
-/// `query` with `p`, and the route's length if one was found.
-fn measured_search(p: &mut TestPlanner<'_>, query: &Query) -> (Work, Work, Option<f32>) {
+/// What planning a query counted, phase by phase, and its result.
+struct Measured {
+    /// From the direct path's mark to the search's.
+    direct: Work,
+    /// From the search's mark to the route's (to the end's when there is no route).
+    search: Work,
+    /// From the route's mark to the end's, if there is a route.
+    route: Option<Work>,
+    result: Result<RouteSummary, PlanError>,
+}
+
+/// Plans `query` with `p`, reading the work at each phase mark.
+fn measured(p: &mut TestPlanner<'_>, query: &Query) -> Measured {
     let mut marks = Vec::new();
     let result = p.plan_observed(query, u64::MAX, &mut |phase, work| {
         marks.push((phase, *work))
     });
     let at = |phase: Phase| marks.iter().find(|m| m.0 == phase).map(|m| m.1);
-    let (Some(direct), Some(search)) = (at(Phase::ConnectDirect), at(Phase::Search)) else {
+    let (Some(direct), Some(search), Some(done)) =
+        (at(Phase::ConnectDirect), at(Phase::Search), at(Phase::Done))
+    else {
         panic!("{query:?}: phases {marks:?}, {result:?}");
     };
-    let end = at(Phase::Route).or(at(Phase::Done)).unwrap();
     let minus = |a: Work, b: Work| Work {
         vertex_scans: a.vertex_scans - b.vertex_scans,
         dubins_solves: a.dubins_solves - b.dubins_solves,
@@ -120,17 +137,19 @@ fn measured_search(p: &mut TestPlanner<'_>, query: &Query) -> (Work, Work, Optio
         cells_visited: a.cells_visited - b.cells_visited,
         threat_steps: a.threat_steps - b.threat_steps,
     };
-    (
-        minus(search, direct),
-        minus(end, search),
-        result.ok().map(|r| r.length),
-    )
+    let route = at(Phase::Route);
+    Measured {
+        direct: minus(search, direct),
+        search: minus(route.unwrap_or(done), search),
+        route: route.map(|r| minus(done, r)),
+        result,
+    }
 }
 
 #[test]
-fn the_search_counts_its_heap_levels_relaxations_and_goal_link_resolutions() {
+fn the_search_and_the_route_walks_count_their_work_exactly() {
     let mut rng = Rng(0x5EA4);
-    let (mut checked, mut resolved, mut astar, mut direct_clear) = (0, 0, 0, 0);
+    let (mut checked, mut resolved, mut astar, mut direct_clear, mut via_network) = (0, 0, 0, 0, 0);
     for seed in 0..cases(3, 12) as u64 {
         let w = world(190 + seed, 1200.0, 60.0, 40.0, 12);
         let (mut p, mut checks, centre) = planner_with_popup(&w, &mut rng, 80.0);
@@ -176,20 +195,30 @@ fn the_search_counts_its_heap_levels_relaxations_and_goal_link_resolutions() {
             let obstacles = w.obstacles.len() as u64;
             let (expected, best) =
                 search_work(&p, &query, &starts, &goals, direct_length, obstacles);
-            let (direct_work, measured, length) = measured_search(&mut p, &query);
+            let m = measured(&mut p, &query);
             let direct_counts = direct.map_or((0, 0), |(counts, _)| counts);
             assert_eq!(
-                (
-                    (direct_work.collision_tests, direct_work.dubins_solves),
-                    measured
-                ),
+                ((m.direct.collision_tests, m.direct.dubins_solves), m.search),
                 (direct_counts, expected),
                 "{query:?}"
             );
-            // The route found is the model's best, to rounding.
-            match (length, best) {
-                (Some(l), Some(b)) => assert!((l - b).abs() <= 1e-4 * b, "{l} against {b}"),
-                (l, b) => assert_eq!(l.is_some(), b.is_some(), "{query:?}: {l:?}, {b:?}"),
+            // The route is the model's best, to rounding; writing it walks its states back
+            // twice (once to count its paths, once to copy them), a vertex scan per network
+            // edge and one for the start; the direct path is written without a walk.
+            match (&m.result, best) {
+                (Ok(summary), Some((cost, edges))) => {
+                    let l = summary.length;
+                    assert!((l - cost).abs() <= 1e-4 * cost, "{l} against {cost}");
+                    assert_eq!(summary.network_edges, edges.unwrap_or(0), "{query:?}");
+                    let walks = Work {
+                        vertex_scans: edges.map_or(0, |e| 2 * (e as u64 + 1)),
+                        ..Work::default()
+                    };
+                    assert_eq!(m.route, Some(walks), "{query:?}");
+                    via_network += edges.is_some() as usize;
+                }
+                (Err(PlanError::NoRoute), None) => assert_eq!(m.route, None),
+                (result, best) => panic!("{query:?}: {result:?}, the model's best {best:?}"),
             }
             checked += 1;
             resolved += (expected.dubins_solves > 0) as u32;
@@ -197,7 +226,12 @@ fn the_search_counts_its_heap_levels_relaxations_and_goal_link_resolutions() {
         }
     }
     assert!(
-        checked >= cases(3, 12) * 12 && resolved >= 5 && astar >= 5 && direct_clear >= 3,
-        "{checked} queries, {resolved} resolving a goal link, {astar} A*, {direct_clear} direct"
+        checked >= cases(3, 12) * 12
+            && resolved >= 5
+            && astar >= 5
+            && direct_clear >= 3
+            && via_network >= cases(3, 12) * 8,
+        "{checked} queries, {resolved} resolving a goal link, {astar} A*, {direct_clear} direct, \
+         {via_network} through the network"
     );
 }
