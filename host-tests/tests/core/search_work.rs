@@ -1,6 +1,6 @@
 //! The roadmap search's work counted exactly, from the [`Phase::Search`] mark to the route's
-//! (or, when no route is found, to the end), and the route writer's, by an independent Dijkstra and A* over the same
-//! network, links and pop-up.
+//! (or, when no route is found, to the end), and the route writer's, by an independent
+//! Dijkstra and A* over the same network, links and pop-up.
 //!
 //! The search clears the heap (one vertex scan per vertex), queues each start link's vertex at
 //! the link's length unless it is queued cheaper, then pops the cheapest vertex (each pop and
