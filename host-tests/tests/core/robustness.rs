@@ -306,6 +306,40 @@ fn a_network_filling_the_vertex_capacity_exactly_plans_as_a_larger_planner() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// EDGE CASE: a route whose paths fit the route capacity but whose primitives do not is refused
+// as too long, and the previous route is kept.
+// ---------------------------------------------------------------------------------------------
+#[test]
+fn a_route_with_more_primitives_than_the_capacity_is_refused() {
+    let bytes = encode(&lattice_spec(5, 100.0, 300.0, 30.0)).unwrap();
+    let mut big: Box<Big<'_>> = boxed(&bytes);
+    let want = plan_route(&mut big);
+    let (paths, primitives) = (big.route_paths().len(), want.primitives as usize);
+    assert!(
+        paths <= 8 && primitives > 8,
+        "{paths} paths, {primitives} primitives"
+    );
+    let mut small: Box<Planner<'_, 1024, 16384, 16, 8>> = boxed(&bytes);
+    small.set_config(PlannerConfig {
+        connect_radius_m: 150.0,
+        ..PlannerConfig::DEFAULT
+    });
+    let q = Query {
+        start: Pose::new(300.0, 300.0, 0.0),
+        goal: Goal {
+            position: Vec2::new(700.0, 700.0),
+            heading: Some(FRAC_PI_2),
+        },
+        search: Search::Dijkstra,
+    };
+    assert!(matches!(
+        small.plan(&q, u64::MAX),
+        Err(PlanError::RouteTooLong { capacity: 8, .. })
+    ));
+    assert!(small.route().is_empty());
+}
+
+// ---------------------------------------------------------------------------------------------
 // EDGE CASE (passes): the degenerate capacities. `Planner<0,0,0,0>` and `<1,1,1,1>` must load a
 // network that fits, refuse one that does not, and never panic on plan / pop-ups / smoothing.
 // ---------------------------------------------------------------------------------------------
