@@ -68,9 +68,17 @@ fn splice_obstacles(image: &[u8], obstacles: &[Vec<u8>], points: &[Vec2]) -> Vec
     out
 }
 
+/// [`try_plan_route`], which must find a route.
 fn plan_route<const V: usize, const E: usize, const P: usize, const R: usize>(
     p: &mut Planner<'_, V, E, P, R>,
 ) -> skyroute::RouteSummary {
+    try_plan_route(p).expect("lattice route")
+}
+
+/// Plans across the lattice of `lattice_spec(5, 100.0, 300.0, 30.0)`, corner to corner.
+fn try_plan_route<const V: usize, const E: usize, const P: usize, const R: usize>(
+    p: &mut Planner<'_, V, E, P, R>,
+) -> Result<skyroute::RouteSummary, PlanError> {
     // A short connect radius: no direct start–goal path, the route runs through the network.
     p.set_config(PlannerConfig {
         connect_radius_m: 150.0,
@@ -84,7 +92,7 @@ fn plan_route<const V: usize, const E: usize, const P: usize, const R: usize>(
         },
         search: Search::Dijkstra,
     };
-    p.plan(&q, u64::MAX).expect("lattice route")
+    p.plan(&q, u64::MAX)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -320,20 +328,8 @@ fn a_route_with_more_primitives_than_the_capacity_is_refused() {
         "{paths} paths, {primitives} primitives"
     );
     let mut small: Box<Planner<'_, 1024, 16384, 16, 8>> = boxed(&bytes);
-    small.set_config(PlannerConfig {
-        connect_radius_m: 150.0,
-        ..PlannerConfig::DEFAULT
-    });
-    let q = Query {
-        start: Pose::new(300.0, 300.0, 0.0),
-        goal: Goal {
-            position: Vec2::new(700.0, 700.0),
-            heading: Some(FRAC_PI_2),
-        },
-        search: Search::Dijkstra,
-    };
     assert!(matches!(
-        small.plan(&q, u64::MAX),
+        try_plan_route(&mut small),
         Err(PlanError::RouteTooLong { capacity: 8, .. })
     ));
     assert!(small.route().is_empty());
