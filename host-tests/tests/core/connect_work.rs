@@ -162,7 +162,7 @@ pub fn start_links(
     Some((counted, links))
 }
 
-/// The goal's pose at arrival heading `k` of `headings`, or at its own `heading`.
+/// The goal's pose at free arrival heading `k` of [`HEADINGS`], or at its own `heading`.
 fn goal_pose(goal: Vec2, heading: Option<f32>, k: u16) -> Pose {
     Pose {
         position: goal,
