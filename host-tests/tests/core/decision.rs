@@ -258,3 +258,169 @@ fn an_unmeetable_limit_is_named_even_when_the_other_is_loose() {
         other => panic!("{other:?}"),
     }
 }
+
+/// The nodes the branch and bound visits, by the rule the module documents, written as a
+/// recursion: each alternative tried after a prefix is one node; it is cut when its risk plus
+/// the least risk of every later pop-up is not below the best complete choice so far, or when
+/// its time (fuel) plus the least time (fuel) of every later pop-up exceeds `n·T_max`
+/// (`n·F_max`). Exact for figures in eighths (every sum below is exact in f64 and f32).
+fn reference_nodes(alts: &[Vec<Alternative>], limits: &DecisionLimits) -> u64 {
+    let n = alts.len();
+    // least[d]: the least risk, time and fuel summed over pop-ups d.. (0 past the end).
+    let mut least = vec![(0.0f64, 0.0f64, 0.0f64); n + 1];
+    for d in (0..n).rev() {
+        let min = |f: fn(&Alternative) -> f32| {
+            alts[d]
+                .iter()
+                .map(|a| f(a) as f64)
+                .fold(f64::INFINITY, f64::min)
+        };
+        least[d] = (
+            least[d + 1].0 + min(|a| a.risk),
+            least[d + 1].1 + min(|a| a.time),
+            least[d + 1].2 + min(|a| a.fuel),
+        );
+    }
+    let budget = (
+        n as f64 * limits.time_max as f64,
+        n as f64 * limits.fuel_max as f64,
+    );
+    struct Walk<'a> {
+        alts: &'a [Vec<Alternative>],
+        least: Vec<(f64, f64, f64)>,
+        budget: (f64, f64),
+        best: Option<f64>,
+        nodes: u64,
+    }
+    fn visit(w: &mut Walk, d: usize, (risk, time, fuel): (f64, f64, f64)) {
+        if d == w.alts.len() {
+            if w.best.is_none_or(|b| risk < b) {
+                w.best = Some(risk);
+            }
+            return;
+        }
+        for a in &w.alts[d] {
+            w.nodes += 1;
+            let sums = (
+                risk + a.risk as f64,
+                time + a.time as f64,
+                fuel + a.fuel as f64,
+            );
+            let after = w.least[d + 1];
+            let cut = w.best.is_some_and(|b| sums.0 + after.0 >= b)
+                || sums.1 + after.1 > w.budget.0
+                || sums.2 + after.2 > w.budget.1;
+            if !cut {
+                visit(w, d + 1, sums);
+            }
+        }
+    }
+    let mut walk = Walk {
+        alts,
+        least,
+        budget,
+        best: None,
+        nodes: 0,
+    };
+    visit(&mut walk, 0, (0.0, 0.0, 0.0));
+    walk.nodes
+}
+
+/// Decides `alts` with limits that every choice of time and fuel 0 meets.
+fn decide_loose(alts: &[Vec<Alternative>]) -> skyroute::planner::decision::Decision {
+    let slices: Vec<&[Alternative]> = alts.iter().map(|a| a.as_slice()).collect();
+    let limits = DecisionLimits {
+        time_max: 0.0,
+        fuel_max: 0.0,
+    };
+    decide(&slices, &limits).unwrap()
+}
+
+#[test]
+fn the_work_is_the_documented_node_count_and_ties_keep_the_first_choice() {
+    let mut rng = Rng(35);
+    let eighth = |rng: &mut Rng| rng.below(9) as f32 / 8.0;
+    let mut cut_short = 0;
+    for case in 0..host_tests::cases(2000, 20000) {
+        let n = rng.below(MAX_DECISION_POPUPS as u64 + 1) as usize;
+        let alts: Vec<Vec<Alternative>> = (0..n)
+            .map(|_| {
+                (0..1 + rng.below(MAX_ALTERNATIVES as u64) as usize)
+                    .map(|_| Alternative {
+                        risk: eighth(&mut rng),
+                        time: eighth(&mut rng),
+                        fuel: eighth(&mut rng),
+                    })
+                    .collect()
+            })
+            .collect();
+        let limits = DecisionLimits {
+            time_max: eighth(&mut rng),
+            fuel_max: eighth(&mut rng),
+        };
+        let slices: Vec<&[Alternative]> = alts.iter().map(|a| a.as_slice()).collect();
+        let Ok(d) = decide(&slices, &limits) else {
+            continue;
+        };
+        // The first optimum in lexicographic order of the alternatives, by brute force.
+        let first = combinations(&alts)
+            .into_iter()
+            .filter(|(_, t, f, _)| *t <= limits.time_max as f64 && *f <= limits.fuel_max as f64)
+            .fold(
+                None,
+                |best: Option<(f64, Vec<u8>)>, (r, _, _, c)| match best {
+                    Some((b, _)) if b <= r => best,
+                    _ => Some((r, c)),
+                },
+            )
+            .unwrap();
+        assert_eq!(d.choice[..], first.1[..], "case {case}");
+        let nodes = reference_nodes(&alts, &limits);
+        assert_eq!(d.work, nodes, "case {case}");
+        let counts: Vec<usize> = alts.iter().map(Vec::len).collect();
+        if nodes < decision_work_bound(&counts) {
+            cut_short += 1;
+        }
+    }
+    assert!(cut_short > 100, "only {cut_short} instances were cut short");
+
+    // Each choice better than every one before it (risk: the choice's mixed-radix rank from
+    // the end, in units of 2⁻¹⁶): nothing is cut, every prefix is a node, the bound is met.
+    let counts = [4usize, 3, 4, 2, 4, 4, 3, 4];
+    let weight = |i: usize| counts[i + 1..].iter().product::<usize>() as f32;
+    let descending: Vec<Vec<Alternative>> = (0..counts.len())
+        .map(|i| {
+            (0..counts[i])
+                .map(|k| Alternative {
+                    risk: (counts[i] - 1 - k) as f32 * weight(i) / 65536.0,
+                    ..Alternative::default()
+                })
+                .collect()
+        })
+        .collect();
+    let d = decide_loose(&descending);
+    assert_eq!(d.work, decision_work_bound(&counts));
+    assert!(
+        d.choice
+            .iter()
+            .zip(counts)
+            .all(|(&k, a)| k as usize == a - 1)
+            && d.risk == 0.0
+    );
+
+    // Equal risks: the first choice is complete at once and ties with every other, so each
+    // later alternative is one node, cut: Σ a_i nodes, and the choice is all first alternatives.
+    let equal: Vec<Vec<Alternative>> = counts
+        .iter()
+        .map(|&a| {
+            let alt = Alternative {
+                risk: 0.25,
+                ..Alternative::default()
+            };
+            vec![alt; a]
+        })
+        .collect();
+    let d = decide_loose(&equal);
+    assert_eq!(d.work, counts.iter().sum::<usize>() as u64);
+    assert!(d.choice.iter().all(|&k| k == 0) && d.risk == 2.0);
+}
