@@ -1,7 +1,9 @@
 //! The pop-up decision (`skyroute::planner::decision`, Ruz et al. eqs 33–36) against a brute
 //! force over every combination: the same least risk on random instances, infeasible exactly
 //! when no combination meets both limits (with the tightest limit named as the brute force
-//! finds it), the work within its bound, bad input refused by name.
+//! finds it), the work within its bound and equal to the node count of the documented pruning
+//! rule (a recursion written here), ties settled by the first choice in lexicographic order,
+//! bad input refused by name.
 
 use host_tests::rng::Rng;
 use skyroute::planner::decision::{
