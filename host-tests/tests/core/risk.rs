@@ -6,10 +6,10 @@
 
 use skyroute::geometry::{Arc, Segment};
 use skyroute::planner::risk::{
-    detection_probability, projected_area, route_figures, time_factor, Airframe, AlternativeRisk,
-    RadarModel, RiskParams,
+    alternative, detection_at, detection_probability, projected_area, route_figures, time_factor,
+    Airframe, AlternativeRisk, RadarModel, RiskParams, RouteFigures,
 };
-use skyroute::{Primitive, Vec2};
+use skyroute::{Pose, Primitive, Vec2};
 
 fn params() -> RiskParams {
     RiskParams {
@@ -271,4 +271,146 @@ fn bad_parameters_and_empty_routes_never_panic() {
         survival_popup: 0.5,
     };
     assert!((0.0..=1.0).contains(&ar.risk(f32::NAN)));
+}
+
+#[test]
+fn every_bad_parameter_is_named_by_its_field() {
+    type Field = fn(&mut RiskParams) -> &mut f32;
+    let positive: [(&str, Field); 10] = [
+        ("radar.range_max_m", |p| &mut p.radar.range_max_m),
+        ("radar.half_range_m", |p| &mut p.radar.half_range_m),
+        ("radar.c1", |p| &mut p.radar.c1),
+        ("airframe.half_length_m", |p| &mut p.airframe.half_length_m),
+        ("airframe.half_span_m", |p| &mut p.airframe.half_span_m),
+        ("airframe.half_height_m", |p| &mut p.airframe.half_height_m),
+        ("airframe.k", |p| &mut p.airframe.k),
+        ("dt_s", |p| &mut p.dt_s),
+        ("speed_mps", |p| &mut p.speed_mps),
+        ("max_turn_rate", |p| &mut p.max_turn_rate),
+    ];
+    assert_eq!(params().validate(), Ok(()));
+    let refused = |field: &str, set: Field, values: &[f32]| {
+        for &v in values {
+            let mut p = params();
+            *set(&mut p) = v;
+            assert_eq!(
+                p.validate().map_err(|e| e.field),
+                Err(field),
+                "{field} = {v}"
+            );
+            // Parameters that do not validate give the figures of no route.
+            let line = Primitive::Line(Segment {
+                start: Vec2::new(0.0, 0.0),
+                end: Vec2::new(1_000.0, 0.0),
+            });
+            let f = route_figures(&p, &[line], &[Vec2::new(0.0, 0.0)], None);
+            assert_eq!((f.steps, f.survival_known, f.fuel), (0, 1.0, 0.0));
+        }
+    };
+    for (field, set) in positive {
+        refused(field, set, &[0.0, -1.0, f32::NAN, f32::INFINITY]);
+        let mut p = params();
+        *set(&mut p) = 1e-3;
+        assert_eq!(p.validate(), Ok(()), "{field} = 1e-3");
+    }
+    refused(
+        "radar.altitude_m",
+        |p| &mut p.radar.altitude_m,
+        &[-1e-3, f32::NAN, f32::INFINITY],
+    );
+    refused(
+        "kill_per_step",
+        |p| &mut p.kill_per_step,
+        &[-1e-3, 1.001, f32::NAN],
+    );
+    for (altitude, kill) in [(0.0, 0.0), (0.0, 1.0)] {
+        let mut p = params();
+        p.radar.altitude_m = altitude;
+        p.kill_per_step = kill;
+        assert_eq!(p.validate(), Ok(()), "altitude {altitude}, p_k {kill}");
+    }
+    assert_eq!(params().step_m(), 50.0);
+}
+
+#[test]
+fn the_edges_of_the_model_have_their_documented_figures() {
+    let p = params();
+    // Straight above the radar: the range is the altitude, the line of sight the body's −z,
+    // so the aircraft shows its plan view, π·a·b.
+    let above = Pose {
+        position: Vec2::new(300.0, -200.0),
+        heading: 0.7,
+    };
+    let sigma = 0.1 * std::f32::consts::PI * 1.5 * 2.5;
+    let want = detection_probability(&p.radar, sigma, 1_000.0);
+    let got = detection_at(&p, &above, above.position);
+    assert!(
+        (got - want).abs() < 1e-6 && got > 0.0,
+        "{got} against {want}"
+    );
+    // On the radar in the plane: detected surely.
+    let mut planar = p;
+    planar.radar.altitude_m = 0.0;
+    assert_eq!(detection_at(&planar, &above, above.position), 1.0);
+
+    // The appearance probability: clamped to [0, 1], NaN taken as 1; a NaN survival is risk 1.
+    let ar = AlternativeRisk {
+        survival_known: 0.9,
+        survival_popup: 0.5,
+    };
+    assert!((ar.risk(0.0) - 0.1).abs() < 1e-6 && (ar.risk(1.0) - 0.55).abs() < 1e-6);
+    assert_eq!(ar.risk(-3.0), ar.risk(0.0));
+    assert_eq!(ar.risk(7.0), ar.risk(1.0));
+    assert_eq!(ar.risk(f32::NAN), ar.risk(1.0));
+    let nan = AlternativeRisk {
+        survival_known: f32::NAN,
+        survival_popup: 0.5,
+    };
+    assert_eq!(nan.risk(0.3), 1.0);
+    let above_one = AlternativeRisk {
+        survival_known: 1.5,
+        survival_popup: 1.0,
+    };
+    assert_eq!(above_one.risk(0.5), 0.0);
+
+    // The decision's figures of an alternative.
+    let figures = RouteFigures {
+        steps: 80,
+        survival_known: 0.9,
+        survival_popup: 0.5,
+        fuel: 0.25,
+    };
+    assert_eq!(figures.time_s(&p), 80.0);
+    let a = alternative(&figures, 60, 1.0);
+    assert!(
+        (a.risk - 0.55).abs() < 1e-6 && a.time == 0.25 && a.fuel == 0.25,
+        "{a:?}"
+    );
+    assert_eq!(time_factor(60, 0), 0.0);
+
+    // Without a pop-up its survival is 1; a route of one step has no turn effort; a route of
+    // no length has no steps.
+    let short = Primitive::Arc(Arc {
+        centre: Vec2::new(0.0, 100.0),
+        radius: 100.0,
+        start_angle: -std::f32::consts::FRAC_PI_2,
+        sweep: 0.4,
+    });
+    let f = route_figures(&p, &[short], &[Vec2::new(0.0, 0.0)], None);
+    assert_eq!((f.steps, f.survival_popup, f.fuel), (1, 1.0, 0.0));
+    assert!(f.survival_known < 1.0, "the radar below sees the step");
+    let point = Primitive::Line(Segment {
+        start: Vec2::new(5.0, 5.0),
+        end: Vec2::new(5.0, 5.0),
+    });
+    let f = route_figures(
+        &p,
+        &[point],
+        &[Vec2::new(0.0, 0.0)],
+        Some(Vec2::new(0.0, 0.0)),
+    );
+    assert_eq!(
+        (f.steps, f.survival_known, f.survival_popup, f.fuel),
+        (0, 1.0, 1.0, 0.0)
+    );
 }
