@@ -79,6 +79,15 @@ fn plan_route<const V: usize, const E: usize, const P: usize, const R: usize>(
 fn try_plan_route<const V: usize, const E: usize, const P: usize, const R: usize>(
     p: &mut Planner<'_, V, E, P, R>,
 ) -> Result<skyroute::RouteSummary, PlanError> {
+    try_plan_lattice(p, Pose::new(700.0, 700.0, FRAC_PI_2))
+}
+
+/// Plans on the lattice of `lattice_spec(5, 100.0, 300.0, 30.0)` from its corner (300, 300),
+/// heading east, to `goal`.
+fn try_plan_lattice<const V: usize, const E: usize, const P: usize, const R: usize>(
+    p: &mut Planner<'_, V, E, P, R>,
+    goal: Pose,
+) -> Result<skyroute::RouteSummary, PlanError> {
     // A short connect radius: no direct start–goal path, the route runs through the network.
     p.set_config(PlannerConfig {
         connect_radius_m: 150.0,
@@ -87,8 +96,8 @@ fn try_plan_route<const V: usize, const E: usize, const P: usize, const R: usize
     let q = Query {
         start: Pose::new(300.0, 300.0, 0.0),
         goal: Goal {
-            position: Vec2::new(700.0, 700.0),
-            heading: Some(FRAC_PI_2),
+            position: goal.position,
+            heading: Some(goal.heading),
         },
         search: Search::Dijkstra,
     };
@@ -333,6 +342,31 @@ fn a_route_with_more_primitives_than_the_capacity_is_refused() {
         Err(PlanError::RouteTooLong { capacity: 8, .. })
     ));
     assert!(small.route().is_empty());
+}
+
+#[test]
+fn a_route_of_as_many_paths_and_primitives_as_the_capacity_is_accepted() {
+    // Along the lattice's first row, heading east: straight paths of one primitive each.
+    let bytes = encode(&lattice_spec(5, 100.0, 300.0, 30.0)).unwrap();
+    let east = Pose::new(700.0, 300.0, 0.0);
+    let mut big: Box<Big<'_>> = boxed(&bytes);
+    let want = try_plan_lattice(&mut big, east).expect("the row's route");
+    let paths = big.route_paths().len();
+    assert_eq!(
+        (paths, want.primitives),
+        (4, 4),
+        "the row's route: {:?}",
+        big.route_paths()
+    );
+    let mut exact: Box<Planner<'_, 1024, 16384, 16, 4>> = boxed(&bytes);
+    let got = try_plan_lattice(&mut exact, east).expect("a route that fits exactly");
+    assert_eq!((got.length, got.primitives), (want.length, want.primitives));
+    assert_eq!(exact.route_paths(), big.route_paths());
+    let mut short: Box<Planner<'_, 1024, 16384, 16, 3>> = boxed(&bytes);
+    assert!(matches!(
+        try_plan_lattice(&mut short, east),
+        Err(PlanError::RouteTooLong { capacity: 3, .. })
+    ));
 }
 
 // ---------------------------------------------------------------------------------------------
