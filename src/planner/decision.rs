@@ -228,8 +228,8 @@ impl Search<'_> {
 /// risk whose mean time and fuel factors are within `limits`. Exact (module documentation).
 /// Work: at most [`decision_work_bound`] nodes; an infeasible instance takes two more
 /// searches of as many to name its tightest limit (three in all). No recursion: an explicit
-/// stack of at most [`MAX_DECISION_POPUPS`] + 1 frames. No pop-ups: the empty choice, whatever the limits (a mean over no
-/// pop-ups constrains nothing).
+/// stack of at most [`MAX_DECISION_POPUPS`] + 1 frames. No pop-ups: the empty choice,
+/// whatever the limits (a mean over no pop-ups constrains nothing).
 pub fn decide(
     alternatives: &[&[Alternative]],
     limits: &DecisionLimits,
@@ -308,8 +308,8 @@ pub fn decide(
 /// Names the tightest limit of an infeasible instance: the least mean time among choices
 /// meeting the fuel limit, and the least mean fuel among those meeting the time limit; the
 /// tightest is the limit whose relaxation alone makes the instance feasible, the one that needs
-/// the larger relative relaxation when both would ([`DecisionError::Infeasible`]). Work: two more searches
-/// of at most [`decision_work_bound`] nodes each.
+/// the larger relative relaxation when both would ([`DecisionError::Infeasible`]). Work: two
+/// more searches of at most [`decision_work_bound`] nodes each.
 fn infeasible(search: &mut Search<'_>, limits: &DecisionLimits) -> DecisionError {
     let n = search.alts.len().max(1) as f32;
     let mut least = |objective: usize, use_time: bool, use_fuel: bool| {
