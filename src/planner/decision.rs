@@ -123,6 +123,14 @@ pub fn decision_work_bound(alternatives: &[usize]) -> u64 {
     total
 }
 
+/// The budget on the sum of `n` factors whose mean is limited to `max`: `n·max·(1 + 10⁻⁶) +
+/// 10⁻⁶`, computed in f32 in that order. A choice whose sum is at most the budget meets the
+/// limit: the small tolerance lets a choice exactly at a limit meet it in spite of the rounding
+/// of the sums.
+pub fn decision_budget(n: usize, max: f32) -> f32 {
+    n as f32 * max * (1.0 + 1e-6) + 1e-6
+}
+
 /// The search's state: the best complete choice so far and the budgets.
 struct Search<'a> {
     alts: &'a [&'a [Alternative]],
@@ -225,7 +233,8 @@ impl Search<'_> {
 }
 
 /// Picks one alternative per pop-up (`alternatives[u]` are pop-up `u`'s) with the least total
-/// risk whose mean time and fuel factors are within `limits`. Exact (module documentation).
+/// risk whose mean time and fuel factors are within `limits` (the sums of the factors within
+/// [`decision_budget`]). Exact (module documentation).
 /// Work: at most [`decision_work_bound`] nodes; an infeasible instance takes two more
 /// searches of as many to name its tightest limit (three in all). No recursion: an explicit
 /// stack of at most [`MAX_DECISION_POPUPS`] + 1 frames. No pop-ups: the empty choice,
@@ -250,10 +259,10 @@ pub fn decide(
                 count: alts.len(),
             });
         }
-        let finite = alts
+        let valid = alts
             .iter()
-            .all(|a| a.time.is_finite() && a.fuel.is_finite() && (0.0..=1.0).contains(&a.risk));
-        if !finite {
+            .all(|a| factor(a.time) && factor(a.fuel) && (0.0..=1.0).contains(&a.risk));
+        if !valid {
             return Err(DecisionError::BadNumber { popup: u });
         }
         let least = |f: fn(&Alternative) -> f32| alts.iter().map(f).fold(f32::INFINITY, f32::min);
@@ -269,10 +278,8 @@ pub fn decide(
     let mut search = Search {
         alts: alternatives,
         rest,
-        // A small tolerance on the budgets: a choice exactly at a limit meets it in spite of
-        // the rounding of the sums.
-        time_budget: n as f32 * limits.time_max * (1.0 + 1e-6) + 1e-6,
-        fuel_budget: n as f32 * limits.fuel_max * (1.0 + 1e-6) + 1e-6,
+        time_budget: decision_budget(n, limits.time_max),
+        fuel_budget: decision_budget(n, limits.fuel_max),
         use_time: true,
         use_fuel: true,
         objective: 0,

@@ -7,8 +7,8 @@
 
 use host_tests::rng::Rng;
 use skyroute::planner::decision::{
-    decide, decision_work_bound, Alternative, DecisionError, DecisionLimits, Limit,
-    MAX_ALTERNATIVES, MAX_DECISION_POPUPS,
+    decide, decision_budget, decision_work_bound, Alternative, DecisionError, DecisionLimits,
+    Limit, MAX_ALTERNATIVES, MAX_DECISION_POPUPS, MAX_FACTOR,
 };
 
 /// Every combination: `(risk, mean time, mean fuel, choice)`, in lexicographic order.
@@ -46,9 +46,12 @@ fn random_instance(rng: &mut Rng) -> (Vec<Vec<Alternative>>, DecisionLimits) {
                 .collect()
         })
         .collect();
+    // Limits from −0.3 to 1: a negative limit (an alternative faster than the nominal route
+    // has a negative time factor) tests the tightest limit's relative relaxation across signs.
+    let limit = |rng: &mut Rng| (rng.below(14) as f32 - 3.0) / 10.0;
     let limits = DecisionLimits {
-        time_max: q(rng),
-        fuel_max: q(rng),
+        time_max: limit(rng),
+        fuel_max: limit(rng),
     };
     (alts, limits)
 }
@@ -62,8 +65,11 @@ fn the_decision_is_the_brute_force_optimum() {
         let slices: Vec<&[Alternative]> = alts.iter().map(|a| a.as_slice()).collect();
         let all = combinations(&alts);
         let tol = 1e-5;
-        let meets =
-            |t: f64, f: f64| t <= limits.time_max as f64 + tol && f <= limits.fuel_max as f64 + tol;
+        // No pop-ups: the empty choice, whatever the limits (a mean over none constrains nothing).
+        let meets = |t: f64, f: f64| {
+            alts.is_empty()
+                || (t <= limits.time_max as f64 + tol && f <= limits.fuel_max as f64 + tol)
+        };
         let best = all
             .iter()
             .filter(|(_, t, f, _)| meets(*t, *f))
@@ -82,6 +88,13 @@ fn the_decision_is_the_brute_force_optimum() {
                 assert!(
                     (r - d.risk as f64).abs() <= 1e-5 && meets(*t, *f),
                     "case {case}"
+                );
+                assert!(
+                    (d.mean_time as f64 - t).abs() <= 1e-5
+                        && (d.mean_fuel as f64 - f).abs() <= 1e-5,
+                    "case {case}: means {} and {}, the choice's {t} and {f}",
+                    d.mean_time,
+                    d.mean_fuel
                 );
                 assert!(d.work <= decision_work_bound(&counts), "case {case}");
             }
@@ -231,6 +244,38 @@ fn bad_input_is_refused_by_name() {
     );
     let none = decide(&[], &ok).unwrap();
     assert!(none.choice.is_empty() && none.risk == 0.0);
+    assert_eq!((none.mean_time, none.mean_fuel), (0.0, 0.0));
+    // Beyond MAX_FACTOR in magnitude, finite or not, a limit or a factor is refused.
+    let over = MAX_FACTOR * 2.0;
+    for (time_max, fuel_max) in [(over, 0.5), (0.5, -over)] {
+        let limits = DecisionLimits { time_max, fuel_max };
+        assert_eq!(
+            decide(&[std::slice::from_ref(&a)], &limits),
+            Err(DecisionError::BadNumber { popup: usize::MAX }),
+            "{limits:?}"
+        );
+    }
+    for bad in [
+        Alternative { time: over, ..a },
+        Alternative { fuel: -over, ..a },
+    ] {
+        let pair = [a, bad];
+        assert_eq!(
+            decide(&[std::slice::from_ref(&a), &pair], &ok),
+            Err(DecisionError::BadNumber { popup: 1 }),
+            "{bad:?}"
+        );
+    }
+    let edge = Alternative {
+        time: MAX_FACTOR,
+        fuel: -MAX_FACTOR,
+        ..a
+    };
+    let limits = DecisionLimits {
+        time_max: MAX_FACTOR,
+        fuel_max: MAX_FACTOR,
+    };
+    assert!(decide(&[std::slice::from_ref(&edge)], &limits).is_ok());
 }
 
 #[test]
@@ -425,4 +470,46 @@ fn the_work_is_the_documented_node_count_and_ties_keep_the_first_choice() {
     let d = decide_loose(&equal);
     assert_eq!(d.work, counts.iter().sum::<usize>() as u64);
     assert!(d.choice.iter().all(|&k| k == 0) && d.risk == 2.0);
+}
+
+#[test]
+fn a_choice_at_the_budget_meets_the_limit_and_one_ulp_above_does_not() {
+    // Three pop-ups of one alternative each: the sum of their factors against
+    // decision_budget(3, max), exactly at it and at the next f32 above.
+    for max in [0.35f32, 0.0, -0.2] {
+        let budget = decision_budget(3, max);
+        for (sum, meets) in [(budget, true), (budget.next_up(), false)] {
+            let third = Alternative {
+                risk: 0.1,
+                time: 0.0,
+                fuel: 0.0,
+            };
+            // Two thirds of 0 and the whole sum on the last: the sum is exact.
+            for limit in [Limit::Time, Limit::Fuel] {
+                let last = match limit {
+                    Limit::Time => Alternative { time: sum, ..third },
+                    Limit::Fuel => Alternative { fuel: sum, ..third },
+                };
+                let limits = match limit {
+                    Limit::Time => DecisionLimits {
+                        time_max: max,
+                        fuel_max: 1.0,
+                    },
+                    Limit::Fuel => DecisionLimits {
+                        time_max: 1.0,
+                        fuel_max: max,
+                    },
+                };
+                let alts = [[third], [third], [last]];
+                let slices: Vec<&[Alternative]> = alts.iter().map(|a| a.as_slice()).collect();
+                let got = decide(&slices, &limits);
+                assert_eq!(
+                    got.is_ok(),
+                    meets,
+                    "{limit:?} max {max}, sum {sum}: {got:?}"
+                );
+            }
+        }
+    }
+    assert_eq!(decision_budget(3, 0.5), 3.0 * 0.5 * (1.0 + 1e-6) + 1e-6);
 }
