@@ -123,12 +123,13 @@ pub fn decision_work_bound(alternatives: &[usize]) -> u64 {
     total
 }
 
-/// The budget on the sum of `n` factors whose mean is limited to `max`: `n·max·(1 + 10⁻⁶) +
-/// 10⁻⁶`, computed in f32 in that order. A choice whose sum is at most the budget meets the
-/// limit: the small tolerance lets a choice exactly at a limit meet it in spite of the rounding
-/// of the sums.
+/// The budget on the sum of `n` factors whose mean is limited to `max`: `s + |s|·10⁻⁶ + 10⁻⁶`
+/// with `s = n·max`, computed in f32 in that order. A choice whose sum is at most the budget
+/// meets the limit: the small tolerance, never negative whatever the sign of the limit, lets a
+/// choice exactly at a limit meet it in spite of the rounding of the sums.
 pub fn decision_budget(n: usize, max: f32) -> f32 {
-    n as f32 * max * (1.0 + 1e-6) + 1e-6
+    let sum = n as f32 * max;
+    sum + libm::fabsf(sum) * 1e-6 + 1e-6
 }
 
 /// The search's state: the best complete choice so far and the budgets.

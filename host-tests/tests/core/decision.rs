@@ -33,25 +33,26 @@ fn combinations(alts: &[Vec<Alternative>]) -> Vec<(f64, f64, f64, Vec<u8>)> {
 
 fn random_instance(rng: &mut Rng) -> (Vec<Vec<Alternative>>, DecisionLimits) {
     let n = rng.below(MAX_DECISION_POPUPS as u64 + 1) as usize;
-    // Coarse values make ties and limits met exactly common.
+    // Coarse values make ties and limits met exactly common: risks in tenths from 0 to 1,
+    // factors and limits from −0.3 to 1. A negative factor (an alternative faster than the
+    // nominal route has a negative time factor) and a negative limit test the tightest limit's
+    // relative relaxation across signs.
     let q = |rng: &mut Rng| (rng.below(11) as f32) / 10.0;
+    let signed = |rng: &mut Rng| (rng.below(14) as f32 - 3.0) / 10.0;
     let alts = (0..n)
         .map(|_| {
             (0..1 + rng.below(MAX_ALTERNATIVES as u64) as usize)
                 .map(|_| Alternative {
                     risk: q(rng),
-                    time: q(rng),
-                    fuel: q(rng),
+                    time: signed(rng),
+                    fuel: signed(rng),
                 })
                 .collect()
         })
         .collect();
-    // Limits from −0.3 to 1: a negative limit (an alternative faster than the nominal route
-    // has a negative time factor) tests the tightest limit's relative relaxation across signs.
-    let limit = |rng: &mut Rng| (rng.below(14) as f32 - 3.0) / 10.0;
     let limits = DecisionLimits {
-        time_max: limit(rng),
-        fuel_max: limit(rng),
+        time_max: signed(rng),
+        fuel_max: signed(rng),
     };
     (alts, limits)
 }
@@ -511,5 +512,6 @@ fn a_choice_at_the_budget_meets_the_limit_and_one_ulp_above_does_not() {
             }
         }
     }
-    assert_eq!(decision_budget(3, 0.5), 3.0 * 0.5 * (1.0 + 1e-6) + 1e-6);
+    assert_eq!(decision_budget(3, 0.5), 1.5 + 1.5 * 1e-6 + 1e-6);
+    assert_eq!(decision_budget(3, -0.5), -1.5 + 1.5 * 1e-6 + 1e-6);
 }
