@@ -10,14 +10,16 @@
 //! least fuel factor if none is). A mission's **realised risk** is the kill probability of the
 //! route flying its choice given which pop-ups appeared: `1 − P_S,known · Π_{appeared} P_S,PU`
 //! of that route (each combination of alternatives is planned once, before the missions).
-//! A limit is violated when the chosen alternatives' mean time or fuel factor exceeds it.
+//! A limit is violated when the chosen alternatives' summed time or fuel factor exceeds the
+//! decision's budget for it ([`decision_budget`]: the mean limit times the pop-ups, with the
+//! decision's rounding tolerance), so a choice the decision accepts never counts as one.
 
 use super::alternatives::{sample_points, Planning, Study};
 use super::cli::{decision_inputs, fly};
 use rand_core::{RngCore, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use rayon::prelude::*;
-use skyroute::planner::decision::{decide, Alternative, DecisionLimits};
+use skyroute::planner::decision::{decide, decision_budget, Alternative, DecisionLimits};
 use skyroute::planner::risk::AlternativeRisk;
 
 /// Missions per random stream (and per parallel task).
@@ -200,14 +202,15 @@ pub fn outcome(
     appeared: &[bool],
     limits: &DecisionLimits,
 ) -> Outcome {
-    let n = choice.len().max(1) as f32;
     let (t, f) = choice
         .iter()
         .zip(&setup.inputs)
         .fold((0.0f32, 0.0f32), |(t, f), (&k, alts)| {
             (t + alts[k].time, f + alts[k].fuel)
         });
-    let violated = t / n > limits.time_max * (1.0 + 1e-6) || f / n > limits.fuel_max * (1.0 + 1e-6);
+    let n = choice.len();
+    let violated =
+        t > decision_budget(n, limits.time_max) || f > decision_budget(n, limits.fuel_max);
     let risk = match &setup.combinations[combination_index(setup, choice)] {
         Some(c) => {
             let s = c
