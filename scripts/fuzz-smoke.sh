@@ -12,6 +12,7 @@
 #                                                    many executions)
 #   FUZZ_RUNS=10000000 scripts/fuzz-smoke.sh decision   (a long run of any target: its usual
 #                                                    corpus, until that many executions)
+#   UNIT_SECONDS=N    the longest any one input may run before it counts as a failure (default 60)
 #
 # Without a nightly toolchain it says so and exits 0: the fuzz run is skipped, not failed.
 set -euo pipefail
@@ -90,6 +91,15 @@ if command -v gdal_translate >/dev/null; then
 fi
 
 mkdir -p target/fuzz-logs
+# Compile every target first, so that the runs' time limits below count fuzzing only.
+(cd fuzz && cargo +nightly fuzz build >"$root/target/fuzz-logs/build.log" 2>&1) || {
+    tail -40 target/fuzz-logs/build.log
+    exit 1
+}
+# A slow input is a failure, not a hang: libFuzzer's -timeout fails any one input that runs longer
+# than UNIT_SECONDS (default 60; its artifact is kept as for a crash), and a short run that
+# overruns its own time by more than 5 minutes is stopped (`timeout`) and failed.
+unit_seconds=${UNIT_SECONDS:-60}
 for t in "${targets[@]}"; do
     extra=(-max_total_time="$seconds")
     corpus=()
@@ -104,10 +114,15 @@ for t in "${targets[@]}"; do
         extra+=(-max_len=400000)
     fi
     log=target/fuzz-logs/$t.log
-    echo "fuzz: $t: ${extra[*]} (log: $log)"
+    limit=()
+    if [[ -z ${LOAD_RUNS:-}${FUZZ_RUNS:-} ]]; then
+        limit=(timeout --kill-after=10 $((seconds + 300)))
+    fi
+    echo "fuzz: $t: ${extra[*]} -timeout=$unit_seconds (log: $log)"
     if ! (cd fuzz && SKYROUTE_FUZZ_NETWORKS="$root/fuzz/networks" \
-        cargo +nightly fuzz run "$t" ${corpus[@]+"${corpus[@]}"} -- -rss_limit_mb=4096 \
-        "${extra[@]}" -print_final_stats=1) >"$log" 2>&1; then
+        ${limit[@]+"${limit[@]}"} cargo +nightly fuzz run "$t" ${corpus[@]+"${corpus[@]}"} -- \
+        -rss_limit_mb=4096 -timeout="$unit_seconds" "${extra[@]}" -print_final_stats=1) \
+        >"$log" 2>&1; then
         tail -40 "$log"
         echo "fuzz: $t FAILED (the input is in fuzz/artifacts/$t/)" >&2
         exit 1
