@@ -59,7 +59,7 @@ if ! grep -qx "$target" <<<"$installed"; then
 fi
 cargo build -q --release -p skyroute-ffi --target "$target"
 lib=target/$target/release/libskyroute_ffi.a
-echo "$lib: $(stat -c %s "$lib") bytes (with debug info; the release profile keeps it)"
+echo "$lib: $(stat -c %s "$lib") bytes (with line tables: the release profile's debug = "line-tables-only")"
 # The library needs nothing from outside it (no C library, no allocator): every symbol a member
 # uses, a member defines (readelf: nm would read the members' embedded LLVM bitcode).
 members=$(mktemp -d)
