@@ -364,14 +364,11 @@ step "cargo fmt --check" fmt_check
 step "structure (file and function sizes, import cycles, mode dispatch)" \
     python3 scripts/check_structure.py
 # The workspace with the ground tool's `milp` feature, then the ground tool alone without it
-# (the one crate the feature changes): every cfg of the host code, each crate checked once. In
-# the test profile, so that the build scripts' outputs (HiGHS, a C++ library compiled from
-# source by the `milp` feature: minutes) are the ones the test step below uses, not a second set.
+# (the one crate the feature changes): every cfg of the host code, each crate checked once.
 step "clippy (host, all targets, milp)" \
-    cargo clippy --profile test --workspace --all-targets --features skyroute-prep/milp \
-    -- -D warnings
+    cargo clippy --workspace --all-targets --features skyroute-prep/milp -- -D warnings
 step "clippy (ground tool, all targets, without milp)" \
-    cargo clippy --profile test -p skyroute-prep --all-targets -- -D warnings
+    cargo clippy -p skyroute-prep --all-targets -- -D warnings
 step "clippy (skyroute, thumbv7em-none-eabihf)" \
     cargo clippy -p skyroute --target thumbv7em-none-eabihf -- -D warnings
 step "clippy (skyroute, thumbv7em-none-eabihf, defmt)" \
