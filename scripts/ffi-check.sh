@@ -59,7 +59,7 @@ if ! grep -qx "$target" <<<"$installed"; then
 fi
 cargo build -q --release -p skyroute-ffi --target "$target"
 lib=target/$target/release/libskyroute_ffi.a
-echo "$lib: $(stat -c %s "$lib") bytes (with line tables: the release profile's debug = "line-tables-only")"
+echo "$lib: $(stat -c %s "$lib") bytes (with the release profile's line tables)"
 # The library needs nothing from outside it (no C library, no allocator): every symbol a member
 # uses, a member defines (readelf: nm would read the members' embedded LLVM bitcode).
 members=$(mktemp -d)

@@ -102,22 +102,21 @@ mkdir -p target/fuzz-logs
 unit_seconds=${UNIT_SECONDS:-60}
 for t in "${targets[@]}"; do
     extra=(-max_total_time="$seconds")
+    limit=(timeout --kill-after=10 $((seconds + 300)))
     corpus=()
     if [[ $t == load && -n ${LOAD_RUNS:-} ]]; then
         # The long run: the small images only, until LOAD_RUNS executions.
         extra=(-runs="$LOAD_RUNS" -max_len=32768)
+        limit=()
         corpus=(corpus/load-small)
     elif [[ -n ${FUZZ_RUNS:-} ]]; then
         extra=(-runs="$FUZZ_RUNS")
+        limit=()
     fi
     if [[ $t == load && -z ${LOAD_RUNS:-} ]]; then
         extra+=(-max_len=400000)
     fi
     log=target/fuzz-logs/$t.log
-    limit=()
-    if [[ -z ${LOAD_RUNS:-}${FUZZ_RUNS:-} ]]; then
-        limit=(timeout --kill-after=10 $((seconds + 300)))
-    fi
     echo "fuzz: $t: ${extra[*]} -timeout=$unit_seconds (log: $log)"
     if ! (cd fuzz && SKYROUTE_FUZZ_NETWORKS="$root/fuzz/networks" \
         ${limit[@]+"${limit[@]}"} cargo +nightly fuzz run "$t" ${corpus[@]+"${corpus[@]}"} -- \
