@@ -363,12 +363,15 @@ step "install missing tools" install_missing
 step "cargo fmt --check" fmt_check
 step "structure (file and function sizes, import cycles, mode dispatch)" \
     python3 scripts/check_structure.py
-# The workspace with the ground tool's `milp` feature, then the ground tool alone without it
-# (the one crate the feature changes): every cfg of the host code, each crate checked once.
+# The workspace with the ground tool's `milp` feature, then the ground tool alone with neither
+# `milp` nor `png` (the crate the features change; the fuzz workspace builds it without `png`):
+# every cfg of the host code, each crate checked once. The first also builds HiGHS for the test
+# step: dependencies have the same profile in both (Cargo.toml), so the test step reuses the
+# build scripts' output.
 step "clippy (host, all targets, milp)" \
     cargo clippy --workspace --all-targets --features skyroute-prep/milp -- -D warnings
-step "clippy (ground tool, all targets, without milp)" \
-    cargo clippy -p skyroute-prep --all-targets -- -D warnings
+step "clippy (ground tool, all targets, without milp and png)" \
+    cargo clippy -p skyroute-prep --all-targets --no-default-features -- -D warnings
 step "clippy (skyroute, thumbv7em-none-eabihf)" \
     cargo clippy -p skyroute --target thumbv7em-none-eabihf -- -D warnings
 step "clippy (skyroute, thumbv7em-none-eabihf, defmt)" \

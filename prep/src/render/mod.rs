@@ -92,8 +92,18 @@ fn has_extension(p: &Path, ext: &str) -> bool {
 }
 
 /// Refuses outputs whose names do not say what they hold: `-o` must end in `.svg` or `.png`,
-/// `--png` in `.png`, and the two must differ.
+/// `--png` in `.png`, and the two must differ. A tool built without its `png` feature refuses
+/// a PNG output here, before it draws anything.
 fn check_output_names(req: &RenderRequest) -> Result<(), String> {
+    if !cfg!(feature = "png") {
+        if let Some(p) = req
+            .png
+            .as_deref()
+            .or(Some(req.output.as_path()).filter(|o| is_png(o)))
+        {
+            return Err(format!("{}: {}", p.display(), png::WITHOUT_PNG));
+        }
+    }
     if !(is_png(&req.output) || has_extension(&req.output, "svg")) {
         return Err(format!(
             "{}: render writes SVG or PNG; name the output .svg or .png",

@@ -1,6 +1,7 @@
 //! PNG output: the SVG rasterised with resvg and written as 8-bit indexed colour.
 
 /// Rasterises an SVG document with resvg, using the system's fonts for text.
+#[cfg(feature = "png")]
 pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, String> {
     let mut opt = resvg::usvg::Options::default();
     opt.fontdb_mut().load_system_fonts();
@@ -22,12 +23,23 @@ pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, String> {
     encode_indexed_png(&pixmap).map_err(|e| format!("PNG: {e}"))
 }
 
+/// Why a build without the `png` feature writes no PNG.
+pub(crate) const WITHOUT_PNG: &str =
+    "PNG output needs the ground tool built with its `png` feature (on by default); write .svg";
+
+/// Refuses: this build of the tool has no PNG encoder (the `png` feature is off).
+#[cfg(not(feature = "png"))]
+pub fn svg_to_png(_svg: &str) -> Result<Vec<u8>, String> {
+    Err(WITHOUT_PNG.to_string())
+}
+
 /// Encodes a picture as an 8-bit indexed PNG: a map of thin anti-aliased lines is several times
-/// smaller so than as RGBA, and looks the same. The palette is the picture's 256 most frequent
+/// smaller that way than as RGBA, and looks the same. The palette is the picture's 256 most frequent
 /// colours (so every fill, line and text colour, each of which covers many pixels, is kept
 /// exactly; a picture of at most 256 colours is encoded losslessly), and every other colour — the
 /// anti-aliased fringes — becomes its nearest palette colour. Transparent pixels are composed over
 /// white (the pictures drawn here are opaque anyway).
+#[cfg(feature = "png")]
 fn encode_indexed_png(pixmap: &resvg::tiny_skia::Pixmap) -> Result<Vec<u8>, png::EncodingError> {
     use std::collections::HashMap;
     let rgb: Vec<[u8; 3]> = pixmap

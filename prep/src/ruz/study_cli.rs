@@ -161,11 +161,15 @@ pub fn montecarlo_command(req: &MonteCarloRequest) -> CliResult {
             // The SVG keeps its text where the PNG has no system font to draw it with.
             let path = format!("{}-{suffix}", prefix.display());
             write_atomically(Path::new(&format!("{path}.svg")), svg.as_bytes())?;
-            write_atomically(
-                Path::new(&format!("{path}.png")),
-                &crate::render::svg_to_png(&svg)?,
-            )?;
-            println!("  histogram -> {path}.svg, {path}.png");
+            if cfg!(feature = "png") {
+                write_atomically(
+                    Path::new(&format!("{path}.png")),
+                    &crate::render::svg_to_png(&svg)?,
+                )?;
+                println!("  histogram -> {path}.svg, {path}.png");
+            } else {
+                println!("  histogram -> {path}.svg (no PNG: the tool was built without `png`)");
+            }
         }
     }
     let record = json!({
