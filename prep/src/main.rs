@@ -303,7 +303,8 @@ enum Command {
         /// Where to write the results (JSON; the name ends in `.json`).
         #[arg(short, long)]
         output: PathBuf,
-        /// Write the histograms as PREFIX-decision.svg/.png and PREFIX-baseline.svg/.png.
+        /// Write the histograms as PREFIX-decision.svg/.png and PREFIX-baseline.svg/.png (the
+        /// .png with the `png` feature, on by default).
         #[arg(long, value_name = "PREFIX")]
         histograms: Option<PathBuf>,
     },

@@ -34,11 +34,11 @@ pub fn svg_to_png(_svg: &str) -> Result<Vec<u8>, String> {
 }
 
 /// Encodes a picture as an 8-bit indexed PNG: a map of thin anti-aliased lines is several times
-/// smaller that way than as RGBA, and looks the same. The palette is the picture's 256 most frequent
-/// colours (so every fill, line and text colour, each of which covers many pixels, is kept
-/// exactly; a picture of at most 256 colours is encoded losslessly), and every other colour — the
-/// anti-aliased fringes — becomes its nearest palette colour. Transparent pixels are composed over
-/// white (the pictures drawn here are opaque anyway).
+/// smaller that way than as RGBA, and looks the same. The palette is the picture's 256 most
+/// frequent colours (so every fill, line and text colour, each of which covers many pixels, is
+/// kept exactly; a picture of at most 256 colours is encoded losslessly), and every other colour
+/// — the anti-aliased fringes — becomes its nearest palette colour. Transparent pixels are
+/// composed over white (the pictures drawn here are opaque anyway).
 #[cfg(feature = "png")]
 fn encode_indexed_png(pixmap: &resvg::tiny_skia::Pixmap) -> Result<Vec<u8>, png::EncodingError> {
     use std::collections::HashMap;
