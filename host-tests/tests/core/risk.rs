@@ -120,6 +120,10 @@ fn detection_probability_is_eq_7() {
     let half = detection_probability(&radar, 1.0, 8_000.0);
     assert!((half - 0.5).abs() < 1e-6, "P_t(R_½, 1 m²) = {half}");
     assert_eq!(detection_probability(&radar, 1.0, 50_001.0), 0.0);
+    // R_max itself is within range: eq. 7's value there, not 0.
+    let at_max = detection_probability(&radar, 1.0, 50_000.0) as f64;
+    let want = 1.0 / (1.0 + 8_000f64.powf(-8.0) * 50_000f64.powi(8));
+    assert!((at_max - want).abs() < 1e-3 * want, "P_t(R_max) = {at_max}, want {want}");
 }
 
 /// f64 figures of a route: samples at the middle of M equal steps, the same model.
@@ -177,7 +181,8 @@ fn reference(p: &RiskParams, route: &[Primitive], known: &[Vec2], popup: Vec2) -
         1.0 / (1.0 + 8_000f64.powf(-8.0) * (range.powi(4) / sigma).powi(2))
     };
     let length: f64 = route.iter().map(|q| q.length() as f64).sum();
-    let m = (length / 50.0).ceil().max(1.0) as usize;
+    let (speed, dt) = (p.speed_mps as f64, p.dt_s as f64);
+    let m = (length / (speed * dt)).ceil().max(1.0) as usize;
     let (mut sk, mut sp, mut turn, mut prev) = (1.0, 1.0, 0.0, None::<f64>);
     for i in 0..m {
         let (x, y, psi) = pose((i as f64 + 0.5) * length / m as f64);
@@ -196,13 +201,24 @@ fn reference(p: &RiskParams, route: &[Primitive], known: &[Vec2], popup: Vec2) -
         }
         prev = Some(psi);
     }
-    let fuel = turn / ((m - 1) as f64 * 0.3 * (length / m as f64 / 50.0));
+    let fuel = turn / ((m - 1) as f64 * 0.3 * (length / m as f64 / speed));
     [m as f64, sk, sp, fuel]
 }
 
 #[test]
 fn route_figures_match_a_direct_f64_evaluation() {
-    let p = params();
+    // Δt = 1 s as in the paper, and a longer step (50 m and 125 m per step at 50 m/s).
+    for dt_s in [1.0, 2.5] {
+        route_figures_match_at(RiskParams {
+            dt_s,
+            ..params()
+        });
+    }
+    assert_eq!(time_factor(100, 100), 0.0);
+    assert!((time_factor(65, 100) - 0.35).abs() < 1e-6);
+}
+
+fn route_figures_match_at(p: RiskParams) {
     let r = 166.67f32;
     let route = [
         Primitive::Line(Segment {
@@ -231,7 +247,11 @@ fn route_figures_match_a_direct_f64_evaluation() {
     let popup = Vec2::new(2_000.0, 9_000.0);
     let got = route_figures(&p, &route, &known, Some(popup));
     let want = reference(&p, &route, &known, popup);
-    assert_eq!(got.steps as f64, want[0], "steps");
+    let dt = p.dt_s;
+    assert_eq!(got.steps as f64, want[0], "steps at Δt {dt} s");
+    // T = M·Δt (eq. 28).
+    let t = got.time_s(&p) as f64;
+    assert!((t - want[0] * dt as f64).abs() < 1e-3, "T at Δt {dt} s: {t}");
     for (name, g, w) in [
         ("survival_known", got.survival_known as f64, want[1]),
         ("survival_popup", got.survival_popup as f64, want[2]),
@@ -239,7 +259,7 @@ fn route_figures_match_a_direct_f64_evaluation() {
     ] {
         assert!(
             (g - w).abs() <= 2e-4 * w.max(1e-3) + 1e-6,
-            "{name}: {g} against {w}"
+            "{name} at Δt {dt} s: {g} against {w}"
         );
     }
     assert!(
@@ -255,8 +275,6 @@ fn route_figures_match_a_direct_f64_evaluation() {
         let want = 1.0 - want[1] * ((1.0 - pa) + pa * want[2]);
         assert!((ar.risk(pa as f32) as f64 - want).abs() < 1e-5, "P_A {pa}");
     }
-    assert_eq!(time_factor(100, 100), 0.0);
-    assert!((time_factor(65, 100) - 0.35).abs() < 1e-6);
 }
 
 #[test]
