@@ -123,7 +123,10 @@ fn detection_probability_is_eq_7() {
     // R_max itself is within range: eq. 7's value there, not 0.
     let at_max = detection_probability(&radar, 1.0, 50_000.0) as f64;
     let want = 1.0 / (1.0 + 8_000f64.powf(-8.0) * 50_000f64.powi(8));
-    assert!((at_max - want).abs() < 1e-3 * want, "P_t(R_max) = {at_max}, want {want}");
+    assert!(
+        (at_max - want).abs() < 1e-3 * want,
+        "P_t(R_max) = {at_max}, want {want}"
+    );
 }
 
 /// f64 figures of a route: samples at the middle of M equal steps, the same model.
@@ -209,15 +212,14 @@ fn reference(p: &RiskParams, route: &[Primitive], known: &[Vec2], popup: Vec2) -
 fn route_figures_match_a_direct_f64_evaluation() {
     // Δt = 1 s as in the paper, and a longer step (50 m and 125 m per step at 50 m/s).
     for dt_s in [1.0, 2.5] {
-        route_figures_match_at(RiskParams {
-            dt_s,
-            ..params()
-        });
+        route_figures_match_at(RiskParams { dt_s, ..params() });
     }
     assert_eq!(time_factor(100, 100), 0.0);
     assert!((time_factor(65, 100) - 0.35).abs() < 1e-6);
 }
 
+/// `route_figures` of a three-piece route among three radars and a pop-up against the f64
+/// reference, at the parameters `p`.
 fn route_figures_match_at(p: RiskParams) {
     let r = 166.67f32;
     let route = [
@@ -251,7 +253,10 @@ fn route_figures_match_at(p: RiskParams) {
     assert_eq!(got.steps as f64, want[0], "steps at Δt {dt} s");
     // T = M·Δt (eq. 28).
     let t = got.time_s(&p) as f64;
-    assert!((t - want[0] * dt as f64).abs() < 1e-3, "T at Δt {dt} s: {t}");
+    assert!(
+        (t - want[0] * dt as f64).abs() < 1e-3,
+        "T at Δt {dt} s: {t}"
+    );
     for (name, g, w) in [
         ("survival_known", got.survival_known as f64, want[1]),
         ("survival_popup", got.survival_popup as f64, want[2]),
