@@ -1,10 +1,12 @@
 //! skyroute's ground tool: reads mission scenarios, builds preprocessed networks for the onboard
 //! core, and lets a person see and check them.
 pub mod build;
+pub mod build_cli;
 pub mod build_limits;
 pub mod capacity;
 pub mod cli_values;
 pub mod dem;
+pub mod demo;
 pub mod export;
 pub mod frame;
 pub mod free_heading;
