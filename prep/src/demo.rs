@@ -19,7 +19,12 @@ pub fn demo_command(dir: &Path) -> CliResult {
     let (network, route, picture) = (
         dir.join("niendorf-urban.bin"),
         dir.join("route.json"),
-        dir.join("niendorf-urban.png"),
+        // A PNG, or an SVG from a tool built without its `png` feature.
+        dir.join(if cfg!(feature = "png") {
+            "niendorf-urban.png"
+        } else {
+            "niendorf-urban.svg"
+        }),
     );
     build_command(
         &scenario_path,
