@@ -555,8 +555,9 @@ impl<'a> Network<'a> {
         Some((obstacle, bbox))
     }
 
-    /// Total number of polygon edges and circles over all obstacles: the number of elementary
-    /// predicate evaluations one primitive costs against every obstacle.
+    /// The number of elementary predicate evaluations one primitive costs against every
+    /// obstacle: one per polygon edge, plus one containment test per polygon and one test per
+    /// circle (the units of [`crate::planner::Work`]'s `collision_tests`).
     pub fn obstacle_elements(&self) -> u32 {
         self.header
             .obstacle_point_count

@@ -36,12 +36,176 @@ fn valid_image_round_trips() {
         for e in net.out_edges(v) {
             let edge = net.edge(e).unwrap();
             assert_eq!(edge.source, v);
+            // The length is the Dubins path's the world solved (its pieces' sum), re-solved
+            // by the loader from the two poses and the stored word.
+            let spec = w
+                .spec
+                .edges
+                .iter()
+                .find(|s| (s.source, s.target) == (v, edge.target))
+                .unwrap();
+            let expected: f32 = spec.lengths.iter().sum();
+            let length = net.edge_length(e).unwrap();
+            assert!(
+                (length - expected).abs() <= 1e-3 * expected.max(1.0),
+                "edge {e}: length {length} m, the world's path {expected} m"
+            );
             stored += 1;
         }
     }
     assert_eq!(stored, w.spec.edges.len());
     assert!(net.vertex(net.vertex_count()).is_none());
     assert!(net.edge(net.edge_count()).is_none());
+}
+
+/// The image's length, and the extent: the grid index's rectangle, which holds every vertex
+/// with four turn radii around it. Its corners are checked against the grid itself: a box just
+/// inside a corner overlaps that corner's cell, and one just outside overlaps none.
+#[test]
+fn the_extent_is_the_grid_and_holds_every_vertex() {
+    let w = world(3, 700.0, 60.0, 40.0, 3);
+    let net = Network::from_bytes(&w.bytes).unwrap();
+    assert_eq!(net.byte_len(), w.bytes.len());
+    assert_eq!(Network::empty().byte_len(), 0);
+    assert_eq!(
+        net.origin_deg(),
+        (w.spec.origin_lat_deg, w.spec.origin_lon_deg)
+    );
+    let (lo, hi) = net.extent();
+    let (nx, ny) = (net.header().grid_nx, net.header().grid_ny);
+    assert!(nx > 1 && ny > 1, "a grid of several cells each way");
+    let margin = 4.0 * net.turn_radius();
+    for i in 0..net.vertex_count() {
+        let p = net.vertex(i).unwrap().position;
+        assert!(
+            p.x - margin >= lo.x && p.y - margin >= lo.y,
+            "vertex {i} at {p:?}, extent from {lo:?}"
+        );
+        assert!(
+            p.x + margin <= hi.x && p.y + margin <= hi.y,
+            "vertex {i} at {p:?}, extent to {hi:?}"
+        );
+    }
+    let d = |a: f32, b: f32| Vec2::new(a, b);
+    let cells = |a: Vec2, b: Vec2| net.cells_overlapping(a, b);
+    let cell = |x: u32, y: u32| {
+        Some(skyroute::network::CellRange {
+            x0: x,
+            y0: y,
+            x1: x,
+            y1: y,
+        })
+    };
+    assert_eq!(cells(lo + d(0.05, 0.05), lo + d(0.1, 0.1)), cell(0, 0));
+    assert_eq!(cells(lo - d(0.1, 0.1), lo - d(0.05, 0.05)), None);
+    assert_eq!(
+        cells(hi - d(0.1, 0.1), hi - d(0.05, 0.05)),
+        cell(nx - 1, ny - 1)
+    );
+    assert_eq!(cells(hi + d(0.05, 0.05), hi + d(0.1, 0.1)), None);
+}
+
+/// `cells_overlapping` against a brute force over every cell: a cell `[o + i·c, o + (i+1)·c)`
+/// overlaps the closed rectangle `[min, max]` when `min < o + (i+1)·c` and `max ≥ o + i·c`
+/// (per axis, in f64), and the answer is the range of the cells that do, or `None` when none
+/// does. Random rectangles inside, straddling and outside each side of the grid, their corners
+/// kept 1 cm off every cell boundary (the f32 division may round there). A reversed rectangle
+/// whose corners lie in different cells overlaps nothing. Cells outside the grid list no edge.
+#[test]
+fn cells_overlapping_matches_a_brute_force_over_every_cell() {
+    let w = world(4, 700.0, 60.0, 40.0, 3);
+    let net = Network::from_bytes(&w.bytes).unwrap();
+    let h = *net.header();
+    let (ox, oy, c) = (
+        h.grid_origin_x as f64,
+        h.grid_origin_y as f64,
+        h.grid_cell_m as f64,
+    );
+    let (nx, ny) = (h.grid_nx, h.grid_ny);
+    let span = |o: f64, n: u32, lo: f64, hi: f64| -> Option<(u32, u32)> {
+        let hits: Vec<u32> = (0..n)
+            .filter(|&i| lo < o + (i + 1) as f64 * c && hi >= o + i as f64 * c)
+            .collect();
+        Some((*hits.first()?, *hits.last()?))
+    };
+    let off_boundary = |v: f64, o: f64| {
+        let t = (v - o) / c;
+        (t - t.round()).abs() * c > 0.01
+    };
+    let mut rng = Rng(41);
+    let (mut some, mut none) = (0, 0);
+    for _ in 0..cases(3_000, 30_000) {
+        // Corners from two cells outside the grid to two cells beyond it, each way.
+        let coord = |rng: &mut Rng, o: f64, n: u32| rng.range(o - 2.0 * c, o + (n + 2) as f64 * c);
+        let (mut x0, mut x1) = (coord(&mut rng, ox, nx), coord(&mut rng, ox, nx));
+        let (mut y0, mut y1) = (coord(&mut rng, oy, ny), coord(&mut rng, oy, ny));
+        if ![x0, x1].iter().all(|&x| off_boundary(x, ox))
+            || ![y0, y1].iter().all(|&y| off_boundary(y, oy))
+        {
+            continue;
+        }
+        if x0 > x1 {
+            (x0, x1) = (x1, x0);
+        }
+        if y0 > y1 {
+            (y0, y1) = (y1, y0);
+        }
+        let (min, max) = (
+            Vec2::new(x0 as f32, y0 as f32),
+            Vec2::new(x1 as f32, y1 as f32),
+        );
+        let expected = span(ox, nx, x0, x1)
+            .zip(span(oy, ny, y0, y1))
+            .map(|((x0, x1), (y0, y1))| skyroute::network::CellRange { x0, y0, x1, y1 });
+        assert_eq!(
+            net.cells_overlapping(min, max),
+            expected,
+            "[{min:?}, {max:?}]"
+        );
+        match expected {
+            Some(_) => some += 1,
+            None => none += 1,
+        }
+        // Reversed, with the corners in different cells along either axis: nothing.
+        if (x1 - x0) > c || (y1 - y0) > c {
+            assert_eq!(net.cells_overlapping(max, min), None, "[{max:?}, {min:?}]");
+        }
+    }
+    assert!(
+        some > 100 && none > 100,
+        "{some} overlapping, {none} outside"
+    );
+    // Beyond the last column a cell index would wrap onto the next row, and beyond the last
+    // row past the table: neither is a cell.
+    for y in 0..ny + 2 {
+        for x in 0..2 * nx {
+            if x >= nx || y >= ny {
+                assert_eq!(net.cell_edges(x, y).count(), 0, "cell ({x}, {y})");
+            }
+        }
+    }
+    let counts: Vec<u32> = (0..ny)
+        .flat_map(|y| (0..nx).map(move |x| (x, y)))
+        .map(|(x, y)| net.cell_edges(x, y).count() as u32)
+        .collect();
+    assert!(counts.iter().any(|&n| n > 1));
+    assert_eq!(net.max_cell_entries(), *counts.iter().max().unwrap());
+    assert_eq!(
+        net.grid_entry_count(),
+        counts.iter().map(|&n| n as u64).sum::<u64>()
+    );
+    // One predicate per polygon edge, one containment test per polygon, one per circle.
+    let elements: u32 = w
+        .spec
+        .obstacles
+        .iter()
+        .map(|o| match o {
+            skyroute::network::write::ObstacleSpec::Polygon(points) => points.len() as u32 + 1,
+            skyroute::network::write::ObstacleSpec::Circle { .. } => 1,
+        })
+        .sum();
+    assert!(elements > 0);
+    assert_eq!(net.obstacle_elements(), elements);
 }
 
 /// The checksum covers the whole image, header included: CRC-32 detects every single-bit

@@ -62,6 +62,34 @@ const REFUSED: LoadError = LoadError::InvalidParameter {
     parameter: Parameter::Voronoi,
 };
 
+/// A straight edge's path leaves its source heading for its target and ends there, as long as
+/// the segment; its length is the segment's.
+#[test]
+fn a_line_edge_runs_from_its_source_to_its_target() {
+    let bytes = encode(&spec()).unwrap();
+    let net = Network::from_bytes(&bytes).unwrap();
+    assert_eq!(net.origin_deg(), (36.5, -84.2));
+    for e in 0..net.edge_count() {
+        let edge = net.edge(e).unwrap();
+        let (a, b) = (
+            net.vertex(edge.source).unwrap().position,
+            net.vertex(edge.target).unwrap().position,
+        );
+        let path = net.edge_path(e).unwrap();
+        assert_eq!(path.start.position, a);
+        assert!((path.length() - a.distance(b)).abs() < 1e-2, "edge {e}");
+        assert!(
+            (net.edge_length(e).unwrap() - a.distance(b)).abs() < 1e-2,
+            "edge {e}"
+        );
+        let end = path.end().position;
+        assert!(
+            end.distance(b) < 1e-2,
+            "edge {e} ends at {end:?}, its target is {b:?}"
+        );
+    }
+}
+
 #[test]
 fn a_voronoi_record_out_of_range_is_refused_at_load() {
     let bytes = encode(&spec()).expect("the Voronoi spec encodes");
