@@ -30,7 +30,7 @@ shift 3
 [ -f "$file" ] || { echo "mutants.sh: no file $file" >&2; exit 2; }
 command -v cargo-mutants >/dev/null || cargo install cargo-mutants --locked
 
-selected=$(cargo test -q -p host-tests --test "$binary" -- "$@" --list 2>/dev/null | grep -c ': test$' || true)
+selected=$(cargo test -q -p host-tests --test "$binary" --profile mutants -- "$@" --list 2>/dev/null | grep -c ': test$' || true)
 if [ "$selected" -eq 0 ]; then
     echo "mutants.sh: the filters ${*:-(none)} select no test of host-tests' $binary binary" >&2
     exit 1

@@ -42,6 +42,9 @@ mod obstacle_validation;
 mod obstacle_window;
 /// The loader's offset-table checks: first 0, never decreasing, last the total.
 mod offset_tables;
+/// The planner's and the pop-up table's error messages: each names its numbers, none
+/// reads like another.
+mod plan_messages;
 /// The planner against Bellman–Ford, an edge scan for pop-ups and the work bound.
 mod planner;
 /// The pop-up grid search: neighbouring cells within the clearance, an f64 brute force, the

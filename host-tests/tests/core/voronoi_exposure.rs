@@ -166,3 +166,34 @@ fn near_a_site_the_rule_errs_in_the_directions_the_docs_state() {
         println!("h/L {h:5.2}: pass at 0, L/6, L/3, L/2 -> {}", row.join(" "));
     }
 }
+
+/// A sample closer to a site than 1 % of its reference distance counts at that floor: on the
+/// site, or 0.5 m from a site of r = 100 m, it weighs (1/0.01)⁴ = 10⁸ per metre; 2 m from it,
+/// (100/2)⁴. The rule evaluates three terms per threat.
+#[test]
+fn a_sample_at_a_site_weighs_the_floor_and_each_threat_costs_three_terms() {
+    let l = 600.0f32;
+    let (a, b) = (Vec2::new(0.0, 0.0), Vec2::new(l, 0.0));
+    // The middle sample at x = 300 m; the other two at 100 m and 500 m, 200 m from the site.
+    for (offset, weight) in [(0.0f32, 1e8f64), (0.5, 1e8), (2.0, 50f64.powi(4))] {
+        let t = [threat(300.0, offset, 100.0)];
+        let (j, terms) = segment_exposure(a, b, &t);
+        let side = (100.0 / (200.0f64.powi(2) + (offset as f64).powi(2)).sqrt()).powi(4);
+        let expected = l as f64 / 3.0 * (weight + 2.0 * side);
+        assert!(
+            (j as f64 - expected).abs() <= 1e-5 * expected,
+            "site {offset} m off the middle sample: {j}, expected {expected}"
+        );
+        assert_eq!(terms, 3);
+    }
+    let far: Vec<Threat> = (0..5)
+        .map(|i| threat(1e5, 1e4 * i as f32, 1000.0))
+        .collect();
+    for n in 0..=far.len() {
+        assert_eq!(
+            segment_exposure(a, b, &far[..n]).1,
+            3 * n as u64,
+            "{n} threats"
+        );
+    }
+}

@@ -1,0 +1,143 @@
+//! The planner's error messages: each names every number its error carries and which input
+//! (start or goal) it is about, and no two read the same.
+
+use skyroute::planner::QueryField::{Goal, Start};
+use skyroute::{PlanError, PopupError};
+
+/// Every [`PlanError`], its numbers all distinct, with the words of its message that name
+/// them (the start's variant of each error about a query field; the goal's is checked below).
+fn every_plan_error() -> Vec<(PlanError, Vec<&'static str>)> {
+    use PlanError::*;
+    vec![
+        (NonFinite { field: Start }, vec!["Start", "NaN"]),
+        (OutOfRange { field: Start }, vec!["Start", "10 000 km"]),
+        (
+            InsideObstacle {
+                field: Start,
+                obstacle: 201,
+            },
+            vec!["Start", "obstacle 201"],
+        ),
+        (
+            InsidePopup {
+                field: Start,
+                popup: 202,
+            },
+            vec!["Start", "pop-up 202"],
+        ),
+        (StartUnconnected, vec!["start"]),
+        (GoalUnconnected, vec!["goal"]),
+        (NoRoute, vec!["cannot be reached"]),
+        (
+            BudgetExhausted {
+                used: 203,
+                budget: 204,
+            },
+            vec!["after 203", "budget of 204"],
+        ),
+        (
+            RouteTooLong {
+                primitives: 205,
+                capacity: 206,
+            },
+            vec!["205 primitives", "capacity is 206"],
+        ),
+        (
+            OverBlockedTerrain { field: Start },
+            vec!["Start", "terrain"],
+        ),
+        (InvalidAltitude, vec!["altitude"]),
+        (NotThreeDimensional, vec!["three-dimensional"]),
+        (AltitudesNeeded, vec!["altitudes"]),
+        (NotLandmarkNetwork, vec!["landmark"]),
+        (NotTerrainNetwork, vec!["terrain"]),
+        (
+            UnknownWeather {
+                weather: 207,
+                count: 208,
+            },
+            vec!["weather 207", "has 208"],
+        ),
+        (
+            UnknownLandmark {
+                landmark: 209,
+                count: 210,
+            },
+            vec!["landmark 209", "has 210"],
+        ),
+        (
+            InvalidRosette {
+                given: 211,
+                directions: 212,
+            },
+            vec!["211 qualities", "(212)"],
+        ),
+        (RosetteTableFull { capacity: 213 }, vec!["213"]),
+        (InvalidRange, vec!["range"]),
+        (Smoothing { corner: 214 }, vec!["corner 214"]),
+        (
+            TooManySearchStates {
+                needed: 215,
+                capacity: 216,
+            },
+            vec!["215 search states", "capacity is 216"],
+        ),
+        (Internal, vec!["internal"]),
+        (NotDubinsRoute, vec!["post-processing"]),
+    ]
+}
+
+/// Every [`PopupError`], with the words that name its numbers.
+fn every_popup_error() -> Vec<(PopupError, Vec<&'static str>)> {
+    use PopupError::*;
+    vec![
+        (NoFreeSlot { capacity: 221 }, vec!["221"]),
+        (NonFinite, vec!["NaN"]),
+        (NonPositiveRadius, vec!["radius"]),
+        (OutOfRange, vec!["10 000 km"]),
+        (NotSimple, vec!["not simple"]),
+        (UnknownId { id: 222 }, vec!["id 222"]),
+        (BadHeight, vec!["height"]),
+        (HeightNeedsAltitudes, vec!["no altitudes"]),
+    ]
+}
+
+/// Checks that each message holds its words and reads unlike every message seen before.
+fn check<E: core::fmt::Debug + core::fmt::Display>(
+    errors: &[(E, Vec<&'static str>)],
+    seen: &mut std::collections::HashSet<String>,
+) {
+    for (e, words) in errors {
+        let message = e.to_string();
+        for w in words {
+            assert!(message.contains(w), "{e:?}: {message:?} lacks {w:?}");
+        }
+        assert!(seen.insert(message.clone()), "{e:?}: {message:?} twice");
+    }
+}
+
+#[test]
+fn every_plan_and_popup_error_names_its_numbers_and_reads_unlike_the_others() {
+    let mut seen = std::collections::HashSet::new();
+    check(&every_plan_error(), &mut seen);
+    check(&every_popup_error(), &mut seen);
+    // The goal's variant of each error about a query field names the goal.
+    let goal = [
+        PlanError::NonFinite { field: Goal },
+        PlanError::OutOfRange { field: Goal },
+        PlanError::InsideObstacle {
+            field: Goal,
+            obstacle: 201,
+        },
+        PlanError::InsidePopup {
+            field: Goal,
+            popup: 202,
+        },
+        PlanError::OverBlockedTerrain { field: Goal },
+    ];
+    for e in goal {
+        let message = e.to_string();
+        assert!(message.contains("Goal"), "{e:?}: {message:?}");
+        assert!(seen.insert(message.clone()), "{e:?}: {message:?} twice");
+    }
+}
