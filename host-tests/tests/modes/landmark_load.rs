@@ -194,6 +194,55 @@ fn load_and_use(bytes: &[u8], rng: &mut Rng) -> Result<(), LoadError> {
 /// 1]`) must start at 0, never decrease and end at the list's length: each rule broken on its own is refused as
 /// `BadOffsets` at the offending index (the same damages as the edge and cell offsets get in
 /// `core::offset_tables`).
+/// A landmark's overflight vertices stand on its site within the position tolerance
+/// 10⁻⁴·max(|x|, |y|) + 1 cm (rounding, not placement): the site nearest the origin moved east
+/// by 99 % of its tolerance still loads, by 101 % is refused, naming its first direction's
+/// vertex.
+#[test]
+fn a_site_within_the_position_tolerance_of_its_vertices_loads_and_one_beyond_is_refused() {
+    let good = network();
+    let net = Network::from_bytes(&good).unwrap();
+    let l = *net.landmark().unwrap();
+    let sites = landmark_record_at(&good) + 56;
+    let site = |i: u32| {
+        let at = sites + 12 * i as usize;
+        (at, get_f32(&good, at), get_f32(&good, at + 4))
+    };
+    let size = |(_, x, y): (usize, f32, f32)| x.abs().max(y.abs());
+    let i = (0..l.landmark_count)
+        .min_by(|&a, &b| size(site(a)).total_cmp(&size(site(b))))
+        .unwrap();
+    let (at, x, y) = site(i);
+    for k in 0..l.directions {
+        let v = i * l.directions + k;
+        assert_eq!(
+            net.vertex(v).unwrap().position,
+            Vec2::new(x, y),
+            "vertex {v}"
+        );
+    }
+    let tolerance = 1e-4 * x.abs().max(y.abs()) + 0.01;
+    // Between 2 cm and 0.99 m, so that the cases tell the centimetre term, the relative term
+    // and a metre apart.
+    assert!(
+        tolerance > 0.02 && tolerance < 0.99,
+        "tolerance {tolerance} m"
+    );
+    let moved = |fraction: f32| {
+        let mut b = good.clone();
+        put_f32(&mut b, at, x + fraction * tolerance);
+        fix_crc(&mut b);
+        Network::from_bytes(&b).map(|_| ())
+    };
+    assert_eq!(moved(0.99), Ok(()));
+    assert_eq!(
+        moved(1.01),
+        Err(LoadError::VertexOffLandmark {
+            vertex: i * l.directions
+        })
+    );
+}
+
 #[test]
 fn chain_offsets_must_start_at_zero_never_decrease_and_end_at_the_index_count() {
     let good = network();
