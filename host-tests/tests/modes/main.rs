@@ -19,7 +19,8 @@ mod landmark_load;
 mod landmark_online;
 /// Landmark mode end to end: plans in every weather, rosette updates, pop-ups.
 mod landmark_plan;
-/// A landmark pop-up's predicate tests: chords per rebuilt piece times the shape's tests.
+/// A landmark pop-up's predicate tests: chords per rebuilt piece times the shape's tests; a
+/// piece straying beyond its chord's box still rebuilt.
 mod landmark_popup_work;
 /// Missions: inevitable-collision states by name.
 mod mission;
