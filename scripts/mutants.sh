@@ -10,7 +10,8 @@
 # each FILTER a libtest name filter (a test runs if its path contains any of them; none: the
 # whole binary). RE, if set, keeps only the mutants whose name matches it (cargo-mutants --re;
 # a name reads `src/network/terrain.rs:47:50: replace && with || in …`). TIMEOUT (seconds,
-# default 120) bounds each mutant's test run.
+# default 120) bounds each mutant's test run. COPY_TARGET=true copies ./target into the
+# mutants' build folder, so their first build reuses the compiled dependencies.
 #
 # Why a script: cargo-mutants' own baseline runs `cargo test` in the mutated file's package,
 # not in host-tests, so it must be skipped, and with it the check that the test command works.
@@ -22,7 +23,7 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 if [ $# -lt 3 ]; then
-    sed -n '2,12p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+    sed -n '2,14p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
     exit 2
 fi
 file=$1 binary=$2 out=$3
@@ -47,4 +48,4 @@ rm -rf "$out"
 # test profile without debug information.
 exec nice cargo mutants --file "$file" --test-package host-tests \
     --cargo-arg=--test --cargo-arg="$binary" --profile mutants --baseline skip \
-    --timeout "${TIMEOUT:-120}" "${re_args[@]}" -o "$out" -- -- "$@"
+    --timeout "${TIMEOUT:-120}" --copy-target "${COPY_TARGET:-false}" "${re_args[@]}" -o "$out" -- -- "$@"
