@@ -28,9 +28,12 @@ pub(super) fn write_landmark_section(
         let i = match index_of.get(&key) {
             Some(&i) => i,
             None => {
-                let i = u16::try_from(distinct.len()).map_err(|_| {
-                    WriteError::TooLarge("distinct line elements (16-bit indices: at most 65536)")
-                })?;
+                let i = u16::try_from(distinct.len())
+                    .ok()
+                    .filter(|&i| u32::from(i) < MAX_LINE_ELEMENTS)
+                    .ok_or(WriteError::TooLarge(
+                        "distinct line elements (16-bit indices: at most 65536)",
+                    ))?;
                 distinct.push(*el);
                 index_of.insert(key, i);
                 i
