@@ -226,17 +226,24 @@ fn every_error() -> Vec<(LoadError, Vec<&'static str>)> {
     ]
 }
 
-#[test]
-fn every_load_error_names_its_numbers_and_reads_unlike_the_others() {
-    let errors = every_error();
-    let mut seen = std::collections::HashSet::new();
-    for (e, words) in &errors {
+/// Checks that each error's message holds its words and reads unlike every message in `seen`
+/// (to which it is added).
+pub(crate) fn assert_messages_name_and_differ<E: core::fmt::Debug + core::fmt::Display>(
+    errors: &[(E, Vec<&'static str>)],
+    seen: &mut std::collections::HashSet<String>,
+) {
+    for (e, words) in errors {
         let message = e.to_string();
         for w in words {
             assert!(message.contains(w), "{e:?}: {message:?} lacks {w:?}");
         }
         assert!(seen.insert(message.clone()), "{e:?}: {message:?} twice");
     }
+}
+
+#[test]
+fn every_load_error_names_its_numbers_and_reads_unlike_the_others() {
+    assert_messages_name_and_differ(&every_error(), &mut std::collections::HashSet::new());
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! The planner's error messages: each names every number its error carries and which input
 //! (start or goal) it is about, and no two read the same.
 
+use crate::load_messages::assert_messages_name_and_differ;
 use skyroute::planner::QueryField::{Goal, Start};
 use skyroute::{PlanError, PopupError};
 
@@ -102,25 +103,11 @@ fn every_popup_error() -> Vec<(PopupError, Vec<&'static str>)> {
     ]
 }
 
-/// Checks that each message holds its words and reads unlike every message seen before.
-fn check<E: core::fmt::Debug + core::fmt::Display>(
-    errors: &[(E, Vec<&'static str>)],
-    seen: &mut std::collections::HashSet<String>,
-) {
-    for (e, words) in errors {
-        let message = e.to_string();
-        for w in words {
-            assert!(message.contains(w), "{e:?}: {message:?} lacks {w:?}");
-        }
-        assert!(seen.insert(message.clone()), "{e:?}: {message:?} twice");
-    }
-}
-
 #[test]
 fn every_plan_and_popup_error_names_its_numbers_and_reads_unlike_the_others() {
     let mut seen = std::collections::HashSet::new();
-    check(&every_plan_error(), &mut seen);
-    check(&every_popup_error(), &mut seen);
+    assert_messages_name_and_differ(&every_plan_error(), &mut seen);
+    assert_messages_name_and_differ(&every_popup_error(), &mut seen);
     // The goal's variant of each error about a query field names the goal.
     let goal = [
         PlanError::NonFinite { field: Goal },
