@@ -11,7 +11,7 @@ use host_tests::scenarios::scenario;
 use skyroute::geometry::spline::Piece;
 use skyroute::network::format::{Header, VertexRecord};
 use skyroute::network::write::ObstacleSpec;
-use skyroute::planner::{Threat, ThreatError, VoronoiStorage, MAX_THREATS};
+use skyroute::planner::{Threat, ThreatError, VoronoiStorage, MAX_THREATS, VORONOI_GRAPH_VERTICES};
 use skyroute::{Goal, LoadError, PlanError, Planner, Pose, Query, Search, Vec2};
 use skyroute_prep::build::{build, BuildOptions, Built};
 use skyroute_prep::scenario::{Mode, Scenario};
@@ -480,6 +480,24 @@ fn a_popped_threat_reroutes_and_its_removal_restores_the_route() {
     );
 }
 
+/// A Voronoi planner needs room for the most vertices the graph can have after threats pop up:
+/// with exactly that many it loads, with one fewer it is refused by name.
+#[test]
+fn a_planner_one_vertex_short_of_the_graph_bound_is_refused() {
+    type Exact<'n> = Planner<'n, { VORONOI_GRAPH_VERTICES }, 1024, 4, 4096>;
+    type Short<'n> = Planner<'n, { VORONOI_GRAPH_VERTICES - 1 }, 1024, 4, 4096>;
+    let (_, b) = voronoi("ruz-popups");
+    let mut short: Box<Short> = Box::new(Planner::new());
+    let storage = Box::leak(Box::new(VoronoiStorage::new()));
+    assert!(matches!(
+        short.load_voronoi(&b.bytes, storage),
+        Err(LoadError::TooManySearchStates { .. })
+    ));
+    let mut exact: Box<Exact> = Box::new(Planner::new());
+    let storage = Box::leak(Box::new(VoronoiStorage::new()));
+    assert_eq!(exact.load_voronoi(&b.bytes, storage), Ok(()));
+}
+
 #[test]
 fn bad_threat_calls_are_refused_and_change_nothing() {
     let (s, b) = voronoi("ruz-popups");
@@ -496,6 +514,16 @@ fn bad_threat_calls_are_refused_and_change_nothing() {
     );
     assert_eq!(p.add_threat(inside_box, 0.0), Err(ThreatError::OutOfRange));
     assert_eq!(p.add_threat(inside_box, -5.0), Err(ThreatError::OutOfRange));
+    // A radius at the coordinate limit is accepted, one beyond it refused.
+    let limit = skyroute::geometry::MAX_COORDINATE_M;
+    assert_eq!(
+        p.add_threat(inside_box, 2.0 * limit),
+        Err(ThreatError::OutOfRange)
+    );
+    let at_limit = p
+        .add_threat(inside_box, limit)
+        .expect("a radius at the limit");
+    p.remove_threat(at_limit.id).unwrap();
     assert_eq!(
         p.add_threat(Vec2::new(9e6, 9e6), 100.0),
         Err(ThreatError::OutsideBox)
