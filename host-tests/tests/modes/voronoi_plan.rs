@@ -533,8 +533,13 @@ fn bad_threat_calls_are_refused_and_change_nothing() {
         Err(ThreatError::Duplicate { .. })
     ));
     assert_eq!(p.remove_threat(7), Err(ThreatError::UnknownId { id: 7 }));
+    let k = p.threat_weight().expect("a Voronoi planner's weight");
     assert_eq!(p.set_threat_weight(1.5), Err(ThreatError::OutOfRange));
     assert_eq!(p.set_threat_weight(f32::NAN), Err(ThreatError::NonFinite));
+    assert_eq!(p.threat_weight(), Some(k));
+    p.set_threat_weight(0.25).unwrap();
+    assert_eq!(p.threat_weight(), Some(0.25));
+    p.set_threat_weight(k).unwrap();
     assert_eq!(p.threats(), &threats[..]);
     let bounds = p.network().voronoi_bounds().unwrap();
     let mut added = 0;
