@@ -2,7 +2,7 @@
 //! mutations never panic the loader or a planner using what it accepted.
 
 use host_tests::damage::fix_crc;
-use host_tests::world::world;
+use host_tests::world::{free_pose, query_to, world};
 use host_tests::{cases, Rng};
 use skyroute::network::format::{
     EdgeRecord, Header, ProvenanceRecord, U32Record, VertexRecord, FORMAT_VERSION,
@@ -423,6 +423,39 @@ fn each_damage_has_its_own_error() {
         Network::from_bytes(&b),
         Err(LoadError::InvalidParameter { .. })
     ));
+}
+
+/// A pop-up blocks exactly the edges it disables (`is_edge_usable` is `is_edge_enabled` on a
+/// roadmap), and loading a network, even the same one again, clears the pop-ups, their edge
+/// masks and the route: nothing from the old network outlives it.
+#[test]
+fn a_load_clears_the_popups_and_the_route() {
+    let w = world(21, 1500.0, 60.0, 40.0, 5);
+    let mut p: Box<TestPlanner<'_>> = Box::new(Planner::new());
+    p.load(&w.bytes).unwrap();
+    let total = p.network().edge_count();
+    p.add_popup(Popup::Circle {
+        centre: Vec2::new(750.0, 750.0),
+        radius: 150.0,
+    })
+    .unwrap();
+    let disabled: Vec<u32> = (0..total).filter(|&e| !p.is_edge_enabled(e)).collect();
+    let unusable: Vec<u32> = (0..total).filter(|&e| !p.is_edge_usable(e)).collect();
+    assert_eq!(unusable, disabled);
+    assert!(!disabled.is_empty() && disabled.len() < total as usize);
+    let mut rng = Rng(3);
+    let planned = (0..100).any(|_| {
+        let start = free_pose(&mut rng, &w, 50.0);
+        let goal = free_pose(&mut rng, &w, 50.0).position;
+        p.plan(&query_to(start, goal), u64::MAX).is_ok()
+    });
+    assert!(planned && !p.route().is_empty() && p.route_summary().is_some());
+
+    p.load(&w.bytes).unwrap();
+    assert_eq!(p.popups().count(), 0);
+    assert_eq!(p.enabled_edge_count(), total);
+    assert!(p.route().is_empty() && p.route_paths().is_empty());
+    assert!(p.route_summary().is_none());
 }
 
 /// Loads `bytes` and, when they are accepted, exercises a planner on them.

@@ -401,3 +401,37 @@ fn a_listed_edge_costs_one_predicate_test_when_its_hull_is_far() {
     let summary = p.add_popup(square(middle + normal * on_bound)).unwrap();
     assert_eq!(summary.predicate_tests, 3 * 5, "on the bound: {summary:?}");
 }
+
+/// On a sparse grid (two short edges 2.8 km apart, 10 m cells: tens of thousands of empty
+/// cells, a few dozen entries) a pop-up over the whole grid visits every one of its
+/// `nx · ny` cells, and its counted work stays within `worst_case_popup_work`, which charges
+/// each cell once ([`skyroute::planner::popup_work_bound`]).
+#[test]
+fn a_popup_over_a_sparse_grid_visits_every_cell_within_the_bound() {
+    let vertices = vec![
+        Pose::new(0.0, 0.0, 0.0),
+        Pose::new(20.0, 0.0, 0.0),
+        Pose::new(2000.0, 2000.0, 0.0),
+        Pose::new(2020.0, 2000.0, 0.0),
+    ];
+    let bytes = encode(&spec(vertices, vec![line(0, 1, 20.0), line(2, 3, 20.0)])).unwrap();
+    let mut p = load(&bytes);
+    let h = *p.network().header();
+    let cells = h.grid_nx as u64 * h.grid_ny as u64;
+    assert!(cells > 40_000, "{} × {} cells", h.grid_nx, h.grid_ny);
+    let summary = p
+        .add_popup(Popup::Circle {
+            centre: Vec2::new(1010.0, 1000.0),
+            radius: 2000.0,
+        })
+        .unwrap();
+    assert_eq!(summary.cells_visited as u64, cells);
+    assert_eq!(summary.edges_blocked, 2);
+    assert!(summary.entries_visited < 100, "{summary:?}");
+    let counted = cells + summary.entries_visited as u64 + summary.predicate_tests as u64;
+    assert!(
+        counted <= p.worst_case_popup_work(),
+        "{counted} above {}",
+        p.worst_case_popup_work()
+    );
+}

@@ -9,7 +9,8 @@ use host_tests::world::query_to;
 use skyroute::geometry::grid::CellGrid;
 use skyroute::network::elevation::ElevationCoding;
 use skyroute::network::write::{encode, EdgeSpec, NetworkSpec, ObstacleSpec, TerrainSpec};
-use skyroute::planner::{PlanError, PlannerConfig, Popup, TurnRule};
+use skyroute::network::LoadError;
+use skyroute::planner::{PlanError, PlannerConfig, Popup, TurnRule, MAX_LINKS};
 use skyroute::{Planner, Pose, Primitive, Vec2};
 
 /// Codes of free and high cells; with base 0, step 1, altitude 150 and safety height 0 every
@@ -509,5 +510,80 @@ fn start_exactly_on_a_node_needs_no_loop() {
             "start on node 0 at {offset:?}: route {length} m, the polyline is {polyline} m \
              (a loop at the start?)"
         );
+    }
+}
+
+/// A terrain planner needs one search state per directed edge and one per start link
+/// (`|E| + MAX_LINKS`): with exactly that many it loads and plans the corner route; with one
+/// fewer it is refused, naming both counts, and keeps the network it had.
+#[test]
+fn a_planner_with_exactly_the_terrain_states_loads_and_one_fewer_is_refused() {
+    let mut t = Terrain::new(Vec2::new(-1500.0, -1500.0), 100.0, 60, 60);
+    t.block(500.0, 500.0, 2500.0, 2500.0);
+    let nodes = [
+        Vec2::new(0.0, 0.0),
+        Vec2::new(3000.0, 0.0),
+        Vec2::new(3000.0, 3000.0),
+    ];
+    let edges = [
+        chord(&nodes, 0, 1),
+        chord(&nodes, 1, 0),
+        chord(&nodes, 1, 2),
+        chord(&nodes, 2, 1),
+    ];
+    let bytes = network(&t, &nodes, &edges, 100.0, Vec::new()).unwrap();
+    const NEEDED: usize = 4 + MAX_LINKS;
+    let start = Pose::new(-500.0, 0.0, 0.0);
+    let goal = Vec2::new(3000.0, 3001.0);
+
+    let mut exact: Box<Planner<'_, NEEDED, 64, 4, 64>> = Box::new(Planner::new());
+    exact.load(&bytes).unwrap();
+    let r = exact.plan(&query_to(start, goal), u64::MAX);
+    assert!(r.is_ok(), "{NEEDED} states: {r:?}");
+    assert!(route_problems(exact.route(), start, goal, &t).is_empty());
+
+    let mut short: Box<Planner<'_, { NEEDED - 1 }, 64, 4, 64>> = Box::new(Planner::new());
+    assert_eq!(
+        short.load(&bytes),
+        Err(LoadError::TooManySearchStates {
+            needed: NEEDED,
+            capacity: NEEDED - 1
+        })
+    );
+    assert_eq!(
+        short.network().vertex_count(),
+        0,
+        "the empty network is kept"
+    );
+}
+
+/// An edge is usable while the highest code under its band is below the blocking code: one
+/// cell under it at exactly [`BLOCKING`] makes it (and its reverse) unusable, one code lower
+/// leaves it usable; the other edges are unaffected.
+#[test]
+fn an_edge_over_one_cell_at_the_blocking_code_is_unusable_and_one_code_lower_is_not() {
+    let nodes = [
+        Vec2::new(0.0, 0.0),
+        Vec2::new(3000.0, 0.0),
+        Vec2::new(3000.0, 3000.0),
+    ];
+    let edges = [
+        chord(&nodes, 0, 1),
+        chord(&nodes, 1, 0),
+        chord(&nodes, 1, 2),
+        chord(&nodes, 2, 1),
+    ];
+    for (code, usable) in [(BLOCKING, false), (BLOCKING - 1, true)] {
+        let mut t = Terrain::new(Vec2::new(-1500.0, -1500.0), 100.0, 60, 60);
+        for y in [-50.0, 50.0] {
+            let (c, r) = t.grid.cell_of(Vec2::new(1550.0, y)).unwrap();
+            t.codes[(r * t.grid.cols + c) as usize] = code;
+        }
+        let bytes = network(&t, &nodes, &edges, 100.0, Vec::new()).unwrap();
+        let mut p: Box<SmallPlanner<'_>> = Box::new(Planner::new());
+        p.load(&bytes).unwrap();
+        p.set_altitude(ALTITUDE, 0.0).unwrap();
+        let got: Vec<bool> = (0..4).map(|e| p.is_edge_usable(e)).collect();
+        assert_eq!(got, [usable, usable, true, true], "code {code}");
     }
 }

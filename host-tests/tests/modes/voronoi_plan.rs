@@ -272,6 +272,77 @@ fn the_coarse_route_is_the_cheapest_by_an_independent_dijkstra() {
     }
 }
 
+/// The search graph walks each undirected edge once in each direction: every half-edge in
+/// `out_edges(v)` leaves `v` for the edge's other end, and nothing lies past the last vertex,
+/// half-edge or edge. After a search, each edge's price is the paper's cost in f64 and its
+/// clear flag the f64 reference's verdict (away from touching).
+#[test]
+fn the_search_graph_holds_each_edge_once_each_way_priced_by_the_formula() {
+    for name in ["ruz-popups", "voronoi-dense"] {
+        let (s, b) = voronoi(name);
+        let zs = zones(&b);
+        let clearance = s.planner.clearance_m.unwrap_or(0.0);
+        let k = 0.5f32;
+        let mut p = planner(&b.bytes);
+        p.set_threat_weight(k).unwrap();
+        p.plan(&query(&s, &b), p.worst_case_work())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let g = p.threat_graph().unwrap();
+        let (n, m) = (g.vertex_count(), g.edges().len() as u32);
+        assert_eq!(n as usize, g.vertices().len(), "{name}");
+        let mut walked = vec![[0u32; 2]; m as usize];
+        let mut slots = 0;
+        for v in 0..n {
+            for k in g.out_edges(v) {
+                let h = g.half_edge(k).unwrap_or_else(|| panic!("{name}: slot {k}"));
+                let e = g.edges()[h.edge as usize];
+                assert_eq!(h.source as u32, v, "{name}: slot {k} leaves {v}");
+                let forward = (e.a, e.b) == (h.source, h.target);
+                assert!(
+                    forward || (e.b, e.a) == (h.source, h.target),
+                    "{name}: slot {k}"
+                );
+                walked[h.edge as usize][forward as usize] += 1;
+                slots += 1;
+            }
+        }
+        assert!(walked.iter().all(|w| *w == [1, 1]), "{name}: {walked:?}");
+        assert_eq!(slots, 2 * m, "{name}");
+        assert_eq!(g.out_edges(n), 0..0, "{name}");
+        assert_eq!(g.half_edge(2 * m), None, "{name}");
+        assert_eq!(g.vertex(n), None, "{name}");
+        assert_eq!(g.edge_ends(m), None, "{name}");
+        let mut clear = 0;
+        for (e, ge) in g.edges().iter().enumerate() {
+            let (a, b) = g.edge_ends(e as u32).unwrap();
+            assert_eq!(
+                (a, b),
+                (g.vertices()[ge.a as usize], g.vertices()[ge.b as usize])
+            );
+            let want = cost64(p64(a), p64(b), p.threats(), k as f64);
+            let got = g.edge_cost(e as u32).unwrap() as f64;
+            assert!(
+                (got - want).abs() <= 1e-4 * want,
+                "{name}: edge {e} costs {got}, the formula {want}"
+            );
+            let margin = zs
+                .iter()
+                .map(|z| host_tests::reference::dist_segment_polygon(p64(a), p64(b), z))
+                .fold(f64::INFINITY, f64::min)
+                - clearance;
+            if margin.abs() > 0.01 {
+                assert_eq!(
+                    g.is_clear(e as u32),
+                    segment_clear(p64(a), p64(b), &zs, clearance),
+                    "{name}: edge {e}, {margin} m beyond the clearance"
+                );
+            }
+            clear += g.is_clear(e as u32) as u32;
+        }
+        assert!(clear > 0, "{name}: no edge clear");
+    }
+}
+
 /// Curvature of a piece at `t` in f64 from its control points.
 fn curvature64(piece: &Piece, t: f64) -> (P, P, f64) {
     match piece {
