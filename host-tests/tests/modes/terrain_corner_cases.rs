@@ -104,6 +104,23 @@ fn chord(nodes: &[Vec2], a: u32, b: u32) -> (u32, u32, f32) {
     (a, b, nodes[a as usize].distance(nodes[b as usize]))
 }
 
+/// Three nodes at a right-angled corner, (0, 0) → (3000, 0) → (3000, 3000), joined both ways
+/// (edges 0 and 1 along the first leg, 2 and 3 along the second).
+fn corner() -> ([Vec2; 3], [(u32, u32, f32); 4]) {
+    let nodes = [
+        Vec2::new(0.0, 0.0),
+        Vec2::new(3000.0, 0.0),
+        Vec2::new(3000.0, 3000.0),
+    ];
+    let edges = [
+        chord(&nodes, 0, 1),
+        chord(&nodes, 1, 0),
+        chord(&nodes, 1, 2),
+        chord(&nodes, 2, 1),
+    ];
+    (nodes, edges)
+}
+
 fn angle_diff(a: f32, b: f32) -> f32 {
     let d = (a - b).rem_euclid(std::f32::consts::TAU);
     d.min(std::f32::consts::TAU - d)
@@ -263,17 +280,7 @@ fn goal_exactly_on_a_node_is_reached_from_any_direction() {
     let mut t = Terrain::new(Vec2::new(-1500.0, -1500.0), 100.0, 60, 60);
     // Blocks the direct start–goal connections across the corner.
     t.block(500.0, 500.0, 2500.0, 2500.0);
-    let nodes = [
-        Vec2::new(0.0, 0.0),
-        Vec2::new(3000.0, 0.0),
-        Vec2::new(3000.0, 3000.0),
-    ];
-    let edges = [
-        chord(&nodes, 0, 1),
-        chord(&nodes, 1, 0),
-        chord(&nodes, 1, 2),
-        chord(&nodes, 2, 1),
-    ];
+    let (nodes, edges) = corner();
     let bytes = network(&t, &nodes, &edges, 100.0, Vec::new()).unwrap();
     let mut p: Box<SmallPlanner<'_>> = Box::new(Planner::new());
     p.load(&bytes).unwrap();
@@ -520,17 +527,7 @@ fn start_exactly_on_a_node_needs_no_loop() {
 fn a_planner_with_exactly_the_terrain_states_loads_and_one_fewer_is_refused() {
     let mut t = Terrain::new(Vec2::new(-1500.0, -1500.0), 100.0, 60, 60);
     t.block(500.0, 500.0, 2500.0, 2500.0);
-    let nodes = [
-        Vec2::new(0.0, 0.0),
-        Vec2::new(3000.0, 0.0),
-        Vec2::new(3000.0, 3000.0),
-    ];
-    let edges = [
-        chord(&nodes, 0, 1),
-        chord(&nodes, 1, 0),
-        chord(&nodes, 1, 2),
-        chord(&nodes, 2, 1),
-    ];
+    let (nodes, edges) = corner();
     let bytes = network(&t, &nodes, &edges, 100.0, Vec::new()).unwrap();
     const NEEDED: usize = 4 + MAX_LINKS;
     let start = Pose::new(-500.0, 0.0, 0.0);
@@ -562,17 +559,7 @@ fn a_planner_with_exactly_the_terrain_states_loads_and_one_fewer_is_refused() {
 /// leaves it usable; the other edges are unaffected.
 #[test]
 fn an_edge_over_one_cell_at_the_blocking_code_is_unusable_and_one_code_lower_is_not() {
-    let nodes = [
-        Vec2::new(0.0, 0.0),
-        Vec2::new(3000.0, 0.0),
-        Vec2::new(3000.0, 3000.0),
-    ];
-    let edges = [
-        chord(&nodes, 0, 1),
-        chord(&nodes, 1, 0),
-        chord(&nodes, 1, 2),
-        chord(&nodes, 2, 1),
-    ];
+    let (nodes, edges) = corner();
     for (code, usable) in [(BLOCKING, false), (BLOCKING - 1, true)] {
         let mut t = Terrain::new(Vec2::new(-1500.0, -1500.0), 100.0, 60, 60);
         for y in [-50.0, 50.0] {
