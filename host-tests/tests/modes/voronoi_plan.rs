@@ -274,7 +274,7 @@ fn the_coarse_route_is_the_cheapest_by_an_independent_dijkstra() {
 
 /// The search graph walks each undirected edge once in each direction: every half-edge in
 /// `out_edges(v)` leaves `v` for the edge's other end, and nothing lies past the last vertex,
-/// half-edge or edge. After a search, each edge's price is the paper's cost in f64 and its
+/// half-edge or edge. After a second search, each edge's price is the paper's cost in f64 and its
 /// clear flag the f64 reference's verdict (away from touching).
 #[test]
 fn the_search_graph_holds_each_edge_once_each_way_priced_by_the_formula() {
@@ -285,8 +285,11 @@ fn the_search_graph_holds_each_edge_once_each_way_priced_by_the_formula() {
         let k = 0.5f32;
         let mut p = planner(&b.bytes);
         p.set_threat_weight(k).unwrap();
-        p.plan(&query(&s, &b), p.worst_case_work())
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        // Twice: the second search prices and flags every edge again over the first's.
+        for _ in 0..2 {
+            p.plan(&query(&s, &b), p.worst_case_work())
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+        }
         let g = p.threat_graph().unwrap();
         let (n, m) = (g.vertex_count(), g.edges().len() as u32);
         assert_eq!(n as usize, g.vertices().len(), "{name}");
