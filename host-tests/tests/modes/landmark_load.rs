@@ -239,10 +239,10 @@ fn a_site_within_the_position_tolerance_of_its_vertices_loads_and_one_beyond_is_
     );
 }
 
-/// The chain offsets (edge `e` owns the chain index list's entries `offsets[e] .. offsets[e +
-/// 1]`) must start at 0, never decrease and end at the list's length: each rule broken on its own is refused as
-/// `BadOffsets` at the offending index (the same damages as the edge and cell offsets get in
-/// `core::offset_tables`).
+/// The chain offsets (edge `e` owns the chain index list's entries
+/// `offsets[e] .. offsets[e + 1]`) must start at 0, never decrease and end at the list's
+/// length: each rule broken on its own is refused as `BadOffsets` at the offending index (the
+/// same damages as the edge and cell offsets get in `core::offset_tables`).
 #[test]
 fn chain_offsets_must_start_at_zero_never_decrease_and_end_at_the_index_count() {
     let good = network();
