@@ -2,7 +2,9 @@
 //! (start or goal) it is about, and no two read the same.
 
 use crate::load_messages::assert_messages_name_and_differ;
+use skyroute::geometry::voronoi::VoronoiError;
 use skyroute::planner::QueryField::{Goal, Start};
+use skyroute::planner::{ThreatError, MAX_THREATS};
 use skyroute::{PlanError, PopupError};
 
 /// Every [`PlanError`], its numbers all distinct, with the words of its message that name
@@ -103,11 +105,28 @@ fn every_popup_error() -> Vec<(PopupError, Vec<&'static str>)> {
     ]
 }
 
+/// Every [`ThreatError`], with the words that name its numbers.
+fn every_threat_error() -> Vec<(ThreatError, Vec<&'static str>)> {
+    use ThreatError::*;
+    assert_eq!(MAX_THREATS, 32, "the words below name the threat capacity");
+    vec![
+        (NotVoronoi, vec!["not a Voronoi network"]),
+        (NonFinite, vec!["not finite"]),
+        (OutOfRange, vec!["radius", "weight"]),
+        (OutsideBox, vec!["outside the network's box"]),
+        (Full, vec!["32 threats"]),
+        (Duplicate { existing: 231 }, vec!["threat 231"]),
+        (UnknownId { id: 232 }, vec!["id 232"]),
+        (GraphFull, vec!["graph"]),
+    ]
+}
+
 #[test]
 fn every_plan_and_popup_error_names_its_numbers_and_reads_unlike_the_others() {
     let mut seen = std::collections::HashSet::new();
     assert_messages_name_and_differ(&every_plan_error(), &mut seen);
     assert_messages_name_and_differ(&every_popup_error(), &mut seen);
+    assert_messages_name_and_differ(&every_threat_error(), &mut seen);
     // The goal's variant of each error about a query field names the goal.
     let goal = vec![
         (PlanError::NonFinite { field: Goal }, vec!["Goal"]),
@@ -129,4 +148,34 @@ fn every_plan_and_popup_error_names_its_numbers_and_reads_unlike_the_others() {
         (PlanError::OverBlockedTerrain { field: Goal }, vec!["Goal"]),
     ];
     assert_messages_name_and_differ(&goal, &mut seen);
+}
+
+/// The diagram's refusals reach the caller as the threat errors that say why: a site at the
+/// position of another names it, a diagram at its site capacity is full, and any other
+/// refusal is storage the rebuilt graph does not fit.
+#[test]
+fn the_diagrams_refusals_become_the_threat_errors_that_name_their_cause() {
+    let cases = [
+        (
+            VoronoiError::DuplicateSite {
+                index: 5,
+                existing: 3,
+            },
+            ThreatError::Duplicate { existing: 3 },
+        ),
+        (
+            VoronoiError::TooManySites {
+                capacity: MAX_THREATS,
+            },
+            ThreatError::Full,
+        ),
+        (
+            VoronoiError::TooManyTriangles { capacity: 64 },
+            ThreatError::GraphFull,
+        ),
+        (VoronoiError::GraphFull, ThreatError::GraphFull),
+    ];
+    for (diagram, threat) in cases {
+        assert_eq!(ThreatError::from(diagram), threat, "{diagram:?}");
+    }
 }

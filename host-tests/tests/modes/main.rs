@@ -47,5 +47,8 @@ mod terrain_plan;
 /// The terrain search against an exhaustive walk enumeration.
 mod terrain_search;
 /// Voronoi mode (Judd & McLain) end to end: the onboard graph, an f64 Dijkstra, flyable
-/// smoothed routes, the weight's effect, pop-up threats and bad threat calls.
+/// smoothed routes, the weight's effect, pop-up threats.
 mod voronoi_plan;
+/// Voronoi mode's threat storage: the stored graph checked at load against the sites'
+/// diagram, threats added on the box and beyond it, and bad threat calls.
+mod voronoi_threats;
