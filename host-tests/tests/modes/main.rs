@@ -49,6 +49,9 @@ mod terrain_search;
 /// Voronoi mode (Judd & McLain) end to end: the onboard graph, an f64 Dijkstra, flyable
 /// smoothed routes, the weight's effect, pop-up threats.
 mod voronoi_plan;
+/// Voronoi mode's route as written out: chords within their tolerance of the smoothed
+/// pieces, a blocked direct segment, a start and goal out of the graph's reach.
+mod voronoi_route;
 /// Voronoi mode's threat storage: the stored graph checked at load against the sites'
 /// diagram, threats added on the box and beyond it, and bad threat calls.
 mod voronoi_threats;

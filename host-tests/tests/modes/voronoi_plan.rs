@@ -57,7 +57,7 @@ pub(crate) fn query(s: &Scenario, b: &Built) -> Query {
     }
 }
 
-fn p64(v: Vec2) -> P {
+pub(crate) fn p64(v: Vec2) -> P {
     (v.x as f64, v.y as f64)
 }
 
@@ -303,7 +303,7 @@ fn the_search_graph_holds_each_edge_once_each_way_priced_by_the_formula() {
 }
 
 /// Curvature of a piece at `t` in f64 from its control points.
-fn curvature64(piece: &Piece, t: f64) -> (P, P, f64) {
+pub(crate) fn curvature64(piece: &Piece, t: f64) -> (P, P, f64) {
     match piece {
         Piece::Line { a, b } => {
             let d = (b.x as f64 - a.x as f64, b.y as f64 - a.y as f64);

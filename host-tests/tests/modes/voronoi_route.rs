@@ -1,0 +1,148 @@
+//! Voronoi mode's route as written out (`planner/voronoi/route.rs`): the line chords for
+//! autopilots that fly lines only, against the smoothed pieces in f64, and the start and goal
+//! joined to the graph or, with no graph vertex in reach, to each other.
+
+use crate::voronoi_plan::{curvature64, p64, planner, query, voronoi};
+use host_tests::reference::{dist_point_segment, P};
+use skyroute::planner::CHORD_TOLERANCE_M;
+use skyroute::{Goal, Primitive, Query, Vec2};
+
+/// The route of line chords (`Planner::route`, for autopilots that fly lines only) runs
+/// unbroken from the start to the goal, and follows the smoothed pieces within the reported
+/// chord deviation, itself within [`CHORD_TOLERANCE_M`]: every sampled point of a piece lies
+/// that near a chord, and every chord's ends and middle that near the pieces (f64 distances to
+/// the pieces sampled 400 times each).
+#[test]
+fn the_route_of_chords_follows_the_pieces_within_the_chord_tolerance() {
+    for name in ["ruz-popups", "voronoi-dense"] {
+        let (s, b) = voronoi(name);
+        for k in [0.1f32, 0.5, 1.0] {
+            let mut p = planner(&b.bytes);
+            p.set_threat_weight(k).unwrap();
+            let q = query(&s, &b);
+            let summary = p.plan(&q, p.worst_case_work()).unwrap();
+            let chords: Vec<(P, P)> = p
+                .route()
+                .iter()
+                .map(|primitive| match primitive {
+                    Primitive::Line(l) => (p64(l.start), p64(l.end)),
+                    other => panic!("{name} k={k}: a Voronoi route holds {other:?}"),
+                })
+                .collect();
+            assert_eq!(summary.primitives as usize, chords.len(), "{name} k={k}");
+            assert_eq!(chords[0].0, p64(q.start.position), "{name} k={k}");
+            assert!(
+                chords.windows(2).all(|w| w[0].1 == w[1].0),
+                "{name} k={k}: a gap"
+            );
+            let end = chords.last().unwrap().1;
+            assert!(host_tests::reference::dist(end, p64(q.goal.position)) < 0.05);
+            let deviation = p.chord_deviation().unwrap() as f64;
+            assert!(
+                deviation <= CHORD_TOLERANCE_M as f64,
+                "{name} k={k}: {deviation}"
+            );
+            let samples: Vec<P> = p
+                .route_pieces()
+                .iter()
+                .flat_map(|piece| (0..=400).map(|j| curvature64(piece, j as f64 / 400.0).0))
+                .collect();
+            let to_chords = |x: P| {
+                chords
+                    .iter()
+                    .map(|c| dist_point_segment(x, c.0, c.1))
+                    .fold(f64::INFINITY, f64::min)
+            };
+            let to_pieces = |x: P| {
+                samples
+                    .windows(2)
+                    .map(|w| dist_point_segment(x, w[0], w[1]))
+                    .fold(f64::INFINITY, f64::min)
+            };
+            for x in &samples {
+                let d = to_chords(*x);
+                assert!(
+                    d <= deviation + 1e-3,
+                    "{name} k={k}: {x:?} is {d} m from the chords"
+                );
+            }
+            for c in &chords {
+                let middle = ((c.0 .0 + c.1 .0) / 2.0, (c.0 .1 + c.1 .1) / 2.0);
+                for x in [c.0, middle, c.1] {
+                    let d = to_pieces(x);
+                    assert!(
+                        d <= deviation + 1e-2,
+                        "{name} k={k}: chord point {x:?} {d} m off"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// With the direct segment blocked (a pop-up on its middle), the route goes through the graph;
+/// with the start and the goal walled in by four pop-ups that no graph vertex lies within (no
+/// vertex in reach of either), the route is the direct segment.
+#[test]
+fn a_blocked_direct_segment_routes_through_the_graph_and_a_walled_in_pair_flies_direct() {
+    let (s, b) = voronoi("ruz-popups");
+    let q = query(&s, &b);
+    let (a, g) = (q.start.position, q.goal.position);
+    let mut p = planner(&b.bytes);
+    let radius = 0.2 * a.distance(g);
+    p.add_popup(skyroute::Popup::Circle {
+        centre: (a + g) * 0.5,
+        radius,
+    })
+    .unwrap();
+    let through_graph = p.plan(&q, p.worst_case_work()).unwrap();
+    assert!(through_graph.network_edges > 0);
+
+    // A goal 300 m ahead of the start, and a square wall 200 m thick around both, 1.5 km
+    // inside.
+    let mut p = planner(&b.bytes);
+    let ahead = Vec2::new(q.start.heading.cos(), q.start.heading.sin());
+    let goal = a + ahead * 300.0;
+    let centre = (a + goal) * 0.5;
+    let (inner, outer) = (1500.0f32, 1700.0f32);
+    let rect = |lo: Vec2, hi: Vec2| {
+        skyroute::Popup::Polygon(
+            [lo, Vec2::new(hi.x, lo.y), hi, Vec2::new(lo.x, hi.y)]
+                .into_iter()
+                .map(|v| centre + v)
+                .collect(),
+        )
+    };
+    for wall in [
+        rect(Vec2::new(-outer, -outer), Vec2::new(outer, -inner)),
+        rect(Vec2::new(-outer, inner), Vec2::new(outer, outer)),
+        rect(Vec2::new(-outer, -outer), Vec2::new(-inner, outer)),
+        rect(Vec2::new(inner, -outer), Vec2::new(outer, outer)),
+    ] {
+        p.add_popup(wall).unwrap();
+    }
+    let graph = p.threat_graph().unwrap();
+    assert!(
+        graph
+            .vertices()
+            .iter()
+            .all(|v| (v.x - centre.x).abs().max((v.y - centre.y).abs()) > outer),
+        "a graph vertex lies within the wall"
+    );
+    let walled = Query {
+        goal: Goal {
+            position: goal,
+            heading: None,
+        },
+        ..q
+    };
+    let direct = p.plan(&walled, p.worst_case_work()).unwrap();
+    assert_eq!(direct.network_edges, 0);
+    let last = p.route().last().unwrap();
+    let end = last.pose_at(last.length()).position;
+    assert!(
+        end.distance(goal) < 0.05,
+        "ends {} m from the goal",
+        end.distance(goal)
+    );
+}
