@@ -4,6 +4,7 @@
 
 use crate::voronoi_plan::{curvature64, p64, planner, query, voronoi};
 use host_tests::reference::{dist_point_segment, P};
+use skyroute::geometry::spline::Piece;
 use skyroute::planner::CHORD_TOLERANCE_M;
 use skyroute::{Goal, Primitive, Query, Vec2};
 
@@ -145,4 +146,96 @@ fn a_blocked_direct_segment_routes_through_the_graph_and_a_walled_in_pair_flies_
         "ends {} m from the goal",
         end.distance(goal)
     );
+}
+
+/// A pop-up disc on the middle of a corner piece, wholly inside that corner's hull triangle and
+/// farther than the clearance from its sides and from every coarse leg: the coarse route is
+/// unchanged, so the corner's hull test alone can see it. The plan is refused at that corner
+/// with the previous route kept, or flies clear of the disc.
+#[test]
+fn a_popup_inside_a_corner_hull_is_flown_clear_of_or_the_corner_refused() {
+    let (s, b) = voronoi("voronoi-dense");
+    let q = query(&s, &b);
+    let mut p = planner(&b.bytes);
+    p.plan(&q, p.worst_case_work()).unwrap();
+    let clearance = p.network().clearance() as f64;
+    let paths = p.route_paths();
+    let legs: Vec<(P, P)> = paths
+        .iter()
+        .map(|l| (p64(l.start.position), p64(l.end().position)))
+        .collect();
+    let radius = 1.0;
+    // The corner whose middle lies deepest inside its hull triangle (p0, p1, p3).
+    let (centre, depth) = p
+        .route_pieces()
+        .iter()
+        .filter_map(|piece| match piece {
+            Piece::Cubic { p: c } => {
+                let m = curvature64(piece, 0.5).0;
+                let (a, t, e) = (p64(c[0]), p64(c[1]), p64(c[3]));
+                let sides = [(a, t), (t, e), (e, a)];
+                let depth = sides
+                    .iter()
+                    .chain(legs.iter())
+                    .map(|(u, v)| dist_point_segment(m, *u, *v))
+                    .fold(f64::INFINITY, f64::min);
+                Some((m, depth))
+            }
+            Piece::Line { .. } => None,
+        })
+        .max_by(|x, y| x.1.total_cmp(&y.1))
+        .expect("a corner piece");
+    assert!(
+        depth > radius + clearance + 1.0,
+        "the deepest corner middle is only {depth} m inside"
+    );
+    let before = (p.route().to_vec(), p.route_pieces().to_vec());
+    p.add_popup(skyroute::Popup::Circle {
+        centre: Vec2::new(centre.0 as f32, centre.1 as f32),
+        radius: radius as f32,
+    })
+    .unwrap();
+    match p.plan(&q, p.worst_case_work()) {
+        Err(skyroute::PlanError::Smoothing { .. }) => {
+            assert_eq!((p.route().to_vec(), p.route_pieces().to_vec()), before);
+        }
+        Ok(_) => {
+            for piece in p.route_pieces() {
+                for j in 0..=400 {
+                    let at = curvature64(piece, j as f64 / 400.0).0;
+                    let d = host_tests::reference::dist(at, centre);
+                    assert!(
+                        d >= radius + clearance - 0.5,
+                        "passes {d} m from the pop-up"
+                    );
+                }
+            }
+        }
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// The work counts what the documented work model says a plan does at least: every graph edge
+/// priced against every threat at three points (`threat_steps`), and every graph vertex scanned
+/// once for the start's candidates and once for the goal's (`vertex_scans`).
+#[test]
+fn the_work_counts_each_priced_edge_and_each_vertex_scan() {
+    for name in ["ruz-popups", "voronoi-dense"] {
+        let (s, b) = voronoi(name);
+        let mut p = planner(&b.bytes);
+        let work = p.plan(&query(&s, &b), p.worst_case_work()).unwrap().work;
+        let g = p.threat_graph().unwrap();
+        let threats = p.threats().len() as u64;
+        let (vertices, edges) = (g.vertex_count() as u64, g.edges().len() as u64);
+        assert!(
+            work.threat_steps >= 3 * threats * edges,
+            "{name}: {} threat steps for {edges} edges and {threats} threats",
+            work.threat_steps
+        );
+        assert!(
+            work.vertex_scans >= 2 * vertices,
+            "{name}: {} vertex scans for {vertices} vertices",
+            work.vertex_scans
+        );
+    }
 }
