@@ -2,7 +2,7 @@
 //! autopilots that fly lines only, against the smoothed pieces in f64, and the start and goal
 //! joined to the graph or, with no graph vertex in reach, to each other.
 
-use crate::voronoi_plan::{curvature64, p64, planner, query, voronoi};
+use crate::voronoi_plan::{curvature64, p64, planner, query, voronoi, VPlanner};
 use host_tests::reference::{dist_point_segment, P};
 use skyroute::geometry::spline::Piece;
 use skyroute::planner::CHORD_TOLERANCE_M;
@@ -189,13 +189,19 @@ fn a_popup_inside_a_corner_hull_is_flown_clear_of_or_the_corner_refused() {
         depth > radius + clearance + 1.0,
         "the deepest corner middle is only {depth} m inside"
     );
+    replan_with_disc(&mut p, &q, centre, radius, clearance);
+}
+
+/// Adds a pop-up disc and plans again: refused at a corner with the route kept, or flown clear
+/// of the disc by the clearance (f64 sampling of every piece).
+fn replan_with_disc(p: &mut VPlanner, q: &Query, centre: P, radius: f64, clearance: f64) {
     let before = (p.route().to_vec(), p.route_pieces().to_vec());
     p.add_popup(skyroute::Popup::Circle {
         centre: Vec2::new(centre.0 as f32, centre.1 as f32),
         radius: radius as f32,
     })
     .unwrap();
-    match p.plan(&q, p.worst_case_work()) {
+    match p.plan(q, p.worst_case_work()) {
         Err(skyroute::PlanError::Smoothing { .. }) => {
             assert_eq!((p.route().to_vec(), p.route_pieces().to_vec()), before);
         }
@@ -213,6 +219,56 @@ fn a_popup_inside_a_corner_hull_is_flown_clear_of_or_the_corner_refused() {
         }
         Err(e) => panic!("{e}"),
     }
+}
+
+/// A pop-up disc whose centre lies outside a corner's hull triangle, beyond the chord from
+/// the corner's first to its last point, reaching past the middle of the corner piece, and
+/// farther than the clearance from every coarse leg: only the hull's chord side meets it. The
+/// plan is refused at that corner with the route kept, or flies clear of the disc.
+#[test]
+fn a_popup_across_a_corner_hulls_chord_is_flown_clear_of_or_the_corner_refused() {
+    let (s, b) = voronoi("voronoi-dense");
+    let q = query(&s, &b);
+    let mut p = planner(&b.bytes);
+    p.plan(&q, p.worst_case_work()).unwrap();
+    let clearance = p.network().clearance() as f64;
+    let legs: Vec<(P, P)> = p
+        .route_paths()
+        .iter()
+        .map(|l| (p64(l.start.position), p64(l.end().position)))
+        .collect();
+    let behind = 10.0;
+    // Per corner: the disc's centre `behind` metres beyond the chord's middle, its radius
+    // reaching a metre past the piece's middle, and its margin to the coarse legs.
+    let (centre, radius, margin) = p
+        .route_pieces()
+        .iter()
+        .filter_map(|piece| match piece {
+            Piece::Cubic { p: c } => {
+                let m = curvature64(piece, 0.5).0;
+                let chord = (
+                    (c[0].x + c[3].x) as f64 / 2.0,
+                    (c[0].y + c[3].y) as f64 / 2.0,
+                );
+                let h = host_tests::reference::dist(chord, m);
+                let u = ((m.0 - chord.0) / h, (m.1 - chord.1) / h);
+                let centre = (chord.0 - behind * u.0, chord.1 - behind * u.1);
+                let radius = h + behind + 1.0;
+                let to_legs = legs
+                    .iter()
+                    .map(|(a, b)| dist_point_segment(centre, *a, *b))
+                    .fold(f64::INFINITY, f64::min);
+                Some((centre, radius, to_legs - radius - clearance))
+            }
+            Piece::Line { .. } => None,
+        })
+        .max_by(|x, y| x.2.total_cmp(&y.2))
+        .expect("a corner piece");
+    assert!(
+        margin > 1.0,
+        "the best corner's disc is {margin} m from the legs' clearance"
+    );
+    replan_with_disc(&mut p, &q, centre, radius, clearance);
 }
 
 /// The work counts what the documented work model says a plan does at least: every graph edge
