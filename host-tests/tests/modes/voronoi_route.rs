@@ -3,7 +3,7 @@
 //! joined to the graph or, with no graph vertex in reach, to each other.
 
 use crate::voronoi_plan::{curvature64, p64, planner, query, voronoi, VPlanner};
-use host_tests::reference::{dist_point_segment, P};
+use host_tests::reference::{dist_point_segment, dist_polygon, dist_segment_segment, inside, P};
 use skyroute::geometry::spline::Piece;
 use skyroute::planner::CHORD_TOLERANCE_M;
 use skyroute::{Goal, Primitive, Query, Vec2};
@@ -159,11 +159,7 @@ fn a_popup_inside_a_corner_hull_is_flown_clear_of_or_the_corner_refused() {
     let mut p = planner(&b.bytes);
     p.plan(&q, p.worst_case_work()).unwrap();
     let clearance = p.network().clearance() as f64;
-    let paths = p.route_paths();
-    let legs: Vec<(P, P)> = paths
-        .iter()
-        .map(|l| (p64(l.start.position), p64(l.end().position)))
-        .collect();
+    let legs = coarse_legs(&p);
     let radius = 1.0;
     // The corner whose middle lies deepest inside its hull triangle (p0, p1, p3).
     let (centre, depth) = p
@@ -189,18 +185,34 @@ fn a_popup_inside_a_corner_hull_is_flown_clear_of_or_the_corner_refused() {
         depth > radius + clearance + 1.0,
         "the deepest corner middle is only {depth} m inside"
     );
-    replan_with_disc(&mut p, &q, centre, radius, clearance);
-}
-
-/// Adds a pop-up disc and plans again: refused at a corner with the route kept, or flown clear
-/// of the disc by the clearance (f64 sampling of every piece).
-fn replan_with_disc(p: &mut VPlanner, q: &Query, centre: P, radius: f64, clearance: f64) {
-    let before = (p.route().to_vec(), p.route_pieces().to_vec());
-    p.add_popup(skyroute::Popup::Circle {
+    let disc = skyroute::Popup::Circle {
         centre: Vec2::new(centre.0 as f32, centre.1 as f32),
         radius: radius as f32,
-    })
-    .unwrap();
+    };
+    let distance = |at: P| host_tests::reference::dist(at, centre) - radius;
+    replan_with_popup(&mut p, &q, disc, &distance, clearance);
+}
+
+/// The coarse route's legs (start, graph vertices, goal).
+fn coarse_legs(p: &VPlanner) -> Vec<(P, P)> {
+    p.route_paths()
+        .iter()
+        .map(|l| (p64(l.start.position), p64(l.end().position)))
+        .collect()
+}
+
+/// Adds `popup` and plans again: refused at a corner with the route kept, or flown at least
+/// the clearance from the pop-up by `distance` (negative inside it), sampling every piece in
+/// f64.
+fn replan_with_popup(
+    p: &mut VPlanner,
+    q: &Query,
+    popup: skyroute::Popup,
+    distance: &dyn Fn(P) -> f64,
+    clearance: f64,
+) {
+    let before = (p.route().to_vec(), p.route_pieces().to_vec());
+    p.add_popup(popup).unwrap();
     match p.plan(q, p.worst_case_work()) {
         Err(skyroute::PlanError::Smoothing { .. }) => {
             assert_eq!((p.route().to_vec(), p.route_pieces().to_vec()), before);
@@ -208,12 +220,8 @@ fn replan_with_disc(p: &mut VPlanner, q: &Query, centre: P, radius: f64, clearan
         Ok(_) => {
             for piece in p.route_pieces() {
                 for j in 0..=400 {
-                    let at = curvature64(piece, j as f64 / 400.0).0;
-                    let d = host_tests::reference::dist(at, centre);
-                    assert!(
-                        d >= radius + clearance - 0.5,
-                        "passes {d} m from the pop-up"
-                    );
+                    let d = distance(curvature64(piece, j as f64 / 400.0).0);
+                    assert!(d >= clearance - 0.5, "passes {d} m from the pop-up");
                 }
             }
         }
@@ -221,10 +229,11 @@ fn replan_with_disc(p: &mut VPlanner, q: &Query, centre: P, radius: f64, clearan
     }
 }
 
-/// A pop-up disc whose centre lies outside a corner's hull triangle, beyond the chord from
-/// the corner's first to its last point, reaching past the middle of the corner piece, and
-/// farther than the clearance from every coarse leg: only the hull's chord side meets it. The
-/// plan is refused at that corner with the route kept, or flies clear of the disc.
+/// A thin pop-up needle through the middle of a corner piece, out across the hull triangle's
+/// chord (from the piece's first to its last point) to a centre behind it, so that the
+/// triangle's chord side meets it but holds neither its centre nor any zone's; it lies farther
+/// than the clearance from every coarse leg. The plan is refused at that corner with the route
+/// kept, or flies clear of the needle.
 #[test]
 fn a_popup_across_a_corner_hulls_chord_is_flown_clear_of_or_the_corner_refused() {
     let (s, b) = voronoi("voronoi-dense");
@@ -232,15 +241,12 @@ fn a_popup_across_a_corner_hulls_chord_is_flown_clear_of_or_the_corner_refused()
     let mut p = planner(&b.bytes);
     p.plan(&q, p.worst_case_work()).unwrap();
     let clearance = p.network().clearance() as f64;
-    let legs: Vec<(P, P)> = p
-        .route_paths()
-        .iter()
-        .map(|l| (p64(l.start.position), p64(l.end().position)))
-        .collect();
-    let behind = 10.0;
-    // Per corner: the disc's centre `behind` metres beyond the chord's middle, its radius
-    // reaching a metre past the piece's middle, and its margin to the coarse legs.
-    let (centre, radius, margin) = p
+    let legs = coarse_legs(&p);
+    let half_width = 1.0;
+    // Per corner: the needle from 2 m past the piece's middle `m` to as far behind the chord's
+    // middle as `m` is in front of it plus 20 m (its centre 9 m behind the chord), and its
+    // margin beyond the clearance from the coarse legs.
+    let (tip, base, margin) = p
         .route_pieces()
         .iter()
         .filter_map(|piece| match piece {
@@ -252,13 +258,13 @@ fn a_popup_across_a_corner_hulls_chord_is_flown_clear_of_or_the_corner_refused()
                 );
                 let h = host_tests::reference::dist(chord, m);
                 let u = ((m.0 - chord.0) / h, (m.1 - chord.1) / h);
-                let centre = (chord.0 - behind * u.0, chord.1 - behind * u.1);
-                let radius = h + behind + 1.0;
+                let tip = (m.0 + 2.0 * u.0, m.1 + 2.0 * u.1);
+                let base = (chord.0 - (h + 20.0) * u.0, chord.1 - (h + 20.0) * u.1);
                 let to_legs = legs
                     .iter()
-                    .map(|(a, b)| dist_point_segment(centre, *a, *b))
+                    .map(|(a, b)| dist_segment_segment(tip, base, *a, *b))
                     .fold(f64::INFINITY, f64::min);
-                Some((centre, radius, to_legs - radius - clearance))
+                Some((tip, base, to_legs - half_width - clearance))
             }
             Piece::Line { .. } => None,
         })
@@ -266,9 +272,30 @@ fn a_popup_across_a_corner_hulls_chord_is_flown_clear_of_or_the_corner_refused()
         .expect("a corner piece");
     assert!(
         margin > 1.0,
-        "the best corner's disc is {margin} m from the legs' clearance"
+        "the best corner's needle is {margin} m from the legs' clearance"
     );
-    replan_with_disc(&mut p, &q, centre, radius, clearance);
+    let length = host_tests::reference::dist(tip, base);
+    let n = (
+        -(tip.1 - base.1) / length * half_width,
+        (tip.0 - base.0) / length * half_width,
+    );
+    let needle: Vec<P> = vec![
+        (base.0 - n.0, base.1 - n.1),
+        (tip.0 - n.0, tip.1 - n.1),
+        (tip.0 + n.0, tip.1 + n.1),
+        (base.0 + n.0, base.1 + n.1),
+    ];
+    let popup = skyroute::Popup::Polygon(
+        needle
+            .iter()
+            .map(|v| Vec2::new(v.0 as f32, v.1 as f32))
+            .collect(),
+    );
+    let distance = |at: P| match inside(at, &needle) {
+        true => -dist_polygon(at, &needle),
+        false => dist_polygon(at, &needle),
+    };
+    replan_with_popup(&mut p, &q, popup, &distance, clearance);
 }
 
 /// The work counts what the documented work model says a plan does at least: every graph edge
