@@ -5,8 +5,8 @@
 use crate::voronoi_plan::{curvature64, p64, planner, query, voronoi, VPlanner};
 use host_tests::reference::{dist_point_segment, dist_polygon, dist_segment_segment, inside, P};
 use skyroute::geometry::spline::Piece;
-use skyroute::planner::CHORD_TOLERANCE_M;
-use skyroute::{Goal, Primitive, Query, Vec2};
+use skyroute::planner::{VoronoiStorage, CHORD_TOLERANCE_M};
+use skyroute::{Goal, PlanError, Planner, Primitive, Query, Vec2};
 
 /// The route of line chords (`Planner::route`, for autopilots that fly lines only) runs
 /// unbroken from the start to the goal, and follows the smoothed pieces within the reported
@@ -214,7 +214,7 @@ fn replan_with_popup(
     let before = (p.route().to_vec(), p.route_pieces().to_vec());
     p.add_popup(popup).unwrap();
     match p.plan(q, p.worst_case_work()) {
-        Err(skyroute::PlanError::Smoothing { .. }) => {
+        Err(PlanError::Smoothing { .. }) => {
             assert_eq!((p.route().to_vec(), p.route_pieces().to_vec()), before);
         }
         Ok(_) => {
@@ -321,4 +321,41 @@ fn the_work_counts_each_priced_edge_and_each_vertex_scan() {
             work.vertex_scans
         );
     }
+}
+
+/// A planner holding fewer primitives than a route's chords (but more than its coarse legs)
+/// refuses it with both counts and keeps the route it had.
+#[test]
+fn a_route_of_more_chords_than_the_planner_holds_is_refused_and_the_route_kept() {
+    const R: usize = 32;
+    let (s, b) = voronoi("voronoi-dense");
+    let q = query(&s, &b);
+    let mut large = planner(&b.bytes);
+    let full = large.plan(&q, large.worst_case_work()).unwrap();
+    let legs = large.route_paths().len();
+    assert!(
+        legs <= R && full.primitives as usize > R,
+        "{legs} legs, {full:?}"
+    );
+    let storage = Box::leak(Box::new(VoronoiStorage::new()));
+    let mut p: Box<Planner<'_, 1024, 1024, 4, R>> = Box::new(Planner::new());
+    p.load_voronoi(&b.bytes, storage).unwrap();
+    let ahead = Vec2::new(q.start.heading.cos(), q.start.heading.sin());
+    let short = Query {
+        goal: Goal {
+            position: q.start.position + ahead * 300.0,
+            heading: None,
+        },
+        ..q
+    };
+    p.plan(&short, p.worst_case_work()).unwrap();
+    let kept = (p.route().to_vec(), p.route_pieces().to_vec());
+    assert_eq!(
+        p.plan(&q, p.worst_case_work()),
+        Err(PlanError::RouteTooLong {
+            primitives: full.primitives,
+            capacity: R as u32,
+        })
+    );
+    assert_eq!((p.route().to_vec(), p.route_pieces().to_vec()), kept);
 }
