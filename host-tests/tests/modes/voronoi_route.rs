@@ -324,7 +324,8 @@ fn the_work_counts_each_priced_edge_and_each_vertex_scan() {
 }
 
 /// A planner holding fewer primitives than a route's chords (but more than its coarse legs)
-/// refuses it with both counts and keeps the route it had.
+/// refuses it with both counts and keeps the route it had; one holding exactly a route's
+/// chords flies it.
 #[test]
 fn a_route_of_more_chords_than_the_planner_holds_is_refused_and_the_route_kept() {
     const R: usize = 32;
@@ -358,4 +359,12 @@ fn a_route_of_more_chords_than_the_planner_holds_is_refused_and_the_route_kept()
         })
     );
     assert_eq!((p.route().to_vec(), p.route_pieces().to_vec()), kept);
+    // The short route is three chords on one leg: a planner holding exactly three flies it.
+    const SHORT: usize = 3;
+    assert_eq!((kept.0.len(), p.route_paths().len()), (SHORT, 1));
+    let storage = Box::leak(Box::new(VoronoiStorage::new()));
+    let mut exact: Box<Planner<'_, 1024, 1024, 4, SHORT>> = Box::new(Planner::new());
+    exact.load_voronoi(&b.bytes, storage).unwrap();
+    exact.plan(&short, exact.worst_case_work()).unwrap();
+    assert_eq!(exact.route(), &kept.0[..]);
 }
