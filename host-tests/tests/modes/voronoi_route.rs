@@ -38,6 +38,14 @@ fn the_route_of_chords_follows_the_pieces_within_the_chord_tolerance() {
             );
             let end = chords.last().unwrap().1;
             assert!(host_tests::reference::dist(end, p64(q.goal.position)) < 0.05);
+            let (_, v, _) = curvature64(p.route_pieces().last().unwrap(), 1.0);
+            let turn = (summary.arrival_heading as f64 - v.1.atan2(v.0) + std::f64::consts::PI)
+                .rem_euclid(std::f64::consts::TAU)
+                - std::f64::consts::PI;
+            assert!(
+                turn.abs() < 1e-2,
+                "{name} k={k}: arrival heading off by {turn} rad"
+            );
             let deviation = p.chord_deviation().unwrap() as f64;
             assert!(
                 deviation <= CHORD_TOLERANCE_M as f64,
@@ -189,8 +197,17 @@ fn a_popup_inside_a_corner_hull_is_flown_clear_of_or_the_corner_refused() {
         centre: Vec2::new(centre.0 as f32, centre.1 as f32),
         radius: radius as f32,
     };
+    // Corner `i + 1` is the coarse route's vertex `i` (`PlanError::Smoothing`).
+    let corners: Vec<P> = legs.iter().skip(1).map(|l| l.0).collect();
+    let nearest = (0..corners.len())
+        .min_by(|&i, &j| {
+            let d = |k: usize| host_tests::reference::dist(corners[k], centre);
+            d(i).total_cmp(&d(j))
+        })
+        .unwrap();
     let distance = |at: P| host_tests::reference::dist(at, centre) - radius;
-    replan_with_popup(&mut p, &q, disc, &distance, clearance);
+    let refused = replan_with_popup(&mut p, &q, disc, &distance, clearance);
+    assert_eq!(refused, Some(nearest as u32 + 1), "the refused corner");
 }
 
 /// The coarse route's legs (start, graph vertices, goal).
@@ -201,21 +218,22 @@ fn coarse_legs(p: &VPlanner) -> Vec<(P, P)> {
         .collect()
 }
 
-/// Adds `popup` and plans again: refused at a corner with the route kept, or flown at least
-/// the clearance from the pop-up by `distance` (negative inside it), sampling every piece in
-/// f64.
+/// Adds `popup` and plans again: refused at a corner with the route kept (returns the corner),
+/// or flown at least the clearance from the pop-up by `distance` (negative inside it), sampling
+/// every piece in f64.
 fn replan_with_popup(
     p: &mut VPlanner,
     q: &Query,
     popup: skyroute::Popup,
     distance: &dyn Fn(P) -> f64,
     clearance: f64,
-) {
+) -> Option<u32> {
     let before = (p.route().to_vec(), p.route_pieces().to_vec());
     p.add_popup(popup).unwrap();
     match p.plan(q, p.worst_case_work()) {
-        Err(PlanError::Smoothing { .. }) => {
+        Err(PlanError::Smoothing { corner }) => {
             assert_eq!((p.route().to_vec(), p.route_pieces().to_vec()), before);
+            Some(corner)
         }
         Ok(_) => {
             for piece in p.route_pieces() {
@@ -224,6 +242,7 @@ fn replan_with_popup(
                     assert!(d >= clearance - 0.5, "passes {d} m from the pop-up");
                 }
             }
+            None
         }
         Err(e) => panic!("{e}"),
     }
