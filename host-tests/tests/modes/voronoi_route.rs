@@ -158,16 +158,11 @@ fn a_blocked_direct_segment_routes_through_the_graph_and_a_walled_in_pair_flies_
 
 /// A pop-up disc on the middle of a corner piece, wholly inside that corner's hull triangle and
 /// farther than the clearance from its sides and from every coarse leg: the coarse route is
-/// unchanged, so the corner's hull test alone can see it. The plan is refused at that corner
-/// with the previous route kept, or flies clear of the disc.
+/// unchanged, so the corner's hull test alone can see it. The plan is refused as `Smoothing`
+/// at that corner (the coarse vertex nearest the disc), with the previous route kept.
 #[test]
 fn a_popup_inside_a_corner_hull_is_flown_clear_of_or_the_corner_refused() {
-    let (s, b) = voronoi("voronoi-dense");
-    let q = query(&s, &b);
-    let mut p = planner(&b.bytes);
-    p.plan(&q, p.worst_case_work()).unwrap();
-    let clearance = p.network().clearance() as f64;
-    let legs = coarse_legs(&p);
+    let (q, mut p, clearance, legs) = dense_route();
     let radius = 1.0;
     // The corner whose middle lies deepest inside its hull triangle (p0, p1, p3).
     let (centre, depth) = p
@@ -208,6 +203,19 @@ fn a_popup_inside_a_corner_hull_is_flown_clear_of_or_the_corner_refused() {
     let distance = |at: P| host_tests::reference::dist(at, centre) - radius;
     let refused = replan_with_popup(&mut p, &q, disc, &distance, clearance);
     assert_eq!(refused, Some(nearest as u32 + 1), "the refused corner");
+}
+
+/// voronoi-dense's query planned once: the query, the planner (its network leaked: a test's
+/// lifetime), the clearance and the coarse route's legs.
+fn dense_route() -> (Query, Box<VPlanner<'static>>, f64, Vec<(P, P)>) {
+    let (s, b) = voronoi("voronoi-dense");
+    let q = query(&s, &b);
+    let bytes: &'static [u8] = Box::leak(b.bytes.into_boxed_slice());
+    let mut p = planner(bytes);
+    p.plan(&q, p.worst_case_work()).unwrap();
+    let clearance = p.network().clearance() as f64;
+    let legs = coarse_legs(&p);
+    (q, p, clearance, legs)
 }
 
 /// The coarse route's legs (start, graph vertices, goal).
@@ -251,16 +259,11 @@ fn replan_with_popup(
 /// A thin pop-up needle through the middle of a corner piece, out across the hull triangle's
 /// chord (from the piece's first to its last point) to a centre behind it, so that the
 /// triangle's chord side meets it but holds neither its centre nor any zone's; it lies farther
-/// than the clearance from every coarse leg. The plan is refused at that corner with the route
+/// than the clearance from every coarse leg. The plan is refused (`Smoothing`) with the route
 /// kept, or flies clear of the needle.
 #[test]
 fn a_popup_across_a_corner_hulls_chord_is_flown_clear_of_or_the_corner_refused() {
-    let (s, b) = voronoi("voronoi-dense");
-    let q = query(&s, &b);
-    let mut p = planner(&b.bytes);
-    p.plan(&q, p.worst_case_work()).unwrap();
-    let clearance = p.network().clearance() as f64;
-    let legs = coarse_legs(&p);
+    let (q, mut p, clearance, legs) = dense_route();
     let half_width = 1.0;
     // Per corner: the needle from 2 m past the piece's middle `m` to as far behind the chord's
     // middle as `m` is in front of it plus 20 m (its centre 9 m behind the chord), and its
