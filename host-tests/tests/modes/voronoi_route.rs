@@ -110,8 +110,7 @@ fn a_blocked_direct_segment_routes_through_the_graph_and_a_walled_in_pair_flies_
     // A goal 300 m ahead of the start, and a square wall 200 m thick around both, 1.5 km
     // inside.
     let mut p = planner(&b.bytes);
-    let ahead = Vec2::new(q.start.heading.cos(), q.start.heading.sin());
-    let goal = a + ahead * 300.0;
+    let goal = ahead_of_start(&q, 300.0);
     let centre = (a + goal) * 0.5;
     let (inner, outer) = (1500.0f32, 1700.0f32);
     let rect = |lo: Vec2, hi: Vec2| {
@@ -156,12 +155,18 @@ fn a_blocked_direct_segment_routes_through_the_graph_and_a_walled_in_pair_flies_
     );
 }
 
+/// The point `metres` ahead of the query's start along its heading.
+fn ahead_of_start(q: &Query, metres: f32) -> Vec2 {
+    let heading = q.start.heading;
+    q.start.position + Vec2::new(heading.cos(), heading.sin()) * metres
+}
+
 /// A pop-up disc on the middle of a corner piece, wholly inside that corner's hull triangle and
 /// farther than the clearance from its sides and from every coarse leg: the coarse route is
 /// unchanged, so the corner's hull test alone can see it. The plan is refused as `Smoothing`
 /// at that corner (the coarse vertex nearest the disc), with the previous route kept.
 #[test]
-fn a_popup_inside_a_corner_hull_is_flown_clear_of_or_the_corner_refused() {
+fn a_popup_inside_a_corner_hull_refuses_that_corner_and_keeps_the_route() {
     let (q, mut p, clearance, legs) = dense_route();
     let radius = 1.0;
     // The corner whose middle lies deepest inside its hull triangle (p0, p1, p3).
@@ -192,13 +197,14 @@ fn a_popup_inside_a_corner_hull_is_flown_clear_of_or_the_corner_refused() {
         centre: Vec2::new(centre.0 as f32, centre.1 as f32),
         radius: radius as f32,
     };
-    // Corner `i + 1` is the coarse route's vertex `i` (`PlanError::Smoothing`).
-    let corners: Vec<P> = legs.iter().skip(1).map(|l| l.0).collect();
-    let nearest = (0..corners.len())
-        .min_by(|&i, &j| {
-            let d = |k: usize| host_tests::reference::dist(corners[k], centre);
-            d(i).total_cmp(&d(j))
-        })
+    // Corner `i + 1` is the coarse route's vertex `i` (`PlanError::Smoothing`): the start of
+    // leg `i + 1`.
+    let (nearest, _) = legs
+        .iter()
+        .skip(1)
+        .map(|l| host_tests::reference::dist(l.0, centre))
+        .enumerate()
+        .min_by(|x, y| x.1.total_cmp(&y.1))
         .unwrap();
     let distance = |at: P| host_tests::reference::dist(at, centre) - radius;
     let refused = replan_with_popup(&mut p, &q, disc, &distance, clearance);
@@ -313,9 +319,13 @@ fn a_popup_across_a_corner_hulls_chord_is_flown_clear_of_or_the_corner_refused()
             .map(|v| Vec2::new(v.0 as f32, v.1 as f32))
             .collect(),
     );
-    let distance = |at: P| match inside(at, &needle) {
-        true => -dist_polygon(at, &needle),
-        false => dist_polygon(at, &needle),
+    let distance = |at: P| {
+        let d = dist_polygon(at, &needle);
+        if inside(at, &needle) {
+            -d
+        } else {
+            d
+        }
     };
     replan_with_popup(&mut p, &q, popup, &distance, clearance);
 }
@@ -363,10 +373,9 @@ fn a_route_of_more_chords_than_the_planner_holds_is_refused_and_the_route_kept()
     let storage = Box::leak(Box::new(VoronoiStorage::new()));
     let mut p: Box<Planner<'_, 1024, 1024, 4, R>> = Box::new(Planner::new());
     p.load_voronoi(&b.bytes, storage).unwrap();
-    let ahead = Vec2::new(q.start.heading.cos(), q.start.heading.sin());
     let short = Query {
         goal: Goal {
-            position: q.start.position + ahead * 300.0,
+            position: ahead_of_start(&q, 300.0),
             heading: None,
         },
         ..q
