@@ -457,3 +457,274 @@ pub fn landmark_popup_work_bound(
     let per_piece = 1 + super::POPUP_CHORDS_PER_PIECE as u64 * (popup_vertices + 1);
     cells.saturating_add(entries.saturating_mul(1 + max_pieces.saturating_mul(per_piece)))
 }
+
+/// Each bound evaluated on inputs of distinct values, against the worked sum of its documented
+/// terms. The numbers were worked out from the doc comments above, term by term, independently
+/// of this code (`⌊log2 n⌋ + 1` levels: 6 for 37 vertices, 4 for 10, 7 for 107 states, 9 for
+/// 388, 5 for 29): a bound that drops, doubles or mixes up a term fails here even where the
+/// planner's counted work stays far below it.
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The constants the worked examples assume.
+    #[test]
+    fn the_worked_examples_constants() {
+        assert_eq!(super::super::EXIT_TURN_STEPS, 32);
+        assert_eq!(super::super::MAX_EXIT_REGIONS, 4);
+        assert_eq!(super::super::MAX_EXIT_INTERVALS, 32);
+        assert_eq!(super::super::MAX_LINKS, 16);
+        assert_eq!(super::super::POPUP_CHORDS_PER_PIECE, 16);
+    }
+
+    /// |V| = 37, |E| = 101, O = 5 with 23 points, P = 3 pop-ups of 7 vertices, C = 4, Ks = 6,
+    /// Kg = 9, H = 11.
+    fn roadmap(three_dimensional: bool) -> WorkBoundInputs {
+        WorkBoundInputs {
+            vertices: 37,
+            edges: 101,
+            obstacles: 5,
+            obstacle_points: 23,
+            popups: 3,
+            popup_vertices: 7,
+            candidates: 4,
+            start_links: 6,
+            goal_links: 9,
+            goal_headings: 11,
+            three_dimensional,
+        }
+    }
+
+    #[test]
+    fn work_total_is_the_sum_of_every_counter() {
+        let w = Work {
+            vertex_scans: 1,
+            dubins_solves: 2,
+            collision_tests: 4,
+            heap_steps: 8,
+            relaxations: 16,
+            cells_visited: 32,
+            threat_steps: 64,
+        };
+        assert_eq!(w.total(), 127);
+        assert_eq!(Work::ZERO.total(), 0);
+        let mut sum = w;
+        sum += w;
+        sum += Work::ZERO;
+        assert_eq!(
+            sum,
+            Work {
+                vertex_scans: 2,
+                dubins_solves: 4,
+                collision_tests: 8,
+                heap_steps: 16,
+                relaxations: 32,
+                cells_visited: 64,
+                threat_steps: 128,
+            }
+        );
+    }
+
+    /// Q = 2·5 + 23 + 3·8 = 57; 65 candidates of trace 2·(23 + 21) + 4 = 92, sort 32² = 1024
+    /// and 4Q = 228; a refusal 2·5 + 3 + 57 = 70.
+    #[test]
+    fn exit_work_bound_is_its_documented_sum() {
+        assert_eq!(
+            exit_work_bound(&roadmap(false)),
+            57 + 65 * (92 + 1024 + 228) + 70
+        );
+        assert_eq!(exit_work_bound(&roadmap(false)), 87_487);
+    }
+
+    /// N = 2·4 + 4·11 + 11 = 63 connections, each primitive's tests 2·5 + 23 + 3·8 = 57.
+    #[test]
+    fn plan_work_bound_is_its_documented_sum() {
+        let endpoints_free = 2 * (2 * 5 + 3); // 26
+        let candidates = 2 * 37; // 74
+        let connecting = 63 + (44 + 11) + 3 * 5 + 3 * 63 * 57; // 10 906
+        let search = 37 + (37 + 6 + 101) * 6 + 101 + 37 * 9; // 1 335
+        let exit = 87_487;
+        let expected = endpoints_free + candidates + connecting + search + exit;
+        assert_eq!(plan_work_bound(&roadmap(false)), expected + 2 * 38);
+        // A three-dimensional roadmap walks back from the goal a third time.
+        assert_eq!(plan_work_bound(&roadmap(true)), expected + 3 * 38);
+        assert_eq!(plan_work_bound(&roadmap(true)), 99_942);
+    }
+
+    /// Each unit of a roadmap step made the largest in turn (c = 3·Q' the tests of one path,
+    /// g = 2H + H·c).
+    #[test]
+    fn roadmap_step_unit_bound_is_its_largest_documented_unit() {
+        // The begin unit: O = 1 of 4 points, no pop-ups, 10 vertices. Its exit: Q = 6;
+        // 65·(8 + 4 + 1024 + 24) + 2 + 6.
+        let small = WorkBoundInputs {
+            vertices: 10,
+            obstacles: 1,
+            obstacle_points: 4,
+            popups: 0,
+            popup_vertices: 0,
+            start_links: 1,
+            goal_links: 1,
+            goal_headings: 1,
+            ..roadmap(false)
+        };
+        let exit = 6 + 65 * (8 + 4 + 1024 + 24) + 2 + 6;
+        assert_eq!(roadmap_step_unit_bound(&small, 3), 2 + exit + 1 + 10);
+        // One goal candidate, with H = 1000: c = 3·57 = 171, g = 2000 + 171 000.
+        let headings = WorkBoundInputs {
+            vertices: 10,
+            goal_headings: 1000,
+            ..roadmap(false)
+        };
+        assert_eq!(
+            roadmap_step_unit_bound(&headings, 3),
+            1 + 171 + 2000 + 171_000
+        );
+        // The search's start: Ks = 100 000 pushes of 4 levels.
+        let links = WorkBoundInputs {
+            vertices: 10,
+            start_links: 100_000,
+            ..roadmap(false)
+        };
+        assert_eq!(roadmap_step_unit_bound(&links, 3), 10 + 400_000);
+        // One expansion with 100 000 out-edges: g = 22 + 11·171 = 1 903.
+        let small_v = WorkBoundInputs {
+            vertices: 10,
+            ..roadmap(false)
+        };
+        assert_eq!(
+            roadmap_step_unit_bound(&small_v, 100_000),
+            4 + 9 + 5 + 1903 + 100_000 * 5
+        );
+        // The route of a million vertices: two walks back, three in three dimensions.
+        let big = WorkBoundInputs {
+            vertices: 1_000_000,
+            ..roadmap(false)
+        };
+        assert_eq!(roadmap_step_unit_bound(&big, 3), 2 * 1_000_001);
+        let big_3d = WorkBoundInputs {
+            three_dimensional: true,
+            ..big
+        };
+        assert_eq!(roadmap_step_unit_bound(&big_3d, 3), 3 * 1_000_001);
+    }
+
+    /// 13 cells, 17 entries, pop-ups of 5 vertices; landmark edges of at most 3 pieces.
+    #[test]
+    fn popup_work_bounds_are_their_documented_sums() {
+        assert_eq!(popup_work_bound(13, 17, 5), 13 + 17 * (1 + 3 * 6));
+        assert_eq!(
+            landmark_popup_work_bound(13, 17, 3, 5),
+            13 + 17 * (1 + 3 * (1 + 16 * 6))
+        );
+        assert_eq!(landmark_popup_work_bound(u64::MAX, 1, 3, 5), u64::MAX);
+        assert_eq!(landmark_popup_work_bound(1, u64::MAX, 3, 5), u64::MAX);
+    }
+
+    /// w = 1 + 1 + 5 + 3 + 16·(23 + 5 + 24) = 842 for one online piece.
+    #[test]
+    fn landmark_plan_work_bound_is_its_documented_sum() {
+        let w = 842;
+        let matching = 38;
+        let online = 2 * (38 + 38 * w);
+        let search = 37 + (37 + 16 + 101) * 6 + 101 + 37 * 16;
+        let route = 2 * 38 + 2 * w;
+        assert_eq!(
+            landmark_plan_work_bound(&roadmap(false)),
+            matching + online + search + route
+        );
+        assert_eq!(landmark_plan_work_bound(&roadmap(false)), 67_520);
+    }
+
+    /// |V_g| = 29, |E_g| = 41, T = 6, O = 5 with 23 points, P = 3 of 7 vertices, C = 4, 1 000
+    /// fit steps and 67 clearance queries: c = 23 + 10 + 24 = 57, x = 18.
+    #[test]
+    fn voronoi_plan_work_bound_is_its_documented_sum() {
+        let n = VoronoiBoundInputs {
+            graph_vertices: 29,
+            graph_edges: 41,
+            threats: 6,
+            obstacles: 5,
+            obstacle_points: 23,
+            popups: 3,
+            popup_vertices: 7,
+            candidates: 4,
+            fit_steps: 1000,
+            fit_clears: 67,
+        };
+        let endpoints = 2 * (10 + 3);
+        let pricing = 41 * (18 + 57);
+        let links = 58 + 9 * (18 + 57);
+        let search = 29 + (29 + 3 + 82) * 5 + 82 + 87;
+        let walk = 30;
+        let smoothing = 1000 + 67 * (3 * 57 + 5 + 3);
+        assert_eq!(
+            voronoi_plan_work_bound(&n),
+            endpoints + pricing + links + search + walk + smoothing
+        );
+        assert_eq!(voronoi_plan_work_bound(&n), 17_625);
+    }
+
+    /// |V| = 37, |E| = 101, T = 250 transitions, 700 pair relaxations, out-degree ≤ 4, P = 3 of
+    /// 7 vertices, C = 4, Ks = 6, Kg = 9, 40 cells per turn and 120 per connection.
+    fn terrain(turn_rule: TurnRule) -> TerrainBoundInputs {
+        TerrainBoundInputs {
+            vertices: 37,
+            edges: 101,
+            transitions: 250,
+            pair_relaxations: 700,
+            turn_rule,
+            max_out_degree: 4,
+            popups: 3,
+            popup_vertices: 7,
+            candidates: 4,
+            start_links: 6,
+            goal_links: 9,
+            cells_per_turn: 40,
+            cells_per_connection: 120,
+        }
+    }
+
+    #[test]
+    fn terrain_plan_work_bound_is_its_documented_sum() {
+        let endpoints = 2 + 6 + 74;
+        let connections = 18 * (1 + 3 * (120 + 24));
+        // The equal split: S = 107 states of L = 7 levels; relaxations 250 + 6·4 and 107·9
+        // goal links, each a turn arc of 40 cells, 24 pop-up tests, itself and a heap operation.
+        let search = 107 * 8 + (274 + 963) * (40 + 24 + 1 + 7) + 107 + 6 * 7;
+        let route = 2 * 108;
+        assert_eq!(
+            terrain_plan_work_bound(&terrain(TurnRule::SharedEqually)),
+            endpoints + connections + search + route
+        );
+        // The paper's rule: a table of 108 entries (D = 7 reads to decode), S = 108 + 6 + 250
+        // + 24 = 388 states of L = 9 levels; relaxations 700 + 6·16 + 6·4 and 388·9.
+        let search = 388 * 10 + (820 + 3492) * (40 + 24 + 1 + 9) + 388 * 8 + 6 * 9 + 108;
+        let route = 2 * 389 * 8;
+        assert_eq!(
+            terrain_plan_work_bound(&terrain(TurnRule::Paper)),
+            endpoints + connections + search + route
+        );
+        // A turn arc whose cells overflow (`cells_bound` of a non-finite arc) saturates.
+        for rule in [TurnRule::SharedEqually, TurnRule::Paper] {
+            let huge = TerrainBoundInputs {
+                cells_per_turn: u64::MAX,
+                ..terrain(rule)
+            };
+            assert_eq!(terrain_plan_work_bound(&huge), u64::MAX);
+        }
+    }
+
+    /// `2(ρ + √2)·L + π(ρ + √2)²` with ρ = widen + 0.01, rounded up (values computed in f64, none
+    /// within 0.05 of an integer).
+    #[test]
+    fn cells_bound_is_the_grid_bound_rounded_up() {
+        assert_eq!(cells_bound(10.0, 1.0), 67); // 66.947
+        assert_eq!(cells_bound(0.0, 0.0), 7); // 6.372
+        assert_eq!(cells_bound(250.5, 3.25), 2411); // 2 410.419
+        assert_eq!(cells_bound(1000.0, 0.0), 2855); // 2 854.799
+        assert_eq!(cells_bound(f32::INFINITY, 0.0), u64::MAX);
+        assert_eq!(cells_bound(f32::NAN, 1.0), u64::MAX);
+        assert_eq!(cells_bound(1e30, 1.0), u64::MAX);
+    }
+}
