@@ -22,6 +22,9 @@ mod landmark_plan;
 /// A landmark pop-up's predicate tests: chords per rebuilt piece times the shape's tests; a
 /// piece straying beyond its chord's box still rebuilt.
 mod landmark_popup_work;
+/// The landmark tables field by field on a small written network: each read back, each damage
+/// refused by its own check.
+mod landmark_tables;
 /// Missions: inevitable-collision states by name.
 mod mission;
 /// Every scenario's network image against the recorded length and CRC-32.
