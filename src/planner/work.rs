@@ -551,25 +551,30 @@ mod tests {
         assert_eq!(plan_work_bound(&roadmap(true)), 99_942);
     }
 
-    /// Each unit of a roadmap step made the largest in turn (c = 3·Q' the tests of one path,
-    /// g = 2H + H·c).
+    /// Each unit of a roadmap step that can be the largest made so in turn (c = 3·Q' the
+    /// tests of one path, g = 2H + H·c). The other three never are: one start candidate
+    /// (1 + c) and the direct path (g) are below one goal candidate (1 + c + g), the goal's
+    /// candidates and window (|V| + O) below the begin unit.
     #[test]
     fn roadmap_step_unit_bound_is_its_largest_documented_unit() {
-        // The begin unit: O = 1 of 4 points, no pop-ups, 10 vertices. Its exit: Q = 6;
-        // 65·(8 + 4 + 1024 + 24) + 2 + 6.
+        // The begin unit: O = 3 of 12 points, P = 2 pop-ups of 4 vertices, 10 vertices. Its
+        // exit: Q = 6 + 12 + 10 = 28; 65·(2·(12 + 8) + 4 + 1024 + 4·28) + (6 + 2) + 28.
         let small = WorkBoundInputs {
             vertices: 10,
-            obstacles: 1,
-            obstacle_points: 4,
-            popups: 0,
-            popup_vertices: 0,
+            obstacles: 3,
+            obstacle_points: 12,
+            popups: 2,
+            popup_vertices: 4,
             start_links: 1,
             goal_links: 1,
             goal_headings: 1,
             ..roadmap(false)
         };
-        let exit = 6 + 65 * (8 + 4 + 1024 + 24) + 2 + 6;
-        assert_eq!(roadmap_step_unit_bound(&small, 3), 2 + exit + 1 + 10);
+        let exit = 28 + 65 * (44 + 1024 + 112) + 8 + 28;
+        assert_eq!(
+            roadmap_step_unit_bound(&small, 3),
+            2 * 3 + 2 + exit + 3 + 10
+        );
         // One goal candidate, with H = 1000: c = 3·57 = 171, g = 2000 + 171 000.
         let headings = WorkBoundInputs {
             vertices: 10,
