@@ -144,12 +144,14 @@ mod tests {
     }
 
     /// A reversal, or a turn within 10⁻³ rad of one, has no room: an infinite cut and no arc.
-    /// So do directions a rounding short of unit length that point back (1 + dot > 0 while the
-    /// angle is π), and directions longer than unit whose `1 + dot` is not positive.
+    /// Nor has a turn so near one that `1 + cos θ ≤ 10⁻⁶` (within about 1.41·10⁻³ rad of π:
+    /// 1.2·10⁻³ short), nor directions a rounding short of unit length that point back
+    /// (1 + dot > 0 while the angle is π), nor directions longer than unit whose `1 + dot` is
+    /// not positive. A turn 2·10⁻³ short of π has a finite cut.
     #[test]
     fn a_reversal_has_no_room_to_turn() {
         let u_in = Vec2::from_angle(0.4);
-        for delta in [0.0f32, 2e-4, 9e-4] {
+        for delta in [0.0f32, 2e-4, 9e-4, 1.2e-3] {
             let f = Fillet::new(u_in, Vec2::from_angle(0.4 + PI - delta), R);
             assert_eq!(f.cut, f32::INFINITY, "{delta} short of π");
             assert!(f.arc(Vec2::new(0.0, 0.0), u_in, R).is_none());
