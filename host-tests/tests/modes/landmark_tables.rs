@@ -400,6 +400,20 @@ fn each_bad_site_or_quality_is_refused() {
         img.with_f32(img.sites, 1.0),
         Err(LoadError::VertexOffLandmark { vertex: 0 })
     );
+    // Landmark 0 (at the origin, as its overflights are) moved north by exactly its tolerance,
+    // 10⁻⁴ of the coordinate plus 1 cm: the f32 offset d whose distance `√(d²)` equals
+    // `10⁻⁴·d + 0.01` loads; the next f32 above it does not.
+    let exact: Vec<f32> = (0..250_000u32)
+        .map(|i| f32::from_bits(0.0099f32.to_bits() + i))
+        .filter(|&d| (d * d).sqrt() == 1e-4 * d + 0.01)
+        .collect();
+    assert_eq!(exact.len(), 1, "{exact:?}");
+    let d = exact[0];
+    assert_eq!(img.with_f32(img.sites + 4, d), Ok(()), "{d} m off");
+    assert_eq!(
+        img.with_f32(img.sites + 4, f32::from_bits(d.to_bits() + 1)),
+        Err(LoadError::VertexOffLandmark { vertex: 0 })
+    );
     let last = (L * W * D - 1) as usize;
     for (i, q) in [(0, -0.01), (last, 1.01), (7, f32::NAN)] {
         assert_eq!(
