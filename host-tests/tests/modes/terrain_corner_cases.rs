@@ -297,6 +297,30 @@ fn goal_exactly_on_a_node_is_reached_from_any_direction() {
     assert!(problems.is_empty(), "{problems:#?}");
 }
 
+/// A goal with a heading is reached along its last link's final arc: the route ends at the
+/// goal's position, flying its heading, from start → A → B and on to a goal 500 m east and
+/// 300 m north of B, heading east (so the link from B ends with a right turn).
+#[test]
+fn a_goal_with_a_heading_is_reached_on_it() {
+    let mut t = Terrain::new(Vec2::new(-1500.0, -1500.0), 100.0, 60, 60);
+    t.block(500.0, 500.0, 2500.0, 2500.0);
+    let (nodes, edges) = corner();
+    let bytes = network(&t, &nodes, &edges, 100.0, Vec::new()).unwrap();
+    let mut p: Box<SmallPlanner<'_>> = Box::new(Planner::new());
+    p.load(&bytes).unwrap();
+    let start = Pose::new(-500.0, 0.0, 0.0);
+    let goal = Vec2::new(3500.0, 3300.0);
+    let mut query = query_to(start, goal);
+    query.goal.heading = Some(0.0);
+    let r = p.plan(&query, u64::MAX);
+    assert!(r.is_ok(), "{r:?}");
+    let problems = route_problems(p.route(), start, goal, &t);
+    assert!(problems.is_empty(), "{problems:#?}");
+    let last = p.route().last().unwrap();
+    let arrival = last.pose_at(last.length()).heading;
+    assert!(angle_diff(arrival, 0.0) < 1e-2, "arrives heading {arrival}");
+}
+
 /// Finding: `terrain_plan_work_bound` (src/planner/work.rs) charges each turn-arc check
 /// `cells_per_turn` cells, but `fillet_is_clear` also tests the arc against every active
 /// pop-up (up to `P·(MAX_POPUP_VERTICES + 1)` collision tests per arc), which the bound leaves
