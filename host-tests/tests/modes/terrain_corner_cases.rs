@@ -270,6 +270,22 @@ fn zero_length_edge_does_not_allow_an_instant_reversal() {
     }
 }
 
+/// The corner network over terrain blocked inside the corner (so no direct start–goal
+/// connection crosses it): the terrain, the nodes and the image.
+fn blocked_corner() -> (Terrain, [Vec2; 3], Vec<u8>) {
+    let mut t = Terrain::new(Vec2::new(-1500.0, -1500.0), 100.0, 60, 60);
+    t.block(500.0, 500.0, 2500.0, 2500.0);
+    let (nodes, edges) = corner();
+    let bytes = network(&t, &nodes, &edges, 100.0, Vec::new()).unwrap();
+    (t, nodes, bytes)
+}
+
+/// A start 500 m before the corner's first node, heading along its first leg.
+const CORNER_START: Pose = Pose {
+    position: Vec2::new(-500.0, 0.0),
+    heading: 0.0,
+};
+
 /// A goal exactly on a node: its free-heading goal link is a straight of length 0, whose own
 /// heading (`atan2(0, 0)`) means nothing; arriving at the node is arriving at the goal, from
 /// any direction, with no turn. Here the goal node is reached heading north and is the only
@@ -277,14 +293,10 @@ fn zero_length_edge_does_not_allow_an_instant_reversal() {
 /// flyable (and so is the same goal 1 m off the node).
 #[test]
 fn goal_exactly_on_a_node_is_reached_from_any_direction() {
-    let mut t = Terrain::new(Vec2::new(-1500.0, -1500.0), 100.0, 60, 60);
-    // Blocks the direct start–goal connections across the corner.
-    t.block(500.0, 500.0, 2500.0, 2500.0);
-    let (nodes, edges) = corner();
-    let bytes = network(&t, &nodes, &edges, 100.0, Vec::new()).unwrap();
+    let (t, nodes, bytes) = blocked_corner();
     let mut p: Box<SmallPlanner<'_>> = Box::new(Planner::new());
     p.load(&bytes).unwrap();
-    let start = Pose::new(-500.0, 0.0, 0.0);
+    let start = CORNER_START;
     let goal = nodes[2];
     // The same goal 1 m short of the node is planned.
     let near = Vec2::new(3000.0, 3001.0);
@@ -302,13 +314,10 @@ fn goal_exactly_on_a_node_is_reached_from_any_direction() {
 /// 300 m north of B, heading east (so the link from B ends with a right turn).
 #[test]
 fn a_goal_with_a_heading_is_reached_on_it() {
-    let mut t = Terrain::new(Vec2::new(-1500.0, -1500.0), 100.0, 60, 60);
-    t.block(500.0, 500.0, 2500.0, 2500.0);
-    let (nodes, edges) = corner();
-    let bytes = network(&t, &nodes, &edges, 100.0, Vec::new()).unwrap();
+    let (t, _, bytes) = blocked_corner();
     let mut p: Box<SmallPlanner<'_>> = Box::new(Planner::new());
     p.load(&bytes).unwrap();
-    let start = Pose::new(-500.0, 0.0, 0.0);
+    let start = CORNER_START;
     let goal = Vec2::new(3500.0, 3300.0);
     let mut query = query_to(start, goal);
     query.goal.heading = Some(0.0);
