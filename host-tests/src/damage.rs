@@ -16,17 +16,25 @@ pub fn f32_bytes(values: &[f32]) -> Vec<u8> {
     values.iter().flat_map(|x| x.to_le_bytes()).collect()
 }
 
+/// Where the run `stored` starts in `bytes`; it must occur exactly once.
+pub fn find_unique(bytes: &[u8], stored: &[u8]) -> usize {
+    let at: Vec<usize> = bytes
+        .windows(stored.len())
+        .enumerate()
+        .filter(|(_, w)| *w == stored)
+        .map(|(i, _)| i)
+        .collect();
+    assert_eq!(at.len(), 1, "the run is stored once: {at:?}");
+    at[0]
+}
+
 /// `bytes` with the run `stored` (which must occur exactly once) replaced by `new` and the
 /// checksum re-fixed, so that the loader's field checks decide.
 pub fn replace_unique(bytes: &[u8], stored: &[u8], new: &[u8]) -> Vec<u8> {
-    let n = stored.len();
-    assert_eq!(n, new.len(), "a replacement of the same length");
-    let at: Vec<usize> = (0..=bytes.len().saturating_sub(n))
-        .filter(|&i| bytes[i..i + n] == *stored)
-        .collect();
-    assert_eq!(at.len(), 1, "the run is stored once: {at:?}");
+    assert_eq!(stored.len(), new.len(), "a replacement of the same length");
+    let at = find_unique(bytes, stored);
     let mut out = bytes.to_vec();
-    out[at[0]..at[0] + n].copy_from_slice(new);
+    out[at..at + new.len()].copy_from_slice(new);
     fix_crc(&mut out);
     out
 }

@@ -4,7 +4,7 @@
 //! (unknown weather or landmark, NaN or out-of-range qualities, a full override table) are
 //! refused with an error and change nothing.
 
-use host_tests::damage::{check_offset_rules_refused, fix_crc, OffsetTable};
+use host_tests::damage::{check_offset_rules_refused, find_unique, fix_crc, OffsetTable};
 use host_tests::{cases, scenarios, Rng};
 use skyroute::network::format::{Header, ProvenanceRecord};
 use skyroute::network::Section;
@@ -27,14 +27,7 @@ fn landmark_record_at(bytes: &[u8]) -> usize {
         key.extend_from_slice(&x.to_le_bytes());
     }
     key.extend_from_slice(&30.0f32.to_le_bytes());
-    let hits: Vec<usize> = bytes
-        .windows(key.len())
-        .enumerate()
-        .filter(|(_, w)| *w == key.as_slice())
-        .map(|(i, _)| i)
-        .collect();
-    assert_eq!(hits.len(), 1, "landmark record found once");
-    hits[0]
+    find_unique(bytes, &key)
 }
 
 fn put_f32(bytes: &mut [u8], at: usize, x: f32) {

@@ -4,7 +4,7 @@
 //! written; each damage of one field (the checksum re-fixed) is refused by its own check with
 //! the numbers it names, and a value just inside each tolerance still loads.
 
-use host_tests::damage::{f32_bytes, fix_crc, replace_unique};
+use host_tests::damage::{f32_bytes, find_unique, fix_crc, replace_unique};
 use host_tests::world::world;
 use skyroute::geometry::hermite::{FlyLimits, LineElement};
 use skyroute::network::write::{encode, EdgeSpec, LandmarkSiteSpec, LandmarkSpec, NetworkSpec};
@@ -134,11 +134,7 @@ fn image() -> Image {
         key.extend_from_slice(&x.to_le_bytes());
     }
     key.extend_from_slice(&SPEED.to_le_bytes());
-    let hits: Vec<usize> = (0..bytes.len() - key.len())
-        .filter(|&i| bytes[i..i + key.len()] == key[..])
-        .collect();
-    assert_eq!(hits.len(), 1, "the landmark record is found once");
-    let record = hits[0];
+    let record = find_unique(&bytes, &key);
     let sites = record + 56;
     let rosettes = sites + 12 * L as usize;
     let offsets = rosettes + 4 * (L * W * D) as usize;
