@@ -334,3 +334,6 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         }
     }
 }
+
+#[cfg(all(test, feature = "std"))]
+mod tests;
