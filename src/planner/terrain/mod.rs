@@ -86,6 +86,8 @@ mod connect;
 mod fillet;
 mod route;
 pub(super) mod states;
+#[cfg(all(test, feature = "std"))]
+mod tests;
 
 use super::state::{ArcCheckStats, ModeState};
 use super::work::{cells_bound, TerrainBoundInputs};
