@@ -6,6 +6,9 @@ use crate::geometry::{DubinsPath, DubinsWord, Pose, Turn, Vec2};
 use crate::planner::{Goal, Link, Meter, PlanError, Planner};
 use core::f32::consts::PI;
 
+#[cfg(all(test, feature = "std"))]
+mod tests;
+
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
     /// Whether every primitive of `path` is over free terrain and clear of the pop-ups.
     fn terrain_path_is_clear(&self, path: &DubinsPath, meter: &mut Meter) -> bool {
