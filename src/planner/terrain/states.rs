@@ -17,6 +17,9 @@ use crate::planner::heap::ItemState;
 use crate::planner::search::Arrival;
 use crate::planner::{Meter, PlanError, Planner, TurnRule};
 
+#[cfg(all(test, feature = "std"))]
+mod tests;
+
 /// `via` of a start-link state: no previous state.
 pub(super) const NO_PREVIOUS: u32 = u32::MAX;
 
