@@ -31,6 +31,9 @@ const MATCH_DISTANCE_M: f32 = 1.0;
 /// How close a query's start heading must be to an overflight's, radians.
 const MATCH_HEADING_RAD: f32 = 1e-3;
 
+#[cfg(all(test, feature = "std"))]
+mod tests;
+
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
     fn landmark_record(&self) -> Result<LandmarkRecord, PlanError> {
         self.network
@@ -126,7 +129,8 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
     }
 
     /// Landmark mode: the quality in force for landmark `landmark` crossed in `direction`
-    /// (its override, or the stored rosette of the weather in force).
+    /// (its override, or the stored rosette of the weather in force); `None` for a landmark or
+    /// direction the network does not have, and on any other network.
     pub fn quality(&self, landmark: u32, direction: u32) -> Option<f32> {
         let (ModeState::Landmark(state), Some(l)) = (&self.state, self.network.landmark()) else {
             return None;
@@ -144,7 +148,10 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
         direction: u32,
     ) -> Option<f32> {
         if let Some((_, row)) = state.rosettes.iter().find(|(at, _)| *at == landmark) {
-            return row.get(direction as usize).copied();
+            // The row is padded to MAX_ROSETTE_DIRECTIONS: past the network's, no direction.
+            return (direction < l.directions)
+                .then(|| row.get(direction as usize).copied())
+                .flatten();
         }
         self.network
             .rosette_quality_of(l, landmark, state.weather, direction)
