@@ -32,7 +32,7 @@ const MATCH_DISTANCE_M: f32 = 1.0;
 const MATCH_HEADING_RAD: f32 = 1e-3;
 
 #[cfg(all(test, feature = "std"))]
-mod tests;
+pub(super) mod tests;
 
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
     fn landmark_record(&self) -> Result<LandmarkRecord, PlanError> {

@@ -345,33 +345,4 @@ fn goal_pose(query: &Query, from: &Pose) -> Pose {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Offers 40 keys in a scrambled order (with ties): the kept are the `MAX_LINKS` smallest,
-    /// sorted, and of equal keys the earlier offered.
-    #[test]
-    fn keep_cheapest_keeps_the_smallest_keys_sorted() {
-        let key_of = |i: u32| ((i * 17) % 23) as f32; // 0..22, 17 of them twice
-        let mut kept: Vec<(f32, OnlineLink), MAX_LINKS> = Vec::new();
-        for i in 0..40u32 {
-            let link = OnlineLink {
-                vertex: i,
-                length: key_of(i),
-            };
-            keep_cheapest(&mut kept, key_of(i), link);
-        }
-        // The expected order by brute force: every (key, offer) pair ranked by how many come
-        // before it.
-        let rank = |i: u32| {
-            (0..40u32)
-                .filter(|&j| key_of(j) < key_of(i) || (key_of(j) == key_of(i) && j < i))
-                .count()
-        };
-        assert_eq!(kept.len(), MAX_LINKS);
-        for (position, (key, link)) in kept.iter().enumerate() {
-            assert_eq!(rank(link.vertex), position, "{kept:?}");
-            assert_eq!(*key, key_of(link.vertex));
-        }
-    }
-}
+mod tests;

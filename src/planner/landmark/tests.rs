@@ -15,32 +15,32 @@ use core::f32::consts::{FRAC_PI_2, FRAC_PI_6};
 use std::vec;
 use std::vec::Vec as StdVec;
 
-type Small<'n> = Planner<'n, 64, 64, 4, 16>;
+pub(in crate::planner) type Small<'n> = Planner<'n, 64, 64, 4, 16>;
 
 /// Nominal speed, m/s.
-const SPEED: f32 = 25.0;
+pub(in crate::planner) const SPEED: f32 = 25.0;
 /// Directions per landmark, landmarks, weathers.
-const D: u32 = 4;
-const L: u32 = 2;
-const W: u32 = 2;
+pub(in crate::planner) const D: u32 = 4;
+pub(in crate::planner) const L: u32 = 2;
+pub(in crate::planner) const W: u32 = 2;
 /// The start's range, metres: the start edge (600 m) is navigable from it exactly.
-const START_RANGE: f32 = 600.0;
+pub(in crate::planner) const START_RANGE: f32 = 600.0;
 /// `d_max` of each landmark, metres: 4 000 × q(0, 1, 0) = 4 000 × 0.25 = 1 000 m, exactly the
 /// edge from overflight 0.
-const D_MAX: [f32; 2] = [4000.0, 2000.0];
+pub(in crate::planner) const D_MAX: [f32; 2] = [4000.0, 2000.0];
 
 /// A point `s` metres along 30° from the origin (landmark 0).
-fn along(s: f32) -> Vec2 {
+pub(in crate::planner) fn along(s: f32) -> Vec2 {
     Vec2::from_angle(FRAC_PI_6) * s
 }
 
-fn element(s: f32) -> LineElement {
+pub(in crate::planner) fn element(s: f32) -> LineElement {
     LineElement::new(along(s), Vec2::from_angle(FRAC_PI_6) * SPEED)
 }
 
 /// The stored quality of landmark `l` in weather `w` and direction `k`: all sixteen distinct,
 /// `(l·W + w)·D + k + 1` twentieths.
-fn quality(l: u32, w: u32, k: u32) -> f32 {
+pub(in crate::planner) fn quality(l: u32, w: u32, k: u32) -> f32 {
     ((l * W + w) * D + k + 1) as f32 / 20.0
 }
 
@@ -49,7 +49,7 @@ fn quality(l: u32, w: u32, k: u32) -> f32 {
 /// the overflights (direction k heading 30° + k·90°), 8 the start, 9 the goal; edges, as
 /// written (grouped by source): 0: 0 → 4 through a middle element (2 pieces, 1 000 m),
 /// 1: 4 → 9 (1 000 m), 2: 8 → 0 (600 m).
-fn spec() -> NetworkSpec {
+pub(in crate::planner) fn spec() -> NetworkSpec {
     let mut vertices = StdVec::new();
     for l in 0..L {
         for k in 0..D {
@@ -114,12 +114,12 @@ fn spec() -> NetworkSpec {
     }
 }
 
-fn image() -> StdVec<u8> {
+pub(in crate::planner) fn image() -> StdVec<u8> {
     encode(&spec()).expect("the small landmark network")
 }
 
 /// A roadmap of one vertex: no landmark section.
-fn roadmap() -> StdVec<u8> {
+pub(in crate::planner) fn roadmap() -> StdVec<u8> {
     let mut s = spec();
     s.landmark = None;
     s.vertices.truncate(1);
@@ -127,7 +127,7 @@ fn roadmap() -> StdVec<u8> {
     encode(&s).expect("a roadmap")
 }
 
-fn query(start: Pose, goal: Vec2) -> Query {
+pub(in crate::planner) fn query(start: Pose, goal: Vec2) -> Query {
     Query {
         start,
         goal: Goal {
@@ -138,7 +138,7 @@ fn query(start: Pose, goal: Vec2) -> Query {
     }
 }
 
-fn stored_start() -> Pose {
+pub(in crate::planner) fn stored_start() -> Pose {
     let p = along(-600.0);
     Pose::new(p.x, p.y, FRAC_PI_6)
 }
