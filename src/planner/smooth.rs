@@ -9,6 +9,9 @@ use crate::geometry::{wrap_to_pi, DubinsPath, Pose};
 use core::f32::consts::PI;
 use heapless::Vec;
 
+#[cfg(all(test, feature = "std"))]
+mod tests;
+
 /// What a post-processing pass changed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]

@@ -1,0 +1,512 @@
+//! The greedy shortcut pass and heading smoothing against a second implementation of their
+//! documented definitions, on routes of sampled junctions among sampled discs: the same
+//! paths, the same number of changes, the same Dubins solves, the route's primitive capacity
+//! `R` respected, and the budget's verdict. The second implementation judges a path clear with
+//! the exact predicate the documentation names (`conflicts_with_circle` at the clearance).
+
+extern crate std;
+use crate::geometry::predicates::conflicts_with_circle;
+use crate::geometry::{wrap_to_pi, DubinsPath, Pose, Vec2};
+use crate::network::write::{encode, NetworkSpec, ObstacleSpec};
+use crate::planner::{PlanError, Planner};
+use core::f32::consts::PI;
+use std::vec;
+use std::vec::Vec;
+
+const RADIUS: f32 = 30.0;
+const CLEARANCE: f32 = 5.0;
+
+/// A roadmap whose four vertices mark the corners of the test area, with `discs`.
+fn network(discs: &[(Vec2, f32)]) -> Vec<u8> {
+    let spec = NetworkSpec {
+        origin_lat_deg: 48.0,
+        origin_lon_deg: 11.6,
+        turn_radius_m: RADIUS,
+        clearance_m: CLEARANCE,
+        vertices: [
+            (-300.0, -400.0),
+            (900.0, -400.0),
+            (-300.0, 400.0),
+            (900.0, 400.0),
+        ]
+        .iter()
+        .map(|&(x, y)| Pose::new(x, y, 0.0))
+        .collect(),
+        edges: Vec::new(),
+        obstacles: discs
+            .iter()
+            .map(|&(centre, radius)| ObstacleSpec::Circle { centre, radius })
+            .collect(),
+        grid_cell_m: 100.0,
+        terrain: None,
+        landmark: None,
+        voronoi: None,
+        provenance: Vec::new(),
+    };
+    encode(&spec).expect("a valid roadmap")
+}
+
+fn pieces(p: &DubinsPath) -> usize {
+    p.primitives().iter().flatten().count()
+}
+
+/// Whether every primitive of `path` keeps the clearance from every disc.
+fn clear(path: &DubinsPath, discs: &[(Vec2, f32)]) -> bool {
+    path.primitives().iter().flatten().all(|p| {
+        discs
+            .iter()
+            .all(|&(c, r)| !conflicts_with_circle(p, c, r, CLEARANCE))
+    })
+}
+
+/// The shortest Dubins path if clear.
+fn solve(from: &Pose, to: &Pose, discs: &[(Vec2, f32)]) -> Option<DubinsPath> {
+    DubinsPath::shortest(from, to, RADIUS).filter(|p| clear(p, discs))
+}
+
+/// What a pass did: the paths after it, the changes, the Dubins solves, and whether it ran out
+/// of a budget of `budget` solves (checked after each junction or candidate, as documented).
+#[derive(Debug, PartialEq)]
+struct Outcome {
+    paths: Vec<DubinsPath>,
+    changes: u32,
+    solves: u64,
+    exhausted: bool,
+}
+
+/// The greedy pass as `shortcut` documents it: at each junction `i` between paths `i − 1` and
+/// `i`, the previous junction joined to the next directly when that path is clear, shorter
+/// than the two it replaces, and leaves the route within `capacity` primitives; the junction
+/// is then dropped and the same `i` tried again.
+fn greedy(paths: &[DubinsPath], discs: &[(Vec2, f32)], capacity: usize, budget: u64) -> Outcome {
+    let mut paths = paths.to_vec();
+    let (mut changes, mut solves) = (0, 0);
+    let mut i = 1;
+    while i < paths.len() {
+        let (a, b) = (paths[i - 1], paths[i]);
+        solves += 1;
+        let count: usize = paths.iter().map(pieces).sum();
+        match solve(&a.start, &b.end(), discs) {
+            Some(j)
+                if j.length() < a.length() + b.length()
+                    && count - pieces(&a) - pieces(&b) + pieces(&j) <= capacity =>
+            {
+                paths[i - 1] = j;
+                paths.remove(i);
+                changes += 1;
+            }
+            _ => i += 1,
+        }
+        if solves > budget {
+            return Outcome {
+                paths,
+                changes,
+                solves,
+                exhausted: true,
+            };
+        }
+    }
+    Outcome {
+        paths,
+        changes,
+        solves,
+        exhausted: false,
+    }
+}
+
+/// Heading smoothing as `smooth_headings` documents it: at each junction between two paths,
+/// `n` headings spread evenly over ±90° about its own (its own alone when `n` = 1) and the
+/// chord's from the previous junction to the next; the pair of shortest paths through it that
+/// are both clear and shorter than the best so far (the first not tried further when it alone
+/// is no shorter) replaces the two when within `capacity` primitives.
+fn smooth(
+    paths: &[DubinsPath],
+    discs: &[(Vec2, f32)],
+    candidates: u16,
+    capacity: usize,
+    budget: u64,
+) -> Outcome {
+    let mut paths = paths.to_vec();
+    let (mut changes, mut solves) = (0, 0);
+    let n = candidates.max(1) as usize;
+    for i in 1..paths.len() {
+        let (a, b) = (paths[i - 1], paths[i]);
+        let junction = b.start;
+        let mut best = (a.length() + b.length(), a, b);
+        let chord = b.end().position - a.start.position;
+        for k in 0..=n {
+            if solves > budget {
+                return Outcome {
+                    paths,
+                    changes,
+                    solves,
+                    exhausted: true,
+                };
+            }
+            let heading = match (k == n, n) {
+                (true, _) if chord.x == 0.0 && chord.y == 0.0 => continue,
+                (true, _) => chord.angle(),
+                (false, 1) => junction.heading,
+                (false, _) => {
+                    wrap_to_pi(junction.heading - PI / 2.0 + PI * k as f32 / (n - 1) as f32)
+                }
+            };
+            let pose = Pose {
+                position: junction.position,
+                heading,
+            };
+            solves += 1;
+            let Some(first) = solve(&a.start, &pose, discs) else {
+                continue;
+            };
+            if first.length() >= best.0 {
+                continue;
+            }
+            solves += 1;
+            let Some(second) = solve(&pose, &b.end(), discs) else {
+                continue;
+            };
+            if first.length() + second.length() < best.0 {
+                best = (first.length() + second.length(), first, second);
+            }
+        }
+        let count: usize = paths.iter().map(pieces).sum();
+        let fits = count - pieces(&a) - pieces(&b) + pieces(&best.1) + pieces(&best.2) <= capacity;
+        if best.0 < a.length() + b.length() && fits {
+            paths[i - 1] = best.1;
+            paths[i] = best.2;
+            changes += 1;
+        }
+    }
+    let exhausted = solves > budget;
+    Outcome {
+        paths,
+        changes,
+        solves,
+        exhausted,
+    }
+}
+
+/// A small deterministic generator (xorshift64*).
+struct Rng(u64);
+
+impl Rng {
+    fn unit(&mut self) -> f32 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.unit()
+    }
+}
+
+/// A route of 3–6 paths through junctions about 100 m apart eastward with random sideways
+/// offsets and headings, every path clear of `discs` (discs that block one are moved away).
+fn sampled_route(rng: &mut Rng) -> (Vec<DubinsPath>, Vec<(Vec2, f32)>) {
+    let n = 3 + (rng.unit() * 4.0) as usize;
+    let junctions: Vec<Pose> = (0..=n)
+        .map(|k| {
+            Pose::new(
+                100.0 * k as f32 + rng.range(-20.0, 20.0),
+                rng.range(-80.0, 80.0),
+                rng.range(-1.2, 1.2),
+            )
+        })
+        .collect();
+    let paths: Vec<DubinsPath> = junctions
+        .windows(2)
+        .map(|w| DubinsPath::shortest(&w[0], &w[1], RADIUS).unwrap())
+        .collect();
+    let discs: Vec<(Vec2, f32)> = (0..4)
+        .map(|_| {
+            (
+                Vec2::new(rng.range(0.0, 100.0 * n as f32), rng.range(-120.0, 120.0)),
+                rng.range(5.0, 25.0),
+            )
+        })
+        .filter(|&d| paths.iter().all(|p| clear(p, &[d])))
+        .collect();
+    (paths, discs)
+}
+
+/// A planner of route capacity `C` whose route is `paths`.
+fn with_route<'n, const C: usize>(
+    image: &'n [u8],
+    paths: &[DubinsPath],
+) -> Planner<'n, 16, 16, 4, C> {
+    let mut planner = Planner::new();
+    planner.load(image).unwrap();
+    for p in paths {
+        planner.paths.push(*p).unwrap();
+    }
+    planner.flatten_route();
+    planner
+}
+
+fn outcome_of<const C: usize>(
+    planner: &Planner<'_, 16, 16, 4, C>,
+    result: Result<super::SmoothSummary, PlanError>,
+) -> Outcome {
+    let (changes, solves, exhausted) = match result {
+        Ok(s) => (s.changes, s.work.dubins_solves, false),
+        Err(PlanError::BudgetExhausted { .. }) => (u32::MAX, u64::MAX, true),
+        Err(e) => panic!("{e:?}"),
+    };
+    Outcome {
+        paths: planner.paths.to_vec(),
+        changes,
+        solves,
+        exhausted,
+    }
+}
+
+/// Runs `pass` on a planner of capacity `C` over `paths` and compares it with `expected`
+/// (changes and solves only when the budget held); the route of primitives is the paths'.
+fn check<const C: usize>(
+    image: &[u8],
+    paths: &[DubinsPath],
+    expected: &Outcome,
+    pass: impl Fn(&mut Planner<'_, 16, 16, 4, C>) -> Result<super::SmoothSummary, PlanError>,
+    what: &str,
+) {
+    let mut planner = with_route::<C>(image, paths);
+    let before: f32 = paths.iter().map(|p| p.length()).sum();
+    let result = pass(&mut planner);
+    if let Ok(summary) = result {
+        assert_eq!(summary.length_before, before, "{what}");
+        let after: f32 = planner.paths.iter().map(|p| p.length()).sum();
+        assert_eq!(summary.length_after, after, "{what}");
+        assert!(after <= before, "{what}");
+    }
+    let found = outcome_of(&planner, result);
+    assert_eq!(found.paths, expected.paths, "{what}");
+    assert_eq!(found.exhausted, expected.exhausted, "{what}");
+    if !expected.exhausted {
+        assert_eq!(
+            (found.changes, found.solves),
+            (expected.changes, expected.solves),
+            "{what}"
+        );
+    }
+    let primitives: Vec<_> = planner
+        .paths
+        .iter()
+        .flat_map(|p| p.primitives())
+        .flatten()
+        .collect();
+    assert_eq!(planner.route.as_slice(), primitives.as_slice(), "{what}");
+    assert!(planner.route.len() <= C, "{what}");
+}
+
+/// A route that loops: a single arc of 206°–320° left or right, a straight of 80–250 m, then
+/// the shortest path to a pose further on. Its first two paths are one primitive each, and the
+/// path that joins their ends is shorter with more, so at a capacity of the route's own
+/// primitives the shortcut (and often the smoothing) is refused for room.
+fn loop_route(rng: &mut Rng) -> Vec<DubinsPath> {
+    let start = Pose::new(
+        rng.range(0.0, 100.0),
+        rng.range(-50.0, 50.0),
+        rng.range(-PI, PI),
+    );
+    let word = match rng.unit() < 0.5 {
+        true => crate::geometry::DubinsWord::Lsl,
+        false => crate::geometry::DubinsWord::Rsr,
+    };
+    let arc = DubinsPath {
+        start,
+        radius: RADIUS,
+        word,
+        lengths: [RADIUS * rng.range(3.6, 5.6), 0.0, 0.0],
+    };
+    let straight = DubinsPath {
+        start: arc.end(),
+        radius: RADIUS,
+        word: crate::geometry::DubinsWord::Lsl,
+        lengths: [0.0, rng.range(80.0, 250.0), 0.0],
+    };
+    let on = straight.end();
+    let ahead = Pose::new(
+        on.position.x + rng.range(-150.0, 150.0),
+        on.position.y + rng.range(-150.0, 150.0),
+        rng.range(-PI, PI),
+    );
+    let last = DubinsPath::shortest(&on, &ahead, RADIUS).unwrap();
+    vec![arc, straight, last]
+}
+
+/// Sampled routes among sampled discs: the greedy pass and heading smoothing (1, 2, 5 and 9
+/// candidates) give what the second implementation gives at a roomy capacity and, for the
+/// routes of exactly 9 or 12 primitives, at that capacity (where a change that adds
+/// primitives is refused). Without discs (so the work is the solves alone), budgets of 2 and 5
+/// solves run out, keeping the changes made before.
+#[test]
+fn shortcuts_and_heading_smoothing_match_their_definitions() {
+    let mut rng = Rng(0x5300_7a11_2026_1206);
+    let open = network(&[]);
+    let (mut changed, mut smoothed, mut at_capacity, mut refused_for_room) = (0, 0, 0, 0);
+    for case in 0..150 {
+        let (paths, discs) = sampled_route(&mut rng);
+        let image = network(&discs);
+        let own: usize = paths.iter().map(pieces).sum();
+        let what = |pass: &str, capacity: usize, budget: u64| {
+            std::format!("case {case}, {pass}, capacity {capacity}, budget {budget}")
+        };
+        let roomy = greedy(&paths, &discs, 64, u64::MAX);
+        changed += u32::from(roomy.changes > 0);
+        check::<64>(
+            &image,
+            &paths,
+            &roomy,
+            |p| p.shortcut(u64::MAX),
+            &what("shortcut", 64, u64::MAX),
+        );
+        for candidates in [1, 2, 5, 9] {
+            let expected = smooth(&paths, &discs, candidates, 64, u64::MAX);
+            smoothed += u32::from(expected.changes > 0);
+            check::<64>(
+                &image,
+                &paths,
+                &expected,
+                |p| p.smooth_headings(candidates, u64::MAX),
+                &what("smoothing", 64, u64::MAX),
+            );
+        }
+        if own == 9 || own == 12 {
+            at_capacity += 1;
+            let tight = greedy(&paths, &discs, own, u64::MAX);
+            refused_for_room += u32::from(tight.paths != roomy.paths);
+            let tight_smooth: Vec<Outcome> = [1, 5]
+                .map(|c| smooth(&paths, &discs, c, own, u64::MAX))
+                .into();
+            refused_for_room += tight_smooth
+                .iter()
+                .zip([1, 5])
+                .filter(|(t, c)| t.paths != smooth(&paths, &discs, *c, 64, u64::MAX).paths)
+                .count() as u32;
+            match own {
+                9 => {
+                    check::<9>(
+                        &image,
+                        &paths,
+                        &tight,
+                        |p| p.shortcut(u64::MAX),
+                        &what("shortcut", 9, u64::MAX),
+                    );
+                    for (c, t) in [1, 5].iter().zip(&tight_smooth) {
+                        check::<9>(
+                            &image,
+                            &paths,
+                            t,
+                            |p| p.smooth_headings(*c, u64::MAX),
+                            &what("smoothing", 9, u64::MAX),
+                        );
+                    }
+                }
+                _ => {
+                    check::<12>(
+                        &image,
+                        &paths,
+                        &tight,
+                        |p| p.shortcut(u64::MAX),
+                        &what("shortcut", 12, u64::MAX),
+                    );
+                    for (c, t) in [1, 5].iter().zip(&tight_smooth) {
+                        check::<12>(
+                            &image,
+                            &paths,
+                            t,
+                            |p| p.smooth_headings(*c, u64::MAX),
+                            &what("smoothing", 12, u64::MAX),
+                        );
+                    }
+                }
+            }
+        }
+        for budget in [2, 5] {
+            let expected = greedy(&paths, &[], 64, budget);
+            check::<64>(
+                &open,
+                &paths,
+                &expected,
+                |p| p.shortcut(budget),
+                &what("shortcut", 64, budget),
+            );
+            let expected = smooth(&paths, &[], 5, 64, budget);
+            check::<64>(
+                &open,
+                &paths,
+                &expected,
+                |p| p.smooth_headings(5, budget),
+                &what("smoothing", 64, budget),
+            );
+        }
+    }
+    for case in 0..40 {
+        let paths = loop_route(&mut rng);
+        let own: usize = paths.iter().map(pieces).sum();
+        let what =
+            |pass: &str, capacity: usize| std::format!("loop {case}, {pass}, capacity {capacity}");
+        let roomy = greedy(&paths, &[], 64, u64::MAX);
+        check::<64>(
+            &open,
+            &paths,
+            &roomy,
+            |p| p.shortcut(u64::MAX),
+            &what("shortcut", 64),
+        );
+        let tight = greedy(&paths, &[], own, u64::MAX);
+        refused_for_room += u32::from(tight.paths != roomy.paths);
+        let smooth_roomy = smooth(&paths, &[], 5, 64, u64::MAX);
+        check::<64>(
+            &open,
+            &paths,
+            &smooth_roomy,
+            |p| p.smooth_headings(5, u64::MAX),
+            &what("smoothing", 64),
+        );
+        let smooth_tight = smooth(&paths, &[], 5, own, u64::MAX);
+        refused_for_room += u32::from(smooth_tight.paths != smooth_roomy.paths);
+        match own {
+            4 => {
+                check::<4>(
+                    &open,
+                    &paths,
+                    &tight,
+                    |p| p.shortcut(u64::MAX),
+                    &what("shortcut", 4),
+                );
+                check::<4>(
+                    &open,
+                    &paths,
+                    &smooth_tight,
+                    |p| p.smooth_headings(5, u64::MAX),
+                    &what("smoothing", 4),
+                );
+            }
+            5 => {
+                check::<5>(
+                    &open,
+                    &paths,
+                    &tight,
+                    |p| p.shortcut(u64::MAX),
+                    &what("shortcut", 5),
+                );
+                check::<5>(
+                    &open,
+                    &paths,
+                    &smooth_tight,
+                    |p| p.smooth_headings(5, u64::MAX),
+                    &what("smoothing", 5),
+                );
+            }
+            _ => panic!("a loop route of {own} primitives"),
+        }
+    }
+    assert!(
+        changed >= 50 && smoothed >= 100 && at_capacity >= 10 && refused_for_room >= 20,
+        "{changed} shortened, {smoothed} smoothed, {at_capacity} at capacity, {refused_for_room} refused for room"
+    );
+}
