@@ -344,5 +344,5 @@ fn goal_pose(query: &Query, from: &Pose) -> Pose {
     Pose::new(p.x, p.y, heading)
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "std"))]
 mod tests;
