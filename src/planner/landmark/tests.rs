@@ -516,3 +516,72 @@ fn a_chain_is_tested_against_a_popup_only_on_the_pieces_that_may_reach_it() {
         "no edge 7: fail safe"
     );
 }
+
+/// A landmark network of `landmarks` landmarks at 1 km spacing, each crossed in `directions`
+/// directions (evenly spread), one weather, no stored start or goal, and no edges.
+fn sites_only(landmarks: u32, directions: u32) -> StdVec<u8> {
+    let mut s = spec();
+    s.vertices = (0..landmarks)
+        .flat_map(|l| {
+            (0..directions).map(move |k| Pose {
+                position: along(1000.0 * l as f32),
+                heading: k as f32 * core::f32::consts::TAU / directions as f32,
+            })
+        })
+        .collect();
+    s.edges.clear();
+    if let Some(spec) = s.landmark.as_mut() {
+        spec.directions = directions;
+        spec.weather_count = 1;
+        spec.landmarks = (0..landmarks)
+            .map(|l| LandmarkSiteSpec {
+                position: along(1000.0 * l as f32),
+                d_max_m: 1000.0,
+            })
+            .collect();
+        spec.qualities = vec![0.5; (landmarks * directions) as usize];
+        spec.start_vertex = None;
+        spec.goal_vertex = None;
+        spec.chains.clear();
+    }
+    encode(&s).expect("a landmark network without edges")
+}
+
+/// An override row holds up to [`MAX_ROSETTE_DIRECTIONS`] (24) directions: a network of 24
+/// takes one, a network of 25 refuses it; and [`MAX_ROSETTE_OVERRIDES`] (8) landmarks may have
+/// one at a time, the ninth refused with the capacity.
+#[test]
+fn an_override_holds_at_most_24_directions_and_8_landmarks() {
+    let (wide, wider, many) = (sites_only(1, 24), sites_only(1, 25), sites_only(9, 1));
+    let mut planner = Small::new();
+    planner.load(&wide).unwrap();
+    assert_eq!(planner.update_rosette(0, &[1.0; 24]), Ok(()));
+    assert_eq!(planner.quality(0, 23), Some(1.0));
+    planner.load(&wider).unwrap();
+    assert_eq!(
+        planner.update_rosette(0, &[1.0; 25]),
+        Err(PlanError::InvalidRosette {
+            given: 25,
+            directions: 25
+        })
+    );
+    planner.load(&many).unwrap();
+    for landmark in 0..8 {
+        assert_eq!(
+            planner.update_rosette(landmark, &[1.0]),
+            Ok(()),
+            "{landmark}"
+        );
+    }
+    assert_eq!(
+        planner.update_rosette(8, &[1.0]),
+        Err(PlanError::RosetteTableFull { capacity: 8 })
+    );
+    assert_eq!(
+        planner.update_rosette(3, &[0.0]),
+        Ok(()),
+        "a landmark that has one"
+    );
+    assert!(planner.clear_rosette(5));
+    assert_eq!(planner.update_rosette(8, &[1.0]), Ok(()), "room again");
+}
