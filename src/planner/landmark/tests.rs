@@ -331,6 +331,30 @@ fn a_route_from_the_stored_start_is_written_edge_by_edge() {
         })
     );
     assert!(narrow.route_edges().is_empty());
+    let mut exact: Planner<'_, 64, 64, 4, 3> = Planner::new();
+    exact.load(&bytes).unwrap();
+    exact.set_weather(1).unwrap();
+    exact.plan(&query(stored_start(), goal), u64::MAX).unwrap();
+    assert_eq!(exact.route_edges(), &[2, 0, 1], "three edges fit three");
+}
+
+/// From the stored start to a goal 300 m ahead of it (before landmark 0), the goal is joined
+/// online from the stored start itself, within its 600 m range: the route is that one piece,
+/// with no network edge.
+#[test]
+fn a_goal_within_the_start_range_is_joined_from_the_stored_start() {
+    let bytes = image();
+    let mut planner = Small::new();
+    planner.load(&bytes).unwrap();
+    planner.set_weather(1).unwrap();
+    let summary = planner
+        .plan(&query(stored_start(), along(-300.0)), u64::MAX)
+        .unwrap();
+    assert!(planner.route_edges().is_empty());
+    let piece = planner.goal_piece().expect("the goal's piece");
+    assert!(piece.start().position.distance(along(-600.0)) < 1e-3);
+    assert!((summary.length - 300.0).abs() < 0.01, "{summary:?}");
+    assert_eq!(summary.network_edges, 0);
 }
 
 /// The query's start matches the stored start, or an overflight, within 1 m and 10⁻³ rad;

@@ -600,10 +600,28 @@ fn a_transition_is_relaxed_only_when_it_improves_and_fits() {
         .unwrap();
     short.heap.clear(states);
     short.seed_edge_states(&mut Meter::new(u64::MAX)).unwrap();
-    expand(&mut short, 4);
+    // A goal link leaving n0 northward: a quarter turn of cut 30 m, more than the 5 m the
+    // link leaves, though its straight (100 m) would hold it.
+    let north = DubinsPath {
+        start: Pose::new(node(0).x, node(0).y, 0.5 * core::f32::consts::PI),
+        radius: R,
+        word: crate::geometry::DubinsWord::Lsl,
+        lengths: [0.0, 100.0, 0.0],
+    };
+    short
+        .goal_links
+        .push(Link {
+            vertex: 0,
+            path: north,
+            cost: 100.0,
+            pending: false,
+        })
+        .unwrap();
+    let (best, _) = expand(&mut short, 4);
     assert_eq!(
         short.heap.state(0),
         ItemState::Unseen,
         "the turn does not fit"
     );
+    assert!(best.is_none(), "nor does the goal link's turn: {best:?}");
 }
