@@ -421,12 +421,12 @@ fn goal_link(length: f32) -> Link {
     }
 }
 
-/// A search begun by hand: one start link to n0 (30 m east), goal links of 17 and 20 m east
+/// A search begun by hand: one start link to n0 (30 m east), goal links of 20 and 17 m east
 /// from n2, the states prepared and the link seeded.
 fn begun<'n>(image: &'n [u8], rule: TurnRule) -> Small<'n> {
     let mut planner = with_links(image, rule, &[0]);
-    planner.goal_links.push(goal_link(17.0)).unwrap();
     planner.goal_links.push(goal_link(20.0)).unwrap();
+    planner.goal_links.push(goal_link(17.0)).unwrap();
     let states = planner
         .prepare_edge_states(&mut Meter::new(u64::MAX))
         .unwrap();
@@ -452,8 +452,9 @@ fn expand(planner: &mut Small, s: u32) -> (Option<(f32, Arrival)>, crate::planne
 /// gives it (the equal split: the edge; the paper's rule: `9 − 2 + O[p] + slot`); the reversal
 /// at n1 queues nothing; at n2 the goal links whose straight leaves the turn room (the equal
 /// split: half of it; the paper's rule: all of it) are offered at the same step plus their
-/// length, the cheaper kept. Each expansion counts one relaxation per goal link and out-edge,
-/// one vertex scan and its decoding's reads.
+/// length, the cheaper kept (the 17 m link, offered second, replaces the 20 m one). Each
+/// expansion counts one relaxation per goal link and out-edge, one vertex scan and its
+/// decoding's reads, and one heap step for the push behind the link's state.
 #[test]
 fn an_expansion_queues_each_fitting_turn_at_its_step_cost() {
     let image = free_network();
@@ -480,6 +481,7 @@ fn an_expansion_queues_each_fitting_turn_at_its_step_cost() {
         let (best, work) = expand(&mut planner, s_link);
         assert!(best.is_none());
         assert_eq!((work.relaxations, work.vertex_scans), (3, 1), "{rule:?}");
+        assert_eq!(work.heap_steps, 1, "one push, behind the link's state");
         let c0 = cut(east, d01);
         let expected01 = ds + uncounted_link + key(l01, c0) + saving(east, d01);
         assert!(
@@ -519,8 +521,8 @@ fn an_expansion_queues_each_fitting_turn_at_its_step_cost() {
         );
         let (total, arrival) = best.expect("a goal link fits");
         let (link, length) = match rule {
-            TurnRule::SharedEqually => (1, 20.0),
-            TurnRule::Paper => (0, 17.0),
+            TurnRule::SharedEqually => (0, 20.0),
+            TurnRule::Paper => (1, 17.0),
         };
         let expected = ds + (l12 - key(l12, c1)) + length + saving(d12, east);
         assert!(
@@ -554,6 +556,14 @@ fn a_transition_is_relaxed_only_when_it_improves_and_fits() {
         .unwrap();
     assert_eq!(planner.dist[s01 as usize], first, "a dearer arrival");
     assert_eq!(planner.arc_check_stats().arcs, 1, "its turn is not checked");
+    planner
+        .expand_edge_state(s_link, key, &mut best, &mut meter)
+        .unwrap();
+    assert_eq!(
+        planner.arc_check_stats().arcs,
+        1,
+        "nor that of an equal one"
+    );
     planner
         .expand_edge_state(s_link, key - 5.0, &mut best, &mut meter)
         .unwrap();
