@@ -309,7 +309,7 @@ fn a_piece_near_an_obstacle_or_popup_is_no_link() {
     let mut meter = Meter::new(u64::MAX);
     let _ = planner.connect_online(&l, &q, LinkSide::Start, None, &mut meter);
     assert!(!straight_on(&planner), "12 m from it, within 5 + 10 m");
-    assert!(meter.work.collision_tests >= 16 + 1);
+    assert!(meter.work.collision_tests > 16, "a box test and 16 chords");
 }
 
 /// The goal links leaving the vertex expanded are offered at its cost plus their length; a

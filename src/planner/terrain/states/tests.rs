@@ -340,11 +340,11 @@ fn every_state_decodes_to_its_straight_and_share() {
         assert_eq!(reads, 0);
         decoded += 1;
     }
-    for p in 0..EDGES.len() + links.len() {
+    for (p, &first) in table.iter().enumerate().take(EDGES.len() + links.len()) {
         let end = straight_end(p, &links);
         let outs: Vec<usize> = (0..EDGES.len()).filter(|&e| EDGES[e].0 == end).collect();
         for (j, &e) in outs.iter().enumerate() {
-            let s = 9 + table[p] + j as u32;
+            let s = 9 + first + j as u32;
             let c = cut(direction_of(p, &paper), direction_of(e, &paper));
             let expected = expected_arrival(e, &paper, &links, c, c);
             let mut reads = 0;
