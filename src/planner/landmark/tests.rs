@@ -319,6 +319,21 @@ fn a_route_from_the_stored_start_is_written_edge_by_edge() {
     assert_eq!((summary.primitives, summary.network_edges), (4, 3));
     assert!((summary.arrival_heading - FRAC_PI_6).abs() < 1e-6);
     assert!(planner.start_piece().is_none() && planner.goal_piece().is_none());
+    // Written again from the search's predecessors: the walk back reads the route's four
+    // vertices, and the writer counts them once more (one scan per vertex of a route of three
+    // edges), 8 in all.
+    let mut meter = Meter::new(u64::MAX);
+    let again = planner
+        .write_landmark_route(
+            &query(stored_start(), goal),
+            (LandmarkEnd::Vertex(8), 9, None),
+            &mut meter,
+        )
+        .unwrap();
+    assert_eq!(planner.route_edges(), &[2, 0, 1]);
+    assert_eq!(again.length, summary.length);
+    assert_eq!(meter.work.vertex_scans, 8);
+    assert_eq!(meter.work.total(), 8);
 
     let mut narrow: Planner<'_, 64, 64, 4, 2> = Planner::new();
     narrow.load(&bytes).unwrap();
