@@ -559,11 +559,16 @@ fn a_chain_is_tested_against_a_popup_only_on_the_pieces_that_may_reach_it() {
 /// A landmark network of `landmarks` landmarks at 1 km spacing, each crossed in `directions`
 /// directions (evenly spread), one weather, no stored start or goal, and no edges.
 fn sites_only(landmarks: u32, directions: u32) -> StdVec<u8> {
+    sites_along(landmarks, directions, 1000.0)
+}
+
+/// [`sites_only`] with the landmarks `spacing` metres apart along 30°.
+pub(in crate::planner) fn sites_along(landmarks: u32, directions: u32, spacing: f32) -> StdVec<u8> {
     let mut s = spec();
     s.vertices = (0..landmarks)
         .flat_map(|l| {
             (0..directions).map(move |k| Pose {
-                position: along(1000.0 * l as f32),
+                position: along(spacing * l as f32),
                 heading: k as f32 * core::f32::consts::TAU / directions as f32,
             })
         })
@@ -574,7 +579,7 @@ fn sites_only(landmarks: u32, directions: u32) -> StdVec<u8> {
         spec.weather_count = 1;
         spec.landmarks = (0..landmarks)
             .map(|l| LandmarkSiteSpec {
-                position: along(1000.0 * l as f32),
+                position: along(spacing * l as f32),
                 d_max_m: 1000.0,
             })
             .collect();

@@ -7,7 +7,7 @@ extern crate std;
 use super::*;
 use crate::network::write::{encode, ObstacleSpec};
 use crate::planner::landmark::tests::{
-    along, image, quality, query, roadmap, spec, Small, D_MAX, START_RANGE,
+    along, image, quality, query, roadmap, sites_along, spec, Small, D_MAX, START_RANGE,
 };
 use crate::planner::{Goal, Popup, Search};
 use core::f32::consts::{FRAC_PI_2, FRAC_PI_6};
@@ -376,4 +376,46 @@ fn a_route_with_online_ends_carries_both_pieces() {
     assert!((summary.length - (start.length() + edges + goal.length())).abs() < 1e-2);
     assert!(start.start().position.distance(q.start.position) < 1e-3);
     assert!(goal.end().position.distance(q.goal.position) < 1e-3);
+}
+
+/// Of more than [`MAX_LINKS`] links found, the [`MAX_LINKS`] with the smallest lower bound of
+/// a route through them (the piece, then the chord to the goal) are kept, in that order:
+/// twelve landmarks 100 m apart crossed in four directions, the start 300 m before the first
+/// with a range of 2 km, the goal 300 m off the line beyond the last.
+#[test]
+fn of_more_links_than_room_the_cheapest_bounds_are_kept() {
+    let bytes = sites_along(12, 4, 100.0);
+    let mut planner = Small::new();
+    planner.load(&bytes).unwrap();
+    planner.set_start_range(2000.0).unwrap();
+    let goal = along(1200.0) + Vec2::from_angle(FRAC_PI_6 + FRAC_PI_2) * 300.0;
+    let q = query(pose_at(-300.0, FRAC_PI_6), goal);
+    let l = *planner.network.landmark().unwrap();
+    let mut meter = Meter::new(u64::MAX);
+    planner
+        .connect_online(&l, &q, LinkSide::Start, None, &mut meter)
+        .unwrap();
+    let limits = planner.network.fly_limits().unwrap();
+    let mut all = StdVec::new();
+    for v in 0..48 {
+        let at = planner.network.vertex(v).unwrap();
+        let piece = HermiteSegment::new(
+            &LineElement::from_pose(&q.start, 25.0),
+            &LineElement::from_pose(&at, 25.0),
+            25.0,
+        )
+        .unwrap();
+        if piece.length() <= 2000.0 && piece.check_flyable(&limits).is_ok() {
+            all.push((
+                piece.length() + at.position.distance(goal),
+                v,
+                piece.length(),
+            ));
+        }
+    }
+    all.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert!(all.len() > MAX_LINKS, "{} links found", all.len());
+    let expected: StdVec<(u32, f32)> = all[..MAX_LINKS].iter().map(|e| (e.1, e.2)).collect();
+    assert_eq!(found_links(&planner, LinkSide::Start), expected);
+    assert_eq!(meter.work.relaxations, all.len() as u64);
 }
