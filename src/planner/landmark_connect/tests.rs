@@ -419,3 +419,76 @@ fn of_more_links_than_room_the_cheapest_bounds_are_kept() {
     assert_eq!(found_links(&planner, LinkSide::Start), expected);
     assert_eq!(meter.work.relaxations, all.len() as u64);
 }
+
+/// The box test before a piece's chord tests, against the piece's reach (its chord's midpoint
+/// ± half its length, plus 10⁻⁴ of it and 1 cm) and each obstacle's or pop-up's box widened by
+/// the 10 m clearance: with a range of 300.5 m only the straight 300 m piece to overflight 0
+/// is tested. Discs 192 m from its midpoint along one axis (beyond the reach on that side
+/// alone) cost one test each; discs 157 m out along x, and a square 157 m out along y, meet the
+/// widened reach and add their chord tests: 16 per disc, 16 × (4 + 1) for the square, so
+/// 6 + 2 × 16 + 1 + 80 = 119 in all; none is within the clearance of the piece.
+#[test]
+fn the_box_test_skips_exactly_what_lies_beyond_the_widened_reach() {
+    let mid = along(-150.0);
+    let square = |c: Vec2, h: f32| {
+        ObstacleSpec::Polygon(vec![
+            c + Vec2::new(-h, -h),
+            c + Vec2::new(h, -h),
+            c + Vec2::new(h, h),
+            c + Vec2::new(-h, h),
+        ])
+    };
+    let mut s = spec();
+    s.obstacles = vec![square(mid + Vec2::new(0.0, 157.0), 3.0)];
+    let bytes = encode(&s).unwrap();
+    let mut planner: Planner<'_, 64, 64, 8, 16> = Planner::new();
+    planner.load(&bytes).unwrap();
+    planner.set_start_range(300.5).unwrap();
+    let offsets = [
+        (192.0, 0.0),
+        (-192.0, 0.0),
+        (0.0, 192.0),
+        (0.0, -192.0),
+        (157.0, 0.0),
+        (-157.0, 0.0),
+    ];
+    for (dx, dy) in offsets {
+        let centre = mid + Vec2::new(dx, dy);
+        planner
+            .add_popup(Popup::Circle {
+                centre,
+                radius: 2.0,
+            })
+            .unwrap();
+    }
+    let q = query(pose_at(-300.0, FRAC_PI_6), along(2000.0));
+    let l = *planner.network.landmark().unwrap();
+    let mut meter = Meter::new(u64::MAX);
+    planner
+        .connect_online(&l, &q, LinkSide::Start, None, &mut meter)
+        .unwrap();
+    assert_eq!(
+        planner.online_links(LinkSide::Start).len(),
+        1,
+        "the straight piece alone"
+    );
+    // The reference: the reach box in f64 and each box widened by the clearance.
+    let length = planner.online_links(LinkSide::Start)[0].length as f64;
+    let half = 0.5 * length + 1e-4 * length + 0.01;
+    let meets = |lo: (f64, f64), hi: (f64, f64)| {
+        let (mx, my) = (mid.x as f64, mid.y as f64);
+        !(mx + half < lo.0 - 10.0
+            || my + half < lo.1 - 10.0
+            || mx - half > hi.0 + 10.0
+            || my - half > hi.1 + 10.0)
+    };
+    let mut expected = 0;
+    for (dx, dy) in offsets {
+        let (cx, cy) = ((mid.x + dx) as f64, (mid.y + dy) as f64);
+        expected += 1 + 16 * u64::from(meets((cx - 2.0, cy - 2.0), (cx + 2.0, cy + 2.0)));
+    }
+    let (cx, cy) = (mid.x as f64, (mid.y + 157.0) as f64);
+    expected += 1 + 80 * u64::from(meets((cx - 3.0, cy - 3.0), (cx + 3.0, cy + 3.0)));
+    assert_eq!(expected, 119, "worked by hand");
+    assert_eq!(meter.work.collision_tests, expected);
+}
