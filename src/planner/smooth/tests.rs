@@ -337,6 +337,23 @@ fn loop_route(rng: &mut Rng) -> Vec<DubinsPath> {
     vec![arc, straight, last]
 }
 
+/// The greedy pass and smoothing with 5 candidates on `paths` without discs, at capacity `C`,
+/// against the second implementation.
+fn both_at<const C: usize>(image: &[u8], paths: &[DubinsPath], what: &str) {
+    let expected = greedy(paths, &[], C, u64::MAX);
+    let label = std::format!("{what}, shortcut, capacity {C}");
+    check::<C>(image, paths, &expected, |p| p.shortcut(u64::MAX), &label);
+    let expected = smooth(paths, &[], 5, C, u64::MAX);
+    let label = std::format!("{what}, smoothing, capacity {C}");
+    check::<C>(
+        image,
+        paths,
+        &expected,
+        |p| p.smooth_headings(5, u64::MAX),
+        &label,
+    );
+}
+
 /// Sampled routes among sampled discs: the greedy pass and heading smoothing (1, 2, 5 and 9
 /// candidates) give what the second implementation gives at a roomy capacity and, for the
 /// routes of exactly 9 or 12 primitives, at that capacity (where a change that adds
@@ -469,38 +486,17 @@ fn shortcuts_and_heading_smoothing_match_their_definitions() {
         );
         let smooth_tight = smooth(&paths, &[], 5, own, u64::MAX);
         refused_for_room += u32::from(smooth_tight.paths != smooth_roomy.paths);
+        // At the route's own count and one more: a shortcut of 3 pieces for two of 1 fits
+        // only the second.
+        let label = std::format!("loop {case}");
         match own {
             4 => {
-                check::<4>(
-                    &open,
-                    &paths,
-                    &tight,
-                    |p| p.shortcut(u64::MAX),
-                    &what("shortcut", 4),
-                );
-                check::<4>(
-                    &open,
-                    &paths,
-                    &smooth_tight,
-                    |p| p.smooth_headings(5, u64::MAX),
-                    &what("smoothing", 4),
-                );
+                both_at::<4>(&open, &paths, &label);
+                both_at::<5>(&open, &paths, &label);
             }
             5 => {
-                check::<5>(
-                    &open,
-                    &paths,
-                    &tight,
-                    |p| p.shortcut(u64::MAX),
-                    &what("shortcut", 5),
-                );
-                check::<5>(
-                    &open,
-                    &paths,
-                    &smooth_tight,
-                    |p| p.smooth_headings(5, u64::MAX),
-                    &what("smoothing", 5),
-                );
+                both_at::<5>(&open, &paths, &label);
+                both_at::<6>(&open, &paths, &label);
             }
             _ => panic!("a loop route of {own} primitives"),
         }
