@@ -492,3 +492,23 @@ fn the_box_test_skips_exactly_what_lies_beyond_the_widened_reach() {
     assert_eq!(expected, 119, "worked by hand");
     assert_eq!(meter.work.collision_tests, expected);
 }
+
+/// A full list keeps its worst entry against a later offer of the same key (ties keep the
+/// earlier), and gives it up for a smaller one.
+#[test]
+fn keep_cheapest_keeps_the_earlier_of_equal_keys_at_the_boundary() {
+    let mut kept: Vec<(f32, OnlineLink), MAX_LINKS> = Vec::new();
+    let link = |vertex: u32, length: f32| OnlineLink { vertex, length };
+    for i in 0..MAX_LINKS as u32 {
+        keep_cheapest(&mut kept, i as f32, link(i, i as f32));
+    }
+    let worst = (MAX_LINKS - 1) as f32;
+    keep_cheapest(&mut kept, worst, link(100, worst));
+    assert_eq!(
+        kept.last().map(|(_, l)| l.vertex),
+        Some(MAX_LINKS as u32 - 1)
+    );
+    keep_cheapest(&mut kept, worst - 0.5, link(101, worst - 0.5));
+    assert_eq!(kept.last().map(|(_, l)| l.vertex), Some(101));
+    assert_eq!(kept.len(), MAX_LINKS);
+}
