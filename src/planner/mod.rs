@@ -26,6 +26,8 @@ mod slice;
 mod smooth;
 mod state;
 mod terrain;
+#[cfg(test)]
+mod test_rng;
 mod threats;
 mod vertical;
 mod voronoi;

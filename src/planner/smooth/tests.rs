@@ -8,6 +8,7 @@ extern crate std;
 use crate::geometry::predicates::conflicts_with_circle;
 use crate::geometry::{wrap_to_pi, DubinsPath, Pose, Vec2};
 use crate::network::write::{encode, NetworkSpec, ObstacleSpec};
+use crate::planner::test_rng::Rng;
 use crate::planner::{PlanError, Planner};
 use core::f32::consts::PI;
 use std::vec;
@@ -187,22 +188,6 @@ fn smooth(
     }
 }
 
-/// A small deterministic generator (xorshift64*).
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
-    }
-
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-}
-
 /// A route of 3–6 paths through junctions about 100 m apart eastward with random sideways
 /// offsets and headings, every path clear of `discs` (discs that block one are moved away).
 fn sampled_route(rng: &mut Rng) -> (Vec<DubinsPath>, Vec<(Vec2, f32)>) {
@@ -337,21 +322,29 @@ fn loop_route(rng: &mut Rng) -> Vec<DubinsPath> {
     vec![arc, straight, last]
 }
 
-/// The greedy pass and smoothing with 5 candidates on `paths` without discs, at capacity `C`,
-/// against the second implementation.
-fn both_at<const C: usize>(image: &[u8], paths: &[DubinsPath], what: &str) {
-    let expected = greedy(paths, &[], C, u64::MAX);
+/// The greedy pass, and smoothing with each of `candidates`, on `paths` among `discs` at
+/// capacity `C`, against the second implementation.
+fn both_at<const C: usize>(
+    image: &[u8],
+    paths: &[DubinsPath],
+    discs: &[(Vec2, f32)],
+    candidates: &[u16],
+    what: &str,
+) {
+    let expected = greedy(paths, discs, C, u64::MAX);
     let label = std::format!("{what}, shortcut, capacity {C}");
     check::<C>(image, paths, &expected, |p| p.shortcut(u64::MAX), &label);
-    let expected = smooth(paths, &[], 5, C, u64::MAX);
-    let label = std::format!("{what}, smoothing, capacity {C}");
-    check::<C>(
-        image,
-        paths,
-        &expected,
-        |p| p.smooth_headings(5, u64::MAX),
-        &label,
-    );
+    for &n in candidates {
+        let expected = smooth(paths, discs, n, C, u64::MAX);
+        let label = std::format!("{what}, smoothing with {n}, capacity {C}");
+        check::<C>(
+            image,
+            paths,
+            &expected,
+            |p| p.smooth_headings(n, u64::MAX),
+            &label,
+        );
+    }
 }
 
 /// Sampled routes among sampled discs: the greedy pass and heading smoothing (1, 2, 5 and 9
@@ -403,43 +396,10 @@ fn shortcuts_and_heading_smoothing_match_their_definitions() {
                 .zip([1, 5])
                 .filter(|(t, c)| t.paths != smooth(&paths, &discs, *c, 64, u64::MAX).paths)
                 .count() as u32;
+            let label = std::format!("case {case}");
             match own {
-                9 => {
-                    check::<9>(
-                        &image,
-                        &paths,
-                        &tight,
-                        |p| p.shortcut(u64::MAX),
-                        &what("shortcut", 9, u64::MAX),
-                    );
-                    for (c, t) in [1, 5].iter().zip(&tight_smooth) {
-                        check::<9>(
-                            &image,
-                            &paths,
-                            t,
-                            |p| p.smooth_headings(*c, u64::MAX),
-                            &what("smoothing", 9, u64::MAX),
-                        );
-                    }
-                }
-                _ => {
-                    check::<12>(
-                        &image,
-                        &paths,
-                        &tight,
-                        |p| p.shortcut(u64::MAX),
-                        &what("shortcut", 12, u64::MAX),
-                    );
-                    for (c, t) in [1, 5].iter().zip(&tight_smooth) {
-                        check::<12>(
-                            &image,
-                            &paths,
-                            t,
-                            |p| p.smooth_headings(*c, u64::MAX),
-                            &what("smoothing", 12, u64::MAX),
-                        );
-                    }
-                }
+                9 => both_at::<9>(&image, &paths, &discs, &[1, 5], &label),
+                _ => both_at::<12>(&image, &paths, &discs, &[1, 5], &label),
             }
         }
         for budget in [2, 5] {
@@ -491,12 +451,12 @@ fn shortcuts_and_heading_smoothing_match_their_definitions() {
         let label = std::format!("loop {case}");
         match own {
             4 => {
-                both_at::<4>(&open, &paths, &label);
-                both_at::<5>(&open, &paths, &label);
+                both_at::<4>(&open, &paths, &[], &[5], &label);
+                both_at::<5>(&open, &paths, &[], &[5], &label);
             }
             5 => {
-                both_at::<5>(&open, &paths, &label);
-                both_at::<6>(&open, &paths, &label);
+                both_at::<5>(&open, &paths, &[], &[5], &label);
+                both_at::<6>(&open, &paths, &[], &[5], &label);
             }
             _ => panic!("a loop route of {own} primitives"),
         }

@@ -14,6 +14,7 @@ use crate::geometry::{Arc, Pose, Primitive, Segment, Vec2};
 use crate::network::elevation::ElevationCoding;
 use crate::network::write::{encode, EdgeSpec, NetworkSpec, TerrainSpec};
 use crate::planner::state::ArcCheckStats;
+use crate::planner::test_rng::Rng;
 use crate::planner::work::cells_bound;
 use crate::planner::{Goal, Meter, PlanError, Planner, Popup, Query, QueryField, Search};
 use core::f32::consts::{PI, TAU};
@@ -312,22 +313,6 @@ fn a_point_is_over_free_terrain_only_below_the_blocking_code() {
         assert_eq!(result, expected, "{p:?}");
         assert_eq!(meter.work.cells_visited, 1);
         assert_eq!(meter.work.total(), 1);
-    }
-}
-
-/// A small deterministic generator (xorshift64*), for the sampled cases.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
-    }
-
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
     }
 }
 

@@ -16,6 +16,7 @@ use crate::network::write::{
 use crate::planner::popup::Popup;
 use crate::planner::search::Arrival;
 use crate::planner::state::{LinkEnd, ModeState};
+use crate::planner::test_rng::Rng;
 use crate::planner::{Goal, Link, Meter, PlanError, Planner, Query, Search, FROM_START};
 use std::format;
 use std::vec;
@@ -312,22 +313,6 @@ fn an_obstacle_or_popup_blocks_up_to_its_height_plus_the_clearance() {
     planner.add_popup_with_height(popup, 3.0).unwrap();
     assert!(!planner.path_is_clear_climbing(&east(100.0), level(6.0), &mut meter));
     assert!(planner.path_is_clear_climbing(&east(100.0), level(10.0), &mut meter));
-}
-
-/// A small deterministic generator (xorshift64*), for the sampled cases.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
-    }
-
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
 }
 
 /// An obstacle of a sampled case: a box (corners) or a disc, in absolute coordinates.
