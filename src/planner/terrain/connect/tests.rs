@@ -9,7 +9,7 @@ use super::super::tests::{
     at, codes_with_block, network, reference_clear, Small, COLS, FREE, NODES, ROWS,
 };
 use crate::geometry::{DubinsPath, Pose, Turn, Vec2};
-use crate::planner::{Goal, Meter, PlannerConfig};
+use crate::planner::{Goal, Link, Meter, PlannerConfig};
 use core::f32::consts::PI;
 use std::vec;
 use std::vec::Vec;
@@ -30,6 +30,11 @@ fn clear(path: &DubinsPath, codes: &[u8]) -> bool {
     path.primitives().iter().flatten().all(|p| {
         reference_clear(p, codes).unwrap_or_else(|| panic!("{p:?} is too near a blocked cell"))
     })
+}
+
+/// Each link's vertex and path, in order.
+fn vertices_and_paths(links: &[Link]) -> Vec<(u32, DubinsPath)> {
+    links.iter().map(|l| (l.vertex, l.path)).collect()
 }
 
 fn angle_gap(a: f32, b: f32) -> f32 {
@@ -84,11 +89,7 @@ fn start_links_turn_onto_a_straight_to_each_nearest_node_where_clear() {
                 }
             }
         }
-        let found: Vec<(u32, DubinsPath)> = planner
-            .start_links
-            .iter()
-            .map(|l| (l.vertex, l.path))
-            .collect();
+        let found = vertices_and_paths(&planner.start_links);
         assert_eq!(found, expected, "blocked: {blocked}");
         assert!(
             blocked == (expected.len() < 5),
@@ -114,11 +115,7 @@ fn start_links_turn_onto_a_straight_to_each_nearest_node_where_clear() {
     // n0 first: its left turn has no path, its right turn is the first link; n1's left the
     // second, after three solves.
     assert_eq!(by_distance[..2], [0, 1]);
-    let found: Vec<(u32, DubinsPath)> = planner
-        .start_links
-        .iter()
-        .map(|l| (l.vertex, l.path))
-        .collect();
+    let found = vertices_and_paths(&planner.start_links);
     let right = DubinsPath::turn_then_straight(&start, R, node(0), Turn::Right).unwrap();
     let left = DubinsPath::turn_then_straight(&start, R, node(1), Turn::Left).unwrap();
     assert!(DubinsPath::turn_then_straight(&start, R, node(0), Turn::Left).is_none());
@@ -240,11 +237,7 @@ fn goal_links_join_the_nearest_nodes_until_enough() {
         );
         let mut meter = Meter::new(u64::MAX);
         planner.connect_terrain_goal(&goal, &mut meter).unwrap();
-        let found: Vec<(u32, DubinsPath)> = planner
-            .goal_links
-            .iter()
-            .map(|l| (l.vertex, l.path))
-            .collect();
+        let found = vertices_and_paths(&planner.goal_links);
         assert_eq!(found, expected, "{heading:?}");
         assert_eq!(meter.work.dubins_solves, tried.len() as u64);
         for link in &planner.goal_links {
@@ -258,11 +251,7 @@ fn goal_links_join_the_nearest_nodes_until_enough() {
         });
         let mut meter = Meter::new(u64::MAX);
         planner.connect_terrain_goal(&goal, &mut meter).unwrap();
-        let found: Vec<(u32, DubinsPath)> = planner
-            .goal_links
-            .iter()
-            .map(|l| (l.vertex, l.path))
-            .collect();
+        let found = vertices_and_paths(&planner.goal_links);
         assert_eq!(found, expected[..3]);
         let third = 1 + tried
             .iter()
