@@ -26,7 +26,7 @@ mod slice;
 mod smooth;
 mod state;
 mod terrain;
-#[cfg(test)]
+#[cfg(all(test, feature = "std"))]
 mod test_rng;
 mod threats;
 mod vertical;
