@@ -6,8 +6,12 @@
 
 extern crate std;
 use crate::geometry::predicates::conflicts_with_circle;
+use crate::geometry::vertical::{VerticalLimits, VerticalProfile};
 use crate::geometry::{wrap_to_pi, DubinsPath, Pose, Vec2};
-use crate::network::write::{encode, NetworkSpec, ObstacleSpec};
+use crate::network::write::{
+    encode, encode_three_dimensional, NetworkSpec, ObstacleSpec, VerticalSpec,
+};
+use crate::planner::state::ModeState;
 use crate::planner::test_rng::Rng;
 use crate::planner::{PlanError, Planner};
 use core::f32::consts::PI;
@@ -18,8 +22,8 @@ const RADIUS: f32 = 30.0;
 const CLEARANCE: f32 = 5.0;
 
 /// A roadmap whose four vertices mark the corners of the test area, with `discs`.
-fn network(discs: &[(Vec2, f32)]) -> Vec<u8> {
-    let spec = NetworkSpec {
+fn roadmap_spec(discs: &[(Vec2, f32)]) -> NetworkSpec {
+    NetworkSpec {
         origin_lat_deg: 48.0,
         origin_lon_deg: 11.6,
         turn_radius_m: RADIUS,
@@ -43,8 +47,11 @@ fn network(discs: &[(Vec2, f32)]) -> Vec<u8> {
         landmark: None,
         voronoi: None,
         provenance: Vec::new(),
-    };
-    encode(&spec).expect("a valid roadmap")
+    }
+}
+
+fn network(discs: &[(Vec2, f32)]) -> Vec<u8> {
+    encode(&roadmap_spec(discs)).expect("a valid roadmap")
 }
 
 fn pieces(p: &DubinsPath) -> usize {
@@ -464,5 +471,124 @@ fn shortcuts_and_heading_smoothing_match_their_definitions() {
     assert!(
         changed >= 50 && smoothed >= 100 && at_capacity >= 10 && refused_for_room >= 20,
         "{changed} shortened, {smoothed} smoothed, {at_capacity} at capacity, {refused_for_room} refused for room"
+    );
+}
+
+/// On a three-dimensional roadmap a new path must also fly its climb between the altitudes of
+/// the junctions it joins (the start's for junction 0, then the route's): sampled routes whose
+/// junctions lie at 0–250 m, so that many joins are too short to climb, against the second
+/// implementation with that rule (a rest-to-rest profile within Niendorf et al.'s limits at
+/// 25 m/s). The greedy pass also drops the altitude of each junction it drops.
+#[test]
+fn on_a_three_dimensional_roadmap_new_paths_must_fly_their_climbs() {
+    let limits = VerticalLimits::niendorf(25.0);
+    let vertical = VerticalSpec {
+        limits,
+        altitudes: vec![30.0; 4],
+        heights: Vec::new(),
+    };
+    let image = encode_three_dimensional(&roadmap_spec(&[]), &vertical, None).unwrap();
+    let flies = |p: &DubinsPath, from: f32, to: f32| {
+        VerticalProfile::new(from, to, p.length(), &limits).is_some()
+    };
+    let mut rng = Rng(0x3d5a_0071_2026_1206);
+    let (mut refused, mut changed) = (0, 0);
+    for case in 0..80 {
+        let (paths, _) = sampled_route(&mut rng);
+        let n = paths.len();
+        let zs: Vec<f32> = (0..=n).map(|_| rng.range(0.0, 250.0)).collect();
+        let start = |planner: &mut Planner<'_, 16, 16, 4, 64>| {
+            planner.set_query_altitudes(zs[0], zs[n]).unwrap();
+            if let ModeState::Roadmap(state) = &mut planner.state {
+                state.route_altitudes = heapless::Vec::from_slice(&zs[1..]).unwrap();
+            }
+        };
+
+        // The greedy pass: junction i's neighbours joined at their own altitudes.
+        let (mut route, mut at) = (paths.clone(), zs.clone());
+        let (mut solves, mut changes, mut i) = (0, 0, 1);
+        while i < route.len() {
+            let (a, b) = (route[i - 1], route[i]);
+            solves += 1;
+            let joined = DubinsPath::shortest(&a.start, &b.end(), RADIUS);
+            match joined {
+                Some(j) if !flies(&j, at[i - 1], at[i + 1]) => {
+                    refused += 1;
+                    i += 1;
+                }
+                Some(j) if j.length() < a.length() + b.length() => {
+                    route[i - 1] = j;
+                    route.remove(i);
+                    at.remove(i);
+                    changes += 1;
+                }
+                _ => i += 1,
+            }
+        }
+        changed += u32::from(changes > 0);
+        let mut planner = with_route::<64>(&image, &paths);
+        start(&mut planner);
+        let summary = planner.shortcut(u64::MAX).unwrap();
+        assert_eq!(planner.paths.as_slice(), route.as_slice(), "case {case}");
+        assert_eq!(planner.route_altitudes(), &at[1..], "case {case}");
+        assert_eq!(
+            (summary.changes, summary.work.dubins_solves),
+            (changes, solves)
+        );
+
+        // Smoothing with 5 candidates: the path into junction i climbs from i − 1 to i, the
+        // path out of it from i to i + 1.
+        let mut route = paths.clone();
+        let (mut solves, mut changes) = (0, 0);
+        for i in 1..n {
+            let (a, b) = (route[i - 1], route[i]);
+            let junction = b.start;
+            let mut best = (a.length() + b.length(), a, b);
+            let chord = b.end().position - a.start.position;
+            for k in 0..=5 {
+                let heading = match k {
+                    5 => chord.angle(),
+                    _ => wrap_to_pi(junction.heading - PI / 2.0 + PI * k as f32 / 4.0),
+                };
+                let pose = Pose {
+                    position: junction.position,
+                    heading,
+                };
+                solves += 1;
+                let first = DubinsPath::shortest(&a.start, &pose, RADIUS);
+                let Some(first) = first.filter(|p| flies(p, zs[i - 1], zs[i])) else {
+                    continue;
+                };
+                if first.length() >= best.0 {
+                    continue;
+                }
+                solves += 1;
+                let second = DubinsPath::shortest(&pose, &b.end(), RADIUS);
+                let Some(second) = second.filter(|p| flies(p, zs[i], zs[i + 1])) else {
+                    continue;
+                };
+                if first.length() + second.length() < best.0 {
+                    best = (first.length() + second.length(), first, second);
+                }
+            }
+            if best.0 < a.length() + b.length() {
+                route[i - 1] = best.1;
+                route[i] = best.2;
+                changes += 1;
+            }
+        }
+        let mut planner = with_route::<64>(&image, &paths);
+        start(&mut planner);
+        let summary = planner.smooth_headings(5, u64::MAX).unwrap();
+        assert_eq!(planner.paths.as_slice(), route.as_slice(), "case {case}");
+        assert_eq!(planner.route_altitudes(), &zs[1..], "case {case}");
+        assert_eq!(
+            (summary.changes, summary.work.dubins_solves),
+            (changes, solves)
+        );
+    }
+    assert!(
+        refused >= 20 && changed >= 20,
+        "{refused} joins refused for their climb, {changed} routes shortened"
     );
 }
