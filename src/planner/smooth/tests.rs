@@ -106,19 +106,15 @@ fn greedy(paths: &[DubinsPath], discs: &[(Vec2, f32)], capacity: usize, budget: 
             _ => i += 1,
         }
         if solves > budget {
-            return Outcome {
-                paths,
-                changes,
-                solves,
-                exhausted: true,
-            };
+            break;
         }
     }
+    let exhausted = solves > budget;
     Outcome {
         paths,
         changes,
         solves,
-        exhausted: false,
+        exhausted,
     }
 }
 
@@ -330,17 +326,19 @@ fn loop_route(rng: &mut Rng) -> Vec<DubinsPath> {
 }
 
 /// The greedy pass, and smoothing with each of `candidates`, on `paths` among `discs` at
-/// capacity `C`, against the second implementation.
+/// capacity `C`, against the second implementation; returns the expected outcomes, the
+/// greedy pass's first.
 fn both_at<const C: usize>(
     image: &[u8],
     paths: &[DubinsPath],
     discs: &[(Vec2, f32)],
     candidates: &[u16],
     what: &str,
-) {
+) -> Vec<Outcome> {
     let expected = greedy(paths, discs, C, u64::MAX);
     let label = std::format!("{what}, shortcut, capacity {C}");
     check::<C>(image, paths, &expected, |p| p.shortcut(u64::MAX), &label);
+    let mut outcomes = vec![expected];
     for &n in candidates {
         let expected = smooth(paths, discs, n, C, u64::MAX);
         let label = std::format!("{what}, smoothing with {n}, capacity {C}");
@@ -351,7 +349,14 @@ fn both_at<const C: usize>(
             |p| p.smooth_headings(n, u64::MAX),
             &label,
         );
+        outcomes.push(expected);
     }
+    outcomes
+}
+
+/// How many of two passes' outcomes, taken in pairs, end with different paths.
+fn differing(a: &[&Outcome], b: &[&Outcome]) -> u32 {
+    a.iter().zip(b).filter(|(x, y)| x.paths != y.paths).count() as u32
 }
 
 /// Sampled routes among sampled discs: the greedy pass and heading smoothing (1, 2, 5 and 9
@@ -371,43 +376,19 @@ fn shortcuts_and_heading_smoothing_match_their_definitions() {
         let what = |pass: &str, capacity: usize, budget: u64| {
             std::format!("case {case}, {pass}, capacity {capacity}, budget {budget}")
         };
-        let roomy = greedy(&paths, &discs, 64, u64::MAX);
-        changed += u32::from(roomy.changes > 0);
-        check::<64>(
-            &image,
-            &paths,
-            &roomy,
-            |p| p.shortcut(u64::MAX),
-            &what("shortcut", 64, u64::MAX),
-        );
-        for candidates in [1, 2, 5, 9] {
-            let expected = smooth(&paths, &discs, candidates, 64, u64::MAX);
-            smoothed += u32::from(expected.changes > 0);
-            check::<64>(
-                &image,
-                &paths,
-                &expected,
-                |p| p.smooth_headings(candidates, u64::MAX),
-                &what("smoothing", 64, u64::MAX),
-            );
-        }
+        let label = std::format!("case {case}");
+        let roomy = both_at::<64>(&image, &paths, &discs, &[1, 2, 5, 9], &label);
+        changed += u32::from(roomy[0].changes > 0);
+        smoothed += roomy[1..].iter().filter(|o| o.changes > 0).count() as u32;
         if own == 9 || own == 12 {
             at_capacity += 1;
-            let tight = greedy(&paths, &discs, own, u64::MAX);
-            refused_for_room += u32::from(tight.paths != roomy.paths);
-            let tight_smooth: Vec<Outcome> = [1, 5]
-                .map(|c| smooth(&paths, &discs, c, own, u64::MAX))
-                .into();
-            refused_for_room += tight_smooth
-                .iter()
-                .zip([1, 5])
-                .filter(|(t, c)| t.paths != smooth(&paths, &discs, *c, 64, u64::MAX).paths)
-                .count() as u32;
-            let label = std::format!("case {case}");
-            match own {
+            let tight = match own {
                 9 => both_at::<9>(&image, &paths, &discs, &[1, 5], &label),
                 _ => both_at::<12>(&image, &paths, &discs, &[1, 5], &label),
-            }
+            };
+            // The greedy pass, then smoothing with 1 and with 5 candidates.
+            let tight: Vec<&Outcome> = tight.iter().collect();
+            refused_for_room += differing(&tight, &[&roomy[0], &roomy[1], &roomy[3]]);
         }
         for budget in [2, 5] {
             let expected = greedy(&paths, &[], 64, budget);
@@ -431,42 +412,26 @@ fn shortcuts_and_heading_smoothing_match_their_definitions() {
     for case in 0..40 {
         let paths = loop_route(&mut rng);
         let own: usize = paths.iter().map(pieces).sum();
-        let what =
-            |pass: &str, capacity: usize| std::format!("loop {case}, {pass}, capacity {capacity}");
-        let roomy = greedy(&paths, &[], 64, u64::MAX);
-        check::<64>(
-            &open,
-            &paths,
-            &roomy,
-            |p| p.shortcut(u64::MAX),
-            &what("shortcut", 64),
-        );
-        let tight = greedy(&paths, &[], own, u64::MAX);
-        refused_for_room += u32::from(tight.paths != roomy.paths);
-        let smooth_roomy = smooth(&paths, &[], 5, 64, u64::MAX);
-        check::<64>(
-            &open,
-            &paths,
-            &smooth_roomy,
-            |p| p.smooth_headings(5, u64::MAX),
-            &what("smoothing", 64),
-        );
-        let smooth_tight = smooth(&paths, &[], 5, own, u64::MAX);
-        refused_for_room += u32::from(smooth_tight.paths != smooth_roomy.paths);
+        let label = std::format!("loop {case}");
+        let roomy = both_at::<64>(&open, &paths, &[], &[5], &label);
         // At the route's own count and one more: a shortcut of 3 pieces for two of 1 fits
         // only the second.
-        let label = std::format!("loop {case}");
-        match own {
+        let tight = match own {
             4 => {
-                both_at::<4>(&open, &paths, &[], &[5], &label);
+                let tight = both_at::<4>(&open, &paths, &[], &[5], &label);
                 both_at::<5>(&open, &paths, &[], &[5], &label);
+                tight
             }
             5 => {
-                both_at::<5>(&open, &paths, &[], &[5], &label);
+                let tight = both_at::<5>(&open, &paths, &[], &[5], &label);
                 both_at::<6>(&open, &paths, &[], &[5], &label);
+                tight
             }
             _ => panic!("a loop route of {own} primitives"),
-        }
+        };
+        let (tight, roomy): (Vec<&Outcome>, Vec<&Outcome>) =
+            (tight.iter().collect(), roomy.iter().collect());
+        refused_for_room += differing(&tight, &roomy);
     }
     assert!(
         changed >= 50 && smoothed >= 100 && at_capacity >= 10 && refused_for_room >= 20,
