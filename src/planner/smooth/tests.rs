@@ -133,19 +133,14 @@ fn smooth(
     let mut paths = paths.to_vec();
     let (mut changes, mut solves) = (0, 0);
     let n = candidates.max(1) as usize;
-    for i in 1..paths.len() {
+    'junctions: for i in 1..paths.len() {
         let (a, b) = (paths[i - 1], paths[i]);
         let junction = b.start;
         let mut best = (a.length() + b.length(), a, b);
         let chord = b.end().position - a.start.position;
         for k in 0..=n {
             if solves > budget {
-                return Outcome {
-                    paths,
-                    changes,
-                    solves,
-                    exhausted: true,
-                };
+                break 'junctions;
             }
             let heading = match (k == n, n) {
                 (true, _) if chord.x == 0.0 && chord.y == 0.0 => continue,
