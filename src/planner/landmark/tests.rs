@@ -479,31 +479,35 @@ fn no_summary() -> PopupSummary {
     }
 }
 
-/// The pieces of edge 0 (two straight 500 m pieces along 30°) whose reach box meets the box of
-/// a disc of radius `r` at `c` widened by the 10 m clearance, worked out in f64: a piece's
-/// length is at most the edge's less the other's chord (with the 10⁻⁵ allowance), 500.005 m,
-/// and its reach the chord's midpoint ± (half that + 10⁻⁴ of it + 1 cm). `None` where a box
-/// edge lies within 5 cm.
-fn pieces_reached(c: Vec2, r: f32) -> Option<u32> {
+/// Whether piece `k` of edge 0 (two straight 500 m pieces along 30°) has a reach box that
+/// meets the box of a disc of radius `r` at `c` widened by the 10 m clearance, worked out in
+/// f64: a piece's length is at most the edge's less the other's chord (with the 10⁻⁵
+/// allowance), 500.005 m, and its reach the chord's midpoint ± (half that + 10⁻⁴ of it + 1 cm).
+/// `None` where a box edge lies within `margin` metres.
+fn piece_reached(c: Vec2, r: f32, k: u32, margin: f64) -> Option<bool> {
     let bound = 1000.0 - 500.0 * (1.0 - 1e-5);
     let half = 0.5 * bound + 1e-4 * bound + 0.01;
     let reach = half + r as f64 + 10.0;
-    let mut count = 0;
-    for k in 0..2 {
-        let mid = along(250.0 + 500.0 * k as f32);
-        let gaps = [(c.x - mid.x) as f64, (c.y - mid.y) as f64].map(|d| d.abs() - reach);
-        if gaps.iter().any(|g| g.abs() < 0.05) {
-            return None;
-        }
-        count += u32::from(gaps.iter().all(|&g| g < 0.0));
+    let mid = along(250.0 + 500.0 * k as f32);
+    let gaps = [(c.x - mid.x) as f64, (c.y - mid.y) as f64].map(|d| d.abs() - reach);
+    if gaps.iter().any(|g| g.abs() < margin) {
+        return None;
     }
-    Some(count)
+    Some(gaps.iter().all(|&g| g < 0.0))
+}
+
+/// How many pieces of edge 0 [`piece_reached`] finds for a disc of radius `r` at `c`.
+fn pieces_reached(c: Vec2, r: f32, margin: f64) -> Option<u32> {
+    (0..2).try_fold(0, |n, k| {
+        Some(n + u32::from(piece_reached(c, r, k, margin)?))
+    })
 }
 
 /// Edge 0 against discs of radius 5 m: one on the chain conflicts after one piece is rebuilt
 /// (16 chords tested); ones 14 m and 18 m beside it conflict (within 5 + 10 m) and do not; far
 /// ones rebuild nothing; ones half a metre inside and outside each side of the second piece's
-/// reach box rebuild exactly the pieces whose boxes they meet.
+/// reach box rebuild exactly the pieces whose boxes they meet, and so do ones 1.25 mm inside and
+/// outside: a bound lowered to the chord (500 m) shrinks the box by 2.5 mm.
 #[test]
 fn a_chain_is_tested_against_a_popup_only_on_the_pieces_that_may_reach_it() {
     let bytes = image();
@@ -524,7 +528,7 @@ fn a_chain_is_tested_against_a_popup_only_on_the_pieces_that_may_reach_it() {
     let bound = 1000.0 - 500.0 * (1.0 - 1e-5);
     let reach = (0.5 * bound + 1e-4 * bound + 0.01 + 15.0) as f32;
     let mid = along(750.0);
-    for delta in [-0.5, 0.5] {
+    for delta in [-0.5, -0.00125, 0.00125, 0.5] {
         for dir in [
             Vec2::new(1.0, 0.0),
             Vec2::new(-1.0, 0.0),
@@ -532,7 +536,7 @@ fn a_chain_is_tested_against_a_popup_only_on_the_pieces_that_may_reach_it() {
             Vec2::new(0.0, -1.0),
         ] {
             let c = mid + dir * (reach + delta);
-            let count = pieces_reached(c, 5.0).expect("half a metre from the box");
+            let count = pieces_reached(c, 5.0, 0.001).expect("over a millimetre from the box");
             cases.push((c, false, count));
         }
     }
@@ -554,6 +558,47 @@ fn a_chain_is_tested_against_a_popup_only_on_the_pieces_that_may_reach_it() {
         planner.chain_conflicts(7, &disc(along(250.0)), 10.0, &mut summary),
         "no edge 7: fail safe"
     );
+}
+
+/// A disc whose widened box touches the second piece's reach box, on each of its four sides,
+/// is tested against that piece: boxes that share an edge meet. The reach box is the
+/// documented one, computed in f32 as the planner reads its chain; the disc is placed so that
+/// its box edge equals the reach box's exactly.
+#[test]
+fn a_popup_box_touching_a_piece_reach_box_rebuilds_the_piece() {
+    let bytes = image();
+    let mut planner = Small::new();
+    planner.load(&bytes).unwrap();
+    let net = &planner.network;
+    let (length, range) = (net.edge_length(0).unwrap(), net.chain_elements(0));
+    let position = |k: u32| net.chain_element(k).unwrap().position;
+    let chord = |k: u32| position(k).distance(position(k + 1));
+    let chords = chord(range.start) + chord(range.start + 1);
+    let piece = range.start + 1;
+    let bound = (length - (chords - chord(piece)) * (1.0 - 1e-5)).max(chord(piece));
+    let (lo, hi) = net.edge_reach(position(piece), position(piece + 1), bound);
+    let mid = along(750.0);
+    // The disc's box edge is its centre ∓ 1 m ∓ the 10 m clearance, exact at these magnitudes.
+    let touching = [
+        (Vec2::new(hi.x + 11.0, mid.y), hi.x, 0),
+        (Vec2::new(lo.x - 11.0, mid.y), lo.x, 0),
+        (Vec2::new(mid.x, hi.y + 11.0), hi.y, 1),
+        (Vec2::new(mid.x, lo.y - 11.0), lo.y, 1),
+    ];
+    for (centre, edge, axis) in touching {
+        let disc = Popup::Circle {
+            centre,
+            radius: 1.0,
+        };
+        let (dlo, dhi) = disc.bounding_box();
+        let (dlo, dhi) = (dlo - Vec2::new(10.0, 10.0), dhi + Vec2::new(10.0, 10.0));
+        let sides = [[dlo.x, dhi.x], [dlo.y, dhi.y]][axis];
+        assert!(sides.contains(&edge), "{centre:?} touches exactly");
+        let first = piece_reached(centre, 1.0, 0, 0.001).expect("clear of the first piece");
+        let mut summary = no_summary();
+        assert!(!planner.chain_conflicts(0, &disc, 10.0, &mut summary));
+        assert_eq!(summary.pieces_rebuilt, 1 + u32::from(first), "{centre:?}");
+    }
 }
 
 /// A landmark network of `landmarks` landmarks at 1 km spacing, each crossed in `directions`
