@@ -369,6 +369,43 @@ fn a_route_of_as_many_paths_and_primitives_as_the_capacity_is_accepted() {
     ));
 }
 
+#[test]
+fn a_route_of_more_paths_than_the_capacity_is_refused_even_with_fewer_primitives() {
+    // The goal is vertex (500, 300, 0)'s own pose: its goal link is a path of length 0, no
+    // primitive. With a connect radius of 60 m the start (250, 300) links only to the
+    // vertices at (300, 300) and the goal only to those at (500, 300), so the route is four
+    // paths: the start link, two edges, and that empty link, three primitives in all.
+    let bytes = encode(&lattice_spec(3, 100.0, 300.0, 30.0)).unwrap();
+    let query = Query {
+        start: Pose::new(250.0, 300.0, 0.0),
+        goal: Goal {
+            position: Vec2::new(500.0, 300.0),
+            heading: Some(0.0),
+        },
+        search: Search::Dijkstra,
+    };
+    let config = PlannerConfig {
+        connect_radius_m: 60.0,
+        ..PlannerConfig::DEFAULT
+    };
+    let mut four: Box<Planner<'_, 1024, 16384, 16, 4>> = boxed(&bytes);
+    four.set_config(config);
+    let summary = four.plan(&query, u64::MAX).expect("four paths fit four");
+    let primitives = |p: &DubinsPath| p.primitives().iter().flatten().count();
+    let counts: Vec<usize> = four.route_paths().iter().map(primitives).collect();
+    assert_eq!((counts, summary.primitives), (vec![1, 1, 1, 0], 3));
+    let mut three: Box<Planner<'_, 1024, 16384, 16, 3>> = boxed(&bytes);
+    three.set_config(config);
+    assert_eq!(
+        three.plan(&query, u64::MAX),
+        Err(PlanError::RouteTooLong {
+            primitives: 4,
+            capacity: 3
+        })
+    );
+    assert!(three.route_paths().is_empty());
+}
+
 // ---------------------------------------------------------------------------------------------
 // EDGE CASE (passes): the degenerate capacities. `Planner<0,0,0,0>` and `<1,1,1,1>` must load a
 // network that fits, refuse one that does not, and never panic on plan / pop-ups / smoothing.
