@@ -72,14 +72,17 @@ fn solve(from: &Pose, to: &Pose, discs: &[(Vec2, f32)]) -> Option<DubinsPath> {
     DubinsPath::shortest(from, to, RADIUS).filter(|p| clear(p, discs))
 }
 
-/// What a pass did: the paths after it, the changes, the Dubins solves, and whether it ran out
-/// of a budget of `budget` solves (checked after each junction or candidate, as documented).
+/// What a pass did: the paths after it, the changes, the Dubins solves, whether it ran out of
+/// a budget of `budget` solves (checked after each junction or candidate, as documented), and
+/// how many changes added primitives (counted by the second implementation only; 0 for the
+/// planner's outcome).
 #[derive(Debug, PartialEq)]
 struct Outcome {
     paths: Vec<DubinsPath>,
     changes: u32,
     solves: u64,
     exhausted: bool,
+    grown: u32,
 }
 
 /// The greedy pass as `shortcut` documents it: at each junction `i` between paths `i − 1` and
@@ -88,7 +91,7 @@ struct Outcome {
 /// is then dropped and the same `i` tried again.
 fn greedy(paths: &[DubinsPath], discs: &[(Vec2, f32)], capacity: usize, budget: u64) -> Outcome {
     let mut paths = paths.to_vec();
-    let (mut changes, mut solves) = (0, 0);
+    let (mut changes, mut solves, mut grown) = (0, 0, 0);
     let mut i = 1;
     while i < paths.len() {
         let (a, b) = (paths[i - 1], paths[i]);
@@ -99,6 +102,7 @@ fn greedy(paths: &[DubinsPath], discs: &[(Vec2, f32)], capacity: usize, budget: 
                 if j.length() < a.length() + b.length()
                     && count - pieces(&a) - pieces(&b) + pieces(&j) <= capacity =>
             {
+                grown += u32::from(pieces(&j) > pieces(&a) + pieces(&b));
                 paths[i - 1] = j;
                 paths.remove(i);
                 changes += 1;
@@ -115,6 +119,7 @@ fn greedy(paths: &[DubinsPath], discs: &[(Vec2, f32)], capacity: usize, budget: 
         changes,
         solves,
         exhausted,
+        grown,
     }
 }
 
@@ -131,7 +136,7 @@ fn smooth(
     budget: u64,
 ) -> Outcome {
     let mut paths = paths.to_vec();
-    let (mut changes, mut solves) = (0, 0);
+    let (mut changes, mut solves, mut grown) = (0, 0, 0);
     let n = candidates.max(1) as usize;
     'junctions: for i in 1..paths.len() {
         let (a, b) = (paths[i - 1], paths[i]);
@@ -172,6 +177,7 @@ fn smooth(
         let count: usize = paths.iter().map(pieces).sum();
         let fits = count - pieces(&a) - pieces(&b) + pieces(&best.1) + pieces(&best.2) <= capacity;
         if best.0 < a.length() + b.length() && fits {
+            grown += u32::from(pieces(&best.1) + pieces(&best.2) > pieces(&a) + pieces(&b));
             paths[i - 1] = best.1;
             paths[i] = best.2;
             changes += 1;
@@ -183,6 +189,7 @@ fn smooth(
         changes,
         solves,
         exhausted,
+        grown,
     }
 }
 
@@ -243,6 +250,7 @@ fn outcome_of<const C: usize>(
         changes,
         solves,
         exhausted,
+        grown: 0,
     }
 }
 
@@ -294,6 +302,11 @@ fn loop_route(rng: &mut Rng) -> Vec<DubinsPath> {
         rng.range(-50.0, 50.0),
         rng.range(-PI, PI),
     );
+    loop_route_from(rng, start)
+}
+
+/// [`loop_route`] from `start`.
+fn loop_route_from(rng: &mut Rng, start: Pose) -> Vec<DubinsPath> {
     let word = match rng.unit() < 0.5 {
         true => crate::geometry::DubinsWord::Lsl,
         false => crate::geometry::DubinsWord::Rsr,
@@ -318,6 +331,31 @@ fn loop_route(rng: &mut Rng) -> Vec<DubinsPath> {
     );
     let last = DubinsPath::shortest(&on, &ahead, RADIUS).unwrap();
     vec![arc, straight, last]
+}
+
+/// A loop route (see [`loop_route`]) after a bend and a straight: the shortest path from a
+/// random pose to a random junction, then a straight of 60–160 m to the loop's start. The
+/// first path is often three primitives, as is the shorter path that skips the junction, so
+/// a shortcut there saves exactly the straight's primitive; at a capacity of the route's own
+/// count, a later shortcut of one more primitive (the loop's, where discs keep the first
+/// junctions' shortcuts from swallowing it) fits only by that saving.
+fn bent_loop_route(rng: &mut Rng) -> Vec<DubinsPath> {
+    let from = Pose::new(
+        rng.range(-250.0, -100.0),
+        rng.range(-150.0, 150.0),
+        rng.range(-PI, PI),
+    );
+    let junction = Pose::new(0.0, 0.0, rng.range(-PI, PI));
+    let bend = DubinsPath::shortest(&from, &junction, RADIUS).unwrap();
+    let straight = DubinsPath {
+        start: bend.end(),
+        radius: RADIUS,
+        word: crate::geometry::DubinsWord::Lsl,
+        lengths: [0.0, rng.range(60.0, 160.0), 0.0],
+    };
+    let mut paths = vec![bend, straight];
+    paths.append(&mut loop_route_from(rng, straight.end()));
+    paths
 }
 
 /// The greedy pass, and smoothing with each of `candidates`, on `paths` among `discs` at
@@ -358,7 +396,9 @@ fn differing(a: &[&Outcome], b: &[&Outcome]) -> u32 {
 /// candidates) give what the second implementation gives at a roomy capacity and, for the
 /// routes of exactly 9 or 12 primitives, at that capacity (where a change that adds
 /// primitives is refused). Without discs (so the work is the solves alone), budgets of 2 and 5
-/// solves run out, keeping the changes made before.
+/// solves run out, keeping the changes made before. Loop routes, at their own count and one
+/// more; bent loop routes among discs, at their own count, where at least 30 shortcuts add a
+/// primitive that fits only by what earlier shortcuts saved.
 #[test]
 fn shortcuts_and_heading_smoothing_match_their_definitions() {
     let mut rng = Rng(0x5300_7a11_2026_1206);
@@ -428,6 +468,35 @@ fn shortcuts_and_heading_smoothing_match_their_definitions() {
             (tight.iter().collect(), roomy.iter().collect());
         refused_for_room += differing(&tight, &roomy);
     }
+    // Bent loop routes among discs at their own count: a change that adds primitives fits only
+    // by what earlier changes saved, as the planner counts them.
+    let mut grown = 0;
+    for case in 0..1000 {
+        let paths = bent_loop_route(&mut rng);
+        let discs: Vec<(Vec2, f32)> = (0..8)
+            .map(|_| {
+                let centre = Vec2::new(rng.range(-250.0, 300.0), rng.range(-250.0, 250.0));
+                (centre, rng.range(5.0, 60.0))
+            })
+            .filter(|&d| paths.iter().all(|p| clear(p, &[d])))
+            .collect();
+        let image = network(&discs);
+        let own: usize = paths.iter().map(pieces).sum();
+        let label = std::format!("bent loop {case}");
+        let outcomes = match own {
+            5 => both_at::<5>(&image, &paths, &discs, &[], &label),
+            6 => both_at::<6>(&image, &paths, &discs, &[], &label),
+            7 => both_at::<7>(&image, &paths, &discs, &[], &label),
+            8 => both_at::<8>(&image, &paths, &discs, &[], &label),
+            9 => both_at::<9>(&image, &paths, &discs, &[], &label),
+            _ => panic!("a bent loop route of {own} primitives"),
+        };
+        grown += outcomes[0].grown;
+    }
+    assert!(
+        grown >= 30,
+        "{grown} shortcuts adding primitives at the routes' own counts"
+    );
     assert!(
         changed >= 50 && smoothed >= 100 && at_capacity >= 10 && refused_for_room >= 20,
         "{changed} shortened, {smoothed} smoothed, {at_capacity} at capacity, {refused_for_room} refused for room"
