@@ -27,7 +27,7 @@ mod smooth;
 mod state;
 mod terrain;
 #[cfg(all(test, feature = "std"))]
-mod test_rng;
+pub(crate) mod test_rng;
 mod threats;
 mod vertical;
 mod voronoi;

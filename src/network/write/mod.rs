@@ -11,6 +11,8 @@ use std::vec::Vec;
 mod alternatives;
 mod grid;
 mod landmark;
+#[cfg(test)]
+pub(crate) mod tests;
 mod vertical;
 use alternatives::write_alternatives_section;
 pub use alternatives::{AlternativeSpec, AlternativesSpec, PopupSpec};

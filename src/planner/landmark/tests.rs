@@ -674,3 +674,41 @@ fn an_override_holds_at_most_24_directions_and_8_landmarks() {
     assert!(planner.clear_rosette(5));
     assert_eq!(planner.update_rosette(8, &[1.0]), Ok(()), "room again");
 }
+
+/// The grid index of the small network with cells of 7–90 m: each chain edge listed exactly in
+/// the cells that one of its pieces' Bernstein boxes, widened by the clearance and the index's
+/// rounding margin, overlaps (`docs/FORMAT.md`, landmark mode's grid index), worked out in f64.
+#[test]
+fn a_chain_is_listed_in_the_cells_its_pieces_widened_boxes_overlap() {
+    use crate::network::write::tests::{box_gap, check_index, margin, verdict};
+    let mut rng = crate::planner::test_rng::Rng(0x1a2d_9a1d_2026_1206);
+    let mut met = 0;
+    for _ in 0..10 {
+        let mut s = spec();
+        s.grid_cell_m = rng.range(7.0, 90.0);
+        let bytes = encode(&s).unwrap();
+        let net = crate::network::Network::from_bytes(&bytes).unwrap();
+        let w = s.clearance_m as f64 + margin(s.grid_cell_m);
+        let boxes: StdVec<StdVec<([f64; 2], [f64; 2])>> = (0..net.edge_count())
+            .map(|e| {
+                (0..net.chain_piece_count(e))
+                    .map(|k| {
+                        let (lo, hi) = net.chain_piece(e, k).unwrap().bounding_box();
+                        (
+                            [lo.x as f64 - w, lo.y as f64 - w],
+                            [hi.x as f64 + w, hi.y as f64 + w],
+                        )
+                    })
+                    .collect()
+            })
+            .collect();
+        met += check_index(&net, |e, (clo, chi)| {
+            let gap = boxes[e as usize]
+                .iter()
+                .map(|&(lo, hi)| box_gap(lo, hi, clo, chi))
+                .fold(f64::INFINITY, f64::min);
+            verdict(gap)
+        });
+    }
+    assert!(met > 2000, "{met} listings");
+}
