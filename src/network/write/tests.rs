@@ -198,16 +198,54 @@ fn sampled_roadmap(rng: &mut Rng, cell: f32) -> NetworkSpec {
     }
 }
 
-/// Sampled roadmaps with cells of 7–90 m: each edge listed exactly in the cells its
-/// primitives' widened boxes overlap.
+/// The grid of a roadmap or terrain network: the vertices' box widened by `4r + cell`, in
+/// whole cells (`docs/FORMAT.md`), worked out in f64.
+fn check_extent(net: &Network<'_>, spec: &NetworkSpec) {
+    let h = net.header();
+    let (cell, widen) = (
+        spec.grid_cell_m as f64,
+        4.0 * spec.turn_radius_m as f64 + spec.grid_cell_m as f64,
+    );
+    for k in 0..2 {
+        let along = |p: &Pose| [p.position.x, p.position.y][k] as f64;
+        let lo = spec
+            .vertices
+            .iter()
+            .map(along)
+            .fold(f64::INFINITY, f64::min);
+        let hi = spec
+            .vertices
+            .iter()
+            .map(along)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let origin = [h.grid_origin_x, h.grid_origin_y][k] as f64;
+        assert!(
+            (origin - (lo - widen)).abs() < 0.01,
+            "axis {k}: {origin} for {lo}"
+        );
+        let (count, cells) = (
+            [h.grid_nx, h.grid_ny][k] as f64,
+            (hi - lo + 2.0 * widen) / cell,
+        );
+        assert!(
+            count > cells - 1e-3 && count < cells + 1.0 + 1e-3,
+            "axis {k}: {count}"
+        );
+    }
+}
+
+/// Sampled roadmaps with cells of 7–90 m: the grid's extent, and each edge listed exactly in
+/// the cells its primitives' widened boxes overlap.
 #[test]
 fn a_roadmap_edge_is_listed_in_the_cells_its_primitives_boxes_overlap() {
     let mut rng = Rng(0x9e1d_0f0f_2026_1206);
     let mut met = 0;
     for _ in 0..12 {
         let cell = rng.range(7.0, 90.0);
-        let bytes = encode(&sampled_roadmap(&mut rng, cell)).unwrap();
+        let spec = sampled_roadmap(&mut rng, cell);
+        let bytes = encode(&spec).unwrap();
         let net = Network::from_bytes(&bytes).unwrap();
+        check_extent(&net, &spec);
         let boxes: Vec<Vec<([f64; 2], [f64; 2])>> = (0..net.edge_count())
             .map(|e| {
                 let path = net.edge_path(e).unwrap();
@@ -282,8 +320,10 @@ fn a_terrain_edge_is_listed_in_the_cells_its_segment_comes_near() {
     let (mut met, mut box_only) = (0, 0);
     for _ in 0..12 {
         let cell = rng.range(7.0, 90.0);
-        let bytes = encode(&sampled_terrain(&mut rng, cell)).unwrap();
+        let spec = sampled_terrain(&mut rng, cell);
+        let bytes = encode(&spec).unwrap();
         let net = Network::from_bytes(&bytes).unwrap();
+        check_extent(&net, &spec);
         let segment = |e: u32| {
             let edge = net.edge(e).unwrap();
             let (a, b) = (

@@ -712,3 +712,57 @@ fn a_chain_is_listed_in_the_cells_its_pieces_widened_boxes_overlap() {
     }
     assert!(met > 2000, "{met} listings");
 }
+
+/// A chain whose stored length (6 km) is six times its chord reaches far past the vertices'
+/// surroundings: the grid is the box of the vertices and of every edge's reach widened by one
+/// cell, widened again by four turn radii and a cell (`docs/FORMAT.md`, landmark mode's grid
+/// index), worked out in f64 for cells of 7–90 m.
+#[test]
+fn the_grid_covers_every_chains_reach_and_the_vertices_surroundings() {
+    let mut rng = crate::planner::test_rng::Rng(0x9a1d_ec4e_2026_1206);
+    for _ in 0..8 {
+        let mut s = spec();
+        s.grid_cell_m = rng.range(7.0, 90.0);
+        s.edges[1] = EdgeSpec::chain(4, 9, 6000.0);
+        let bytes = encode(&s).unwrap();
+        let h = *crate::network::Network::from_bytes(&bytes)
+            .unwrap()
+            .header();
+        let cell = s.grid_cell_m as f64;
+        let f = |p: Vec2| [p.x as f64, p.y as f64];
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for v in &s.vertices {
+            let p = f(v.position);
+            lo = [lo[0].min(p[0]), lo[1].min(p[1])];
+            hi = [hi[0].max(p[0]), hi[1].max(p[1])];
+        }
+        let chains = &s.landmark.as_ref().unwrap().chains;
+        for (e, chain) in s.edges.iter().zip(chains) {
+            let (a, b) = (f(chain[0].position), f(chain[chain.len() - 1].position));
+            let half = 0.5 * e.cost as f64 * (1.0 + 1e-4) + 0.01 + cell;
+            for k in 0..2 {
+                let mid = 0.5 * (a[k] + b[k]);
+                lo[k] = lo[k].min(mid - half);
+                hi[k] = hi[k].max(mid + half);
+            }
+        }
+        let widen = 4.0 * s.turn_radius_m as f64 + cell;
+        let origin = [h.grid_origin_x as f64, h.grid_origin_y as f64];
+        let counts = [h.grid_nx as f64, h.grid_ny as f64];
+        for k in 0..2 {
+            assert!(
+                (origin[k] - (lo[k] - widen)).abs() < 0.01,
+                "{origin:?} {lo:?}"
+            );
+            let cells = (hi[k] - lo[k] + 2.0 * widen) / cell;
+            assert!(
+                counts[k] > cells - 1e-3 && counts[k] < cells + 1.0 + 1e-3,
+                "{counts:?}"
+            );
+        }
+        assert!(
+            lo[0] < -1500.0,
+            "the reach, not the vertices, sets the west edge"
+        );
+    }
+}
