@@ -427,3 +427,186 @@ fn grid_cells_rounds_up_and_refuses_bad_cells_and_oversized_grids() {
         Err(WriteError::GridTooLarge(..))
     ));
 }
+
+/// A roadmap of one straight edge, 0 → 1, 100 m east.
+fn one_edge_roadmap() -> NetworkSpec {
+    let mut spec = sampled_roadmap(&mut Rng(7), 50.0);
+    spec.vertices.truncate(2);
+    spec.vertices[0] = Pose::new(100.0, 100.0, 0.0);
+    spec.vertices[1] = Pose::new(200.0, 100.0, 0.0);
+    let path = DubinsPath::shortest(&spec.vertices[0], &spec.vertices[1], 30.0).unwrap();
+    spec.edges = vec![EdgeSpec::dubins(0, 1, &path)];
+    spec
+}
+
+/// A terrain network of two nodes 100 m apart and one straight edge, over a flat 20 m grid
+/// from (−200, −200) of 70 × 70 cells, widening 10 m.
+fn one_edge_terrain() -> NetworkSpec {
+    let mut spec = sampled_terrain(&mut Rng(7), 50.0);
+    spec.vertices.truncate(2);
+    spec.vertices[0] = Pose::new(100.0, 100.0, 0.0);
+    spec.vertices[1] = Pose::new(200.0, 100.0, 0.0);
+    spec.edges = vec![EdgeSpec::line(0, 1, 100.0)];
+    spec
+}
+
+/// A Voronoi section that names nothing real: the writer refuses what it checks before the
+/// loader would read it.
+fn any_voronoi() -> VoronoiSpec {
+    VoronoiSpec {
+        threats: vec![(Vec2::new(0.0, 0.0), 100.0)],
+        threat_weight: 0.5,
+        kappa_max: 0.02,
+        bounds: (Vec2::new(-500.0, -500.0), Vec2::new(500.0, 500.0)),
+        corner_table: Vec::new(),
+    }
+}
+
+/// Each thing the writer checks itself is refused with its own error, and only that: the
+/// vertex limit (65 536 written, 65 537 refused), an edge naming a missing vertex at either
+/// end, an edge whose lengths are one ulp off its word's, a terrain table of the wrong size,
+/// a terrain edge that is not straight by any one of its word and outer lengths, a terrain
+/// band leaving the elevation grid, a Voronoi edge that is not straight (and straight ones
+/// let through), a network of two modes, and a three-dimensional network of each other mode.
+#[test]
+fn the_writers_own_checks_refuse_by_name() {
+    let mut spec = one_edge_roadmap();
+    assert!(encode(&spec).is_ok());
+    let mut many = spec.clone();
+    many.edges.clear();
+    many.vertices = (0..MAX_VERTICES)
+        .map(|i| Pose::new((i % 256) as f32, (i / 256) as f32, 0.0))
+        .collect();
+    assert!(encode(&many).is_ok(), "exactly MAX_VERTICES");
+    many.vertices.push(Pose::new(0.0, 0.0, 0.0));
+    assert_eq!(
+        encode(&many),
+        Err(WriteError::TooLarge(
+            "vertices (edge targets are 16-bit: at most 65536)"
+        ))
+    );
+    for (source, target) in [(2, 1), (0, 2)] {
+        let mut bad = spec.clone();
+        (bad.edges[0].source, bad.edges[0].target) = (source, target);
+        assert_eq!(encode(&bad), Err(WriteError::BadEdge { edge: 0 }));
+    }
+    spec.edges[0].lengths[1] = f32::from_bits(spec.edges[0].lengths[1].to_bits() + 1);
+    assert_eq!(encode(&spec), Err(WriteError::EdgeGeometry { edge: 0 }));
+
+    let terrain = one_edge_terrain();
+    assert!(encode(&terrain).is_ok());
+    let mut bad = terrain.clone();
+    bad.terrain.as_mut().unwrap().codes.pop();
+    let size = WriteError::BadTerrain("table size differs from cols x rows");
+    assert_eq!(encode(&bad), Err(size));
+    let crooked = WriteError::BadTerrain("an edge is not a straight line");
+    for change in 0..3 {
+        let mut bad = terrain.clone();
+        let e = &mut bad.edges[0];
+        match change {
+            0 => e.word = DubinsWord::Rsr,
+            1 => e.lengths[0] = 1.0,
+            _ => e.lengths[2] = 1.0,
+        }
+        assert_eq!(encode(&bad), Err(crooked.clone()), "change {change}");
+    }
+    // Along y = −195: the nodes are inside the grid (from −200), the 10 m band is not.
+    let mut edge = terrain.clone();
+    edge.vertices[0].position.y = -195.0;
+    edge.vertices[1].position.y = -195.0;
+    let band = WriteError::BadTerrain("an edge's band leaves the elevation grid");
+    assert_eq!(encode(&edge), Err(band));
+
+    let mut voronoi = one_edge_terrain();
+    voronoi.terrain = None;
+    voronoi.voronoi = Some(any_voronoi());
+    let not_line = WriteError::BadVoronoi("an edge is not a straight line");
+    assert_ne!(encode(&voronoi), Err(not_line.clone()), "a straight edge");
+    for change in 0..3 {
+        let mut bad = voronoi.clone();
+        let e = &mut bad.edges[0];
+        match change {
+            0 => e.word = DubinsWord::Rsr,
+            1 => e.lengths[0] = 1.0,
+            _ => e.lengths[2] = 1.0,
+        }
+        assert_eq!(encode(&bad), Err(not_line.clone()), "change {change}");
+    }
+    let mut two = terrain.clone();
+    two.voronoi = Some(any_voronoi());
+    assert_eq!(
+        encode(&two),
+        Err(WriteError::BadLandmark(
+            "a network is of one mode: terrain, landmark or Voronoi"
+        ))
+    );
+
+    let vertical = VerticalSpec {
+        limits: crate::geometry::vertical::VerticalLimits {
+            airspeed: 25.0,
+            climb_rate: 10.0,
+            vertical_accel: 20.0,
+        },
+        altitudes: vec![100.0; 2],
+        heights: Vec::new(),
+    };
+    assert!(encode_three_dimensional(&one_edge_roadmap(), &vertical, None).is_ok());
+    let flat = WriteError::BadVertical("only a roadmap can be three-dimensional");
+    for other in [&terrain, &voronoi] {
+        let got = encode_three_dimensional(other, &vertical, None);
+        assert_eq!(got, Err(flat.clone()));
+    }
+}
+
+/// Every error's message, and the numbers in a grid's: plain from 10⁻³ to 10⁹ (and 0), in
+/// scientific notation outside; a cell within that range as given.
+#[test]
+fn write_errors_name_what_is_wrong() {
+    let cases = [
+        (
+            WriteError::TooLarge("edges"),
+            "too many edges for the network format",
+        ),
+        (
+            WriteError::BadEdge { edge: 3 },
+            "edge 3 names a missing vertex",
+        ),
+        (WriteError::BadTerrain("x"), "terrain network: x"),
+        (WriteError::BadLandmark("x"), "landmark network: x"),
+        (WriteError::BadVoronoi("x"), "Voronoi network: x"),
+        (WriteError::BadVertical("x"), "three-dimensional roadmap: x"),
+        (
+            WriteError::EdgeGeometry { edge: 2 },
+            "edge 2's lengths are not its Dubins word's between its two poses",
+        ),
+        (
+            WriteError::BadGridCell(-5.0),
+            "grid cell -5 m is not a positive finite size",
+        ),
+        (
+            WriteError::GridTooLarge(1.0, 2049.0, 2048.0),
+            "a grid index of 2049 x 2048 cells of 1 m exceeds the limit of 4194304 cells \
+             (a larger grid cell makes fewer)",
+        ),
+        (
+            WriteError::GridTooLarge(1e-30, 1e30, 0.0),
+            "a grid index of 1.0000e30 x 0 cells of 1.0000e-30 m exceeds the limit of 4194304 \
+             cells (a larger grid cell makes fewer)",
+        ),
+        (
+            WriteError::GridTooLarge(2e9, 1e9, 0.001),
+            "a grid index of 1.0000e9 x 0.001 cells of 2.0000e9 m exceeds the limit of 4194304 \
+             cells (a larger grid cell makes fewer)",
+        ),
+    ];
+    for (error, message) in cases {
+        assert_eq!(std::format!("{error}"), message);
+    }
+    let invalid = WriteError::Invalid(crate::network::LoadError::CountsTooLarge);
+    let inner = std::format!("{}", crate::network::LoadError::CountsTooLarge);
+    assert!(!inner.is_empty());
+    assert_eq!(
+        std::format!("{invalid}"),
+        std::format!("the network does not validate: {inner}")
+    );
+}

@@ -766,3 +766,48 @@ fn the_grid_covers_every_chains_reach_and_the_vertices_surroundings() {
         );
     }
 }
+
+/// The writer's landmark checks, each refused by name: a vertex too many for landmarks ×
+/// directions plus the endpoints, a quality count that is not landmarks × weathers ×
+/// directions, a chain missing, an edge with a second or third length (not a chain), a chain
+/// of one element; and a landmark network written as three-dimensional.
+#[test]
+fn the_writers_landmark_checks_refuse_by_name() {
+    use crate::network::write::{encode_three_dimensional, VerticalSpec, WriteError};
+    let bad = |what| Err(WriteError::BadLandmark(what));
+    let mut s = spec();
+    s.vertices.push(s.vertices[0]);
+    let vertices = "vertex count is not landmarks x directions plus the endpoints";
+    assert_eq!(encode(&s), bad(vertices));
+    let mut s = spec();
+    s.landmark.as_mut().unwrap().qualities.pop();
+    let qualities = "quality count is not landmarks x weathers x directions";
+    assert_eq!(encode(&s), bad(qualities));
+    let mut s = spec();
+    s.landmark.as_mut().unwrap().chains.pop();
+    assert_eq!(encode(&s), bad("one chain per edge needed"));
+    for k in [1, 2] {
+        let mut s = spec();
+        s.edges[0].lengths[k] = 1.0;
+        let not_chain = "an edge is not a Hermite chain (EdgeSpec::chain)";
+        assert_eq!(encode(&s), bad(not_chain), "length {k}");
+    }
+    let mut s = spec();
+    s.landmark.as_mut().unwrap().chains[1].truncate(1);
+    assert_eq!(encode(&s), bad("a chain has fewer than 2 line elements"));
+    let vertical = VerticalSpec {
+        limits: crate::geometry::vertical::VerticalLimits {
+            airspeed: 25.0,
+            climb_rate: 10.0,
+            vertical_accel: 20.0,
+        },
+        altitudes: vec![100.0; spec().vertices.len()],
+        heights: StdVec::new(),
+    };
+    assert_eq!(
+        encode_three_dimensional(&spec(), &vertical, None),
+        Err(WriteError::BadVertical(
+            "only a roadmap can be three-dimensional"
+        ))
+    );
+}
