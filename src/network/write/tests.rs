@@ -466,7 +466,7 @@ fn any_voronoi() -> VoronoiSpec {
 /// vertex limit (65 536 written, 65 537 refused), an edge naming a missing vertex at either
 /// end, an edge whose lengths are one ulp off its word's, a terrain table of the wrong size,
 /// a terrain edge that is not straight by any one of its word and outer lengths, a terrain
-/// band leaving the elevation grid, a Voronoi edge that is not straight (and straight ones
+/// band leaving the elevation grid on any side, a Voronoi edge that is not straight (and straight ones
 /// let through), a network of two modes, and a three-dimensional network of each other mode.
 #[test]
 fn the_writers_own_checks_refuse_by_name() {
@@ -510,12 +510,19 @@ fn the_writers_own_checks_refuse_by_name() {
         }
         assert_eq!(encode(&bad), Err(crooked.clone()), "change {change}");
     }
-    // Along y = −195: the nodes are inside the grid (from −200), the 10 m band is not.
-    let mut edge = terrain.clone();
-    edge.vertices[0].position.y = -195.0;
-    edge.vertices[1].position.y = -195.0;
+    // 5 m inside each side of the elevation grid (−200 to 1 200): the nodes are inside, the
+    // 10 m band is not.
     let band = WriteError::BadTerrain("an edge's band leaves the elevation grid");
-    assert_eq!(encode(&edge), Err(band));
+    for (axis, at) in [(1, -195.0), (1, 1195.0), (0, -195.0), (0, 1195.0)] {
+        let mut edge = terrain.clone();
+        for v in &mut edge.vertices {
+            match axis {
+                0 => (v.position.x, v.position.y) = (at, v.position.x),
+                _ => v.position.y = at,
+            }
+        }
+        assert_eq!(encode(&edge), Err(band.clone()), "axis {axis} at {at}");
+    }
 
     let mut voronoi = one_edge_terrain();
     voronoi.terrain = None;
