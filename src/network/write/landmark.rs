@@ -3,6 +3,7 @@
 
 use super::{count, push, EdgeSpec, LandmarkSpec, NetworkSpec, WriteError};
 use crate::geometry::hermite::LineElement;
+use crate::geometry::DubinsWord;
 use crate::network::format::*;
 use std::vec::Vec;
 
@@ -116,7 +117,7 @@ pub(super) fn check_landmark(
     }
     if edges
         .iter()
-        .any(|e| e.lengths[1] != 0.0 || e.lengths[2] != 0.0)
+        .any(|e| e.word != DubinsWord::Lsl || e.lengths[1] != 0.0 || e.lengths[2] != 0.0)
     {
         return bad("an edge is not a Hermite chain (EdgeSpec::chain)");
     }

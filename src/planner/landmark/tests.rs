@@ -769,8 +769,9 @@ fn the_grid_covers_every_chains_reach_and_the_vertices_surroundings() {
 
 /// The writer's landmark checks, each refused by name: a vertex too many for landmarks ×
 /// directions plus the endpoints, a quality count that is not landmarks × weathers ×
-/// directions, a chain missing, an edge with a second or third length (not a chain), a chain
-/// of one element; and a landmark network written as three-dimensional.
+/// directions, a chain missing, an edge with a word other than `EdgeSpec::chain`'s or a second
+/// or third length, a chain of one element; and a landmark network written as
+/// three-dimensional.
 #[test]
 fn the_writers_landmark_checks_refuse_by_name() {
     use crate::network::write::{encode_three_dimensional, VerticalSpec, WriteError};
@@ -786,11 +787,14 @@ fn the_writers_landmark_checks_refuse_by_name() {
     let mut s = spec();
     s.landmark.as_mut().unwrap().chains.pop();
     assert_eq!(encode(&s), bad("one chain per edge needed"));
-    for k in [1, 2] {
+    for k in [0, 1, 2] {
         let mut s = spec();
-        s.edges[0].lengths[k] = 1.0;
+        match k {
+            0 => s.edges[0].word = crate::geometry::DubinsWord::Rsr,
+            _ => s.edges[0].lengths[k] = 1.0,
+        }
         let not_chain = "an edge is not a Hermite chain (EdgeSpec::chain)";
-        assert_eq!(encode(&s), bad(not_chain), "length {k}");
+        assert_eq!(encode(&s), bad(not_chain), "change {k}");
     }
     let mut s = spec();
     s.landmark.as_mut().unwrap().chains[1].truncate(1);
