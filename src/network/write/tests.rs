@@ -90,7 +90,7 @@ fn primitive_box(p: &Primitive) -> ([f64; 2], [f64; 2]) {
 
 /// The distance from segment `a`–`b` to the closed box `(lo, hi)`, f64: 0 when they meet,
 /// else the least of the end points' distances to the box and the box corners' to the segment.
-fn segment_box_distance(a: [f64; 2], b: [f64; 2], lo: [f64; 2], hi: [f64; 2]) -> f64 {
+pub(crate) fn segment_box_distance(a: [f64; 2], b: [f64; 2], lo: [f64; 2], hi: [f64; 2]) -> f64 {
     let point_box = |p: [f64; 2]| {
         let d = [0, 1].map(|k| (lo[k] - p[k]).max(p[k] - hi[k]).max(0.0));
         d[0].hypot(d[1])

@@ -550,3 +550,60 @@ fn a_turn_arc_must_also_clear_the_popups() {
     assert!(!planner.fillet_is_clear(&arrived_at_n1(east), &fillet, &mut meter));
     assert_eq!(meter.work.collision_tests, 2, "{:?}", meter.work);
 }
+
+/// The loaded elevation table: every cell's code as written, `ELEVATION_BLOCKED` past the last
+/// column or row (either alone) and on a roadmap; each edge's highest code, as the writer
+/// stores it, at least the highest code of the cells within [`WIDEN`] − 0.1 m of its segment
+/// and at most that of those within [`WIDEN`] + 0.1 m (f64), and `None` on a roadmap.
+#[test]
+fn the_elevation_table_and_each_edges_highest_code_read_back() {
+    use crate::network::elevation::ELEVATION_BLOCKED;
+    use crate::network::write::tests::segment_box_distance;
+    let mut rng = Rng(0xe1e7_a7e5_2026_1206);
+    let codes: Vec<u8> = (0..COLS * ROWS)
+        .map(|_| (rng.unit() * 250.0) as u8)
+        .collect();
+    let bytes = network(codes.clone(), 30.0);
+    let net = crate::network::Network::from_bytes(&bytes).unwrap();
+    for r in 0..ROWS {
+        for c in 0..COLS {
+            assert_eq!(net.elevation_code(c, r), codes[(r * COLS + c) as usize]);
+        }
+    }
+    for (c, r) in [(COLS, 0), (0, ROWS), (COLS, ROWS - 1), (u32::MAX, 0)] {
+        assert_eq!(net.elevation_code(c, r), ELEVATION_BLOCKED, "({c}, {r})");
+    }
+    let g = grid();
+    let f = |p: Vec2| [p.x as f64, p.y as f64];
+    for e in 0..net.edge_count() {
+        let edge = net.edge(e).unwrap();
+        let (a, b) = (
+            net.vertex(edge.source).unwrap(),
+            net.vertex(edge.target).unwrap(),
+        );
+        let (mut least, mut most) = (0u8, 0u8);
+        for r in 0..ROWS {
+            for c in 0..COLS {
+                let (lo, hi) = g.cell_rect(c, r);
+                let d = segment_box_distance(f(a.position), f(b.position), f(lo), f(hi));
+                let code = codes[(r * COLS + c) as usize];
+                if d < WIDEN as f64 - 0.1 {
+                    least = least.max(code);
+                }
+                if d < WIDEN as f64 + 0.1 {
+                    most = most.max(code);
+                }
+            }
+        }
+        let got = net.edge_highest_code(e).unwrap();
+        assert!(
+            least <= got && got <= most,
+            "edge {e}: {got} in [{least}, {most}]"
+        );
+        assert!(least > 200, "edge {e}: the band holds a high code");
+    }
+    let road = roadmap();
+    let road = crate::network::Network::from_bytes(&road).unwrap();
+    assert_eq!(road.elevation_code(0, 0), ELEVATION_BLOCKED);
+    assert_eq!(road.edge_highest_code(0), None);
+}
