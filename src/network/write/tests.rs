@@ -12,19 +12,19 @@ use crate::planner::test_rng::Rng;
 use std::vec;
 
 /// How far past a boundary (metres) a cell must lie to be judged.
-pub(crate) const TOLERANCE: f64 = 1e-3;
+const TOLERANCE: f64 = 1e-3;
 
 /// Whether a cell and a set of geometry certainly meet, certainly do not, or lie within the
 /// tolerance of touching.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Verdict {
+enum Verdict {
     Meets,
     Misses,
     Borderline,
 }
 
 /// The cell `(x, y)` of the network's grid index as a closed box `(min, max)`, f64.
-pub(crate) fn cell_box(net: &Network<'_>, x: u32, y: u32) -> ([f64; 2], [f64; 2]) {
+fn cell_box(net: &Network<'_>, x: u32, y: u32) -> ([f64; 2], [f64; 2]) {
     let h = net.header();
     let (o, c) = (
         [h.grid_origin_x as f64, h.grid_origin_y as f64],
@@ -38,13 +38,13 @@ pub(crate) fn cell_box(net: &Network<'_>, x: u32, y: u32) -> ([f64; 2], [f64; 2]
 
 /// A box `(lo, hi)` against the cell `(clo, chi)`: the largest gap between them along an axis
 /// (negative when they overlap along both, by that much at the least).
-pub(crate) fn box_gap(lo: [f64; 2], hi: [f64; 2], clo: [f64; 2], chi: [f64; 2]) -> f64 {
+fn box_gap(lo: [f64; 2], hi: [f64; 2], clo: [f64; 2], chi: [f64; 2]) -> f64 {
     (0..2)
         .map(|k| (lo[k] - chi[k]).max(clo[k] - hi[k]))
         .fold(f64::NEG_INFINITY, f64::max)
 }
 
-pub(crate) fn verdict(gap: f64) -> Verdict {
+fn verdict(gap: f64) -> Verdict {
     if gap < -TOLERANCE {
         Verdict::Meets
     } else if gap > TOLERANCE {
@@ -128,7 +128,7 @@ pub(crate) fn segment_box_distance(a: [f64; 2], b: [f64; 2], lo: [f64; 2], hi: [
 
 /// Checks every cell of `net`'s grid index against `judge(edge, cell)`: an edge that meets the
 /// cell is listed in it, one that misses it is not. Returns the listings judged `Meets`.
-pub(crate) fn check_index(
+fn check_index(
     net: &Network<'_>,
     judge: impl Fn(u32, ([f64; 2], [f64; 2])) -> Verdict,
 ) -> u32 {
@@ -153,6 +153,17 @@ pub(crate) fn check_index(
         }
     }
     met
+}
+
+/// [`check_index`] with each edge meeting a cell where one of its boxes `(lo, hi)` does.
+pub(crate) fn check_boxes(net: &Network<'_>, boxes: &[Vec<([f64; 2], [f64; 2])>]) -> u32 {
+    check_index(net, |e, (clo, chi)| {
+        let gap = boxes[e as usize]
+            .iter()
+            .map(|&(lo, hi)| box_gap(lo, hi, clo, chi))
+            .fold(f64::INFINITY, f64::min);
+        verdict(gap)
+    })
 }
 
 /// The index's rounding margin for cells of side `cell`, f64.
@@ -260,13 +271,7 @@ fn a_roadmap_edge_is_listed_in_the_cells_its_primitives_boxes_overlap() {
                     .collect()
             })
             .collect();
-        met += check_index(&net, |e, (clo, chi)| {
-            let gap = boxes[e as usize]
-                .iter()
-                .map(|&(lo, hi)| box_gap(lo, hi, clo, chi))
-                .fold(f64::INFINITY, f64::min);
-            verdict(gap)
-        });
+        met += check_boxes(&net, &boxes);
     }
     assert!(met > 5000, "{met} listings");
 }
@@ -462,6 +467,19 @@ fn any_voronoi() -> VoronoiSpec {
     }
 }
 
+/// `spec` with edge 0 no longer straight: its word `RSR` (`change` 0), or a first (1) or third
+/// (2) length of 1 m.
+fn bent(spec: &NetworkSpec, change: usize) -> NetworkSpec {
+    let mut bent = spec.clone();
+    let e = &mut bent.edges[0];
+    match change {
+        0 => e.word = DubinsWord::Rsr,
+        1 => e.lengths[0] = 1.0,
+        _ => e.lengths[2] = 1.0,
+    }
+    bent
+}
+
 /// Each thing the writer checks itself is refused with its own error, and only that: the
 /// vertex limit (65 536 written, 65 537 refused), an edge naming a missing vertex at either
 /// end, an edge whose lengths are one ulp off its word's, a terrain table of the wrong size,
@@ -501,13 +519,7 @@ fn the_writers_own_checks_refuse_by_name() {
     assert_eq!(encode(&bad), Err(size));
     let crooked = WriteError::BadTerrain("an edge is not a straight line");
     for change in 0..3 {
-        let mut bad = terrain.clone();
-        let e = &mut bad.edges[0];
-        match change {
-            0 => e.word = DubinsWord::Rsr,
-            1 => e.lengths[0] = 1.0,
-            _ => e.lengths[2] = 1.0,
-        }
+        let bad = bent(&terrain, change);
         assert_eq!(encode(&bad), Err(crooked.clone()), "change {change}");
     }
     // 5 m inside each side of the elevation grid (−200 to 1 200): the nodes are inside, the
@@ -530,13 +542,7 @@ fn the_writers_own_checks_refuse_by_name() {
     let not_line = WriteError::BadVoronoi("an edge is not a straight line");
     assert_ne!(encode(&voronoi), Err(not_line.clone()), "a straight edge");
     for change in 0..3 {
-        let mut bad = voronoi.clone();
-        let e = &mut bad.edges[0];
-        match change {
-            0 => e.word = DubinsWord::Rsr,
-            1 => e.lengths[0] = 1.0,
-            _ => e.lengths[2] = 1.0,
-        }
+        let bad = bent(&voronoi, change);
         assert_eq!(encode(&bad), Err(not_line.clone()), "change {change}");
     }
     let mut two = terrain.clone();

@@ -680,7 +680,7 @@ fn an_override_holds_at_most_24_directions_and_8_landmarks() {
 /// rounding margin, overlaps (`docs/FORMAT.md`, landmark mode's grid index), worked out in f64.
 #[test]
 fn a_chain_is_listed_in_the_cells_its_pieces_widened_boxes_overlap() {
-    use crate::network::write::tests::{box_gap, check_index, margin, verdict};
+    use crate::network::write::tests::{check_boxes, margin};
     let mut rng = crate::planner::test_rng::Rng(0x1a2d_9a1d_2026_1206);
     let mut met = 0;
     for _ in 0..10 {
@@ -702,13 +702,7 @@ fn a_chain_is_listed_in_the_cells_its_pieces_widened_boxes_overlap() {
                     .collect()
             })
             .collect();
-        met += check_index(&net, |e, (clo, chi)| {
-            let gap = boxes[e as usize]
-                .iter()
-                .map(|&(lo, hi)| box_gap(lo, hi, clo, chi))
-                .fold(f64::INFINITY, f64::min);
-            verdict(gap)
-        });
+        met += check_boxes(&net, &boxes);
     }
     assert!(met > 2000, "{met} listings");
 }
