@@ -4,7 +4,7 @@
 
 use host_tests::damage::{f32_bytes, replace_unique};
 use skyroute::geometry::spline::table::{
-    build_corner_table, table_angle, table_ratio, TABLE_ANGLES, TABLE_RATIOS,
+    build_corner_table, table_angle, table_ratio, CornerBound, TABLE_ANGLES, TABLE_RATIOS,
 };
 use skyroute::network::write::{
     encode, EdgeSpec, NetworkSpec, ObstacleSpec, VoronoiSpec, WriteError,
@@ -61,6 +61,33 @@ fn with_record(bytes: &[u8], weight: f32, kappa: f32, bounds: [f32; 4]) -> Vec<u
 const REFUSED: LoadError = LoadError::InvalidParameter {
     parameter: Parameter::Voronoi,
 };
+
+/// The corner table read in place: every node as built, and none past the last angle or the
+/// last ratio (either alone, as `CornerBound` documents), where a row-major index would still
+/// fall inside the table.
+#[test]
+fn the_corner_table_reads_back_in_place_and_nothing_outside_its_grid() {
+    let bytes = encode(&spec()).unwrap();
+    let net = Network::from_bytes(&bytes).unwrap();
+    let stored = net.corner_table().expect("a Voronoi network");
+    let built = build_corner_table();
+    for i in 0..TABLE_ANGLES {
+        for j in 0..TABLE_RATIOS {
+            assert_eq!(stored.node(i, j), built.node(i, j), "({i}, {j})");
+            assert!(stored.node(i, j).is_some());
+        }
+    }
+    for (i, j) in [
+        (0, TABLE_RATIOS),
+        (TABLE_ANGLES - 2, TABLE_RATIOS + 1),
+        (TABLE_ANGLES, 0),
+        (usize::MAX, 0),
+        (0, usize::MAX),
+    ] {
+        assert_eq!(stored.node(i, j), None, "({i}, {j})");
+        assert_eq!(built.node(i, j), None, "({i}, {j})");
+    }
+}
 
 /// A straight edge's path leaves its source heading for its target and ends there, as long as
 /// the segment; its length is the segment's.
