@@ -128,10 +128,7 @@ pub(crate) fn segment_box_distance(a: [f64; 2], b: [f64; 2], lo: [f64; 2], hi: [
 
 /// Checks every cell of `net`'s grid index against `judge(edge, cell)`: an edge that meets the
 /// cell is listed in it, one that misses it is not. Returns the listings judged `Meets`.
-fn check_index(
-    net: &Network<'_>,
-    judge: impl Fn(u32, ([f64; 2], [f64; 2])) -> Verdict,
-) -> u32 {
+fn check_index(net: &Network<'_>, judge: impl Fn(u32, ([f64; 2], [f64; 2])) -> Verdict) -> u32 {
     let h = net.header();
     let mut met = 0;
     for y in 0..h.grid_ny {
