@@ -38,6 +38,8 @@ pub mod geo;
 pub mod geometry;
 pub mod network;
 pub mod planner;
+#[cfg(all(test, feature = "std"))]
+mod test_rng;
 
 pub use geo::{GeoError, LocalFrame};
 pub use geometry::{Arc, DubinsPath, DubinsWord, Pose, Primitive, Segment, Turn, Vec2};

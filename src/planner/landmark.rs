@@ -32,6 +32,8 @@ const MATCH_DISTANCE_M: f32 = 1.0;
 const MATCH_HEADING_RAD: f32 = 1e-3;
 
 #[cfg(all(test, feature = "std"))]
+mod index_tests;
+#[cfg(all(test, feature = "std"))]
 pub(super) mod tests;
 
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {

@@ -26,8 +26,6 @@ mod slice;
 mod smooth;
 mod state;
 mod terrain;
-#[cfg(all(test, feature = "std"))]
-pub(crate) mod test_rng;
 mod threats;
 mod vertical;
 mod voronoi;

@@ -8,7 +8,7 @@
 extern crate std;
 use super::*;
 use crate::geometry::Primitive;
-use crate::planner::test_rng::Rng;
+use crate::test_rng::Rng;
 use std::vec;
 
 /// How far past a boundary (metres) a cell must lie to be judged.

@@ -12,8 +12,8 @@ use crate::network::write::{
     encode, encode_three_dimensional, NetworkSpec, ObstacleSpec, VerticalSpec,
 };
 use crate::planner::state::ModeState;
-use crate::planner::test_rng::Rng;
 use crate::planner::{PlanError, Planner};
+use crate::test_rng::Rng;
 use core::f32::consts::PI;
 use std::vec;
 use std::vec::Vec;

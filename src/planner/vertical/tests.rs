@@ -16,8 +16,8 @@ use crate::network::write::{
 use crate::planner::popup::Popup;
 use crate::planner::search::Arrival;
 use crate::planner::state::{LinkEnd, ModeState};
-use crate::planner::test_rng::Rng;
 use crate::planner::{Goal, Link, Meter, PlanError, Planner, Query, Search, FROM_START};
+use crate::test_rng::Rng;
 use std::format;
 use std::vec;
 use std::vec::Vec;

@@ -1,4 +1,4 @@
-//! A small deterministic generator for the planner's own tests' sampled cases (xorshift64*):
+//! A small deterministic generator for the crate's own tests' sampled cases (xorshift64*):
 //! the same cases on every run and machine, without a dependency.
 
 /// xorshift64* (Vigna 2016), its state never 0.
