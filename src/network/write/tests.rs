@@ -1,9 +1,10 @@
-//! The writer's grid sizing and grid index against their definitions (`docs/FORMAT.md`, "Grid
-//! index"), worked out in f64 on sampled networks: a roadmap edge is listed in every cell that
-//! the bounding box of one of its lines or arcs, widened by `10⁻³·cell + 1 cm`, overlaps; a
-//! terrain edge in every cell its segment comes within that margin of; no edge anywhere else.
-//! A cell within 1 mm of the boundary either way is not judged (the writer works in f32), nor
-//! one a terrain edge misses by less than the segment traversal's documented rounding slack.
+//! The writer against its definitions: the grid's sizing and index (`docs/FORMAT.md`, "Grid
+//! index"), worked out in f64 on sampled networks, the writer's own checks and its messages.
+//! A roadmap edge is listed in every cell that the bounding box of one of its lines or arcs,
+//! widened by `10⁻³·cell + 1 cm`, overlaps; a terrain edge in every cell its segment comes
+//! within that margin of; no edge anywhere else. A cell within 1 mm of the boundary either way
+//! is not judged (the writer works in f32), nor one a terrain edge misses by less than the
+//! segment traversal's documented rounding slack.
 
 extern crate std;
 use super::*;
