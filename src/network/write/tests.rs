@@ -207,38 +207,34 @@ fn sampled_roadmap(rng: &mut Rng, cell: f32) -> NetworkSpec {
     }
 }
 
-/// The grid of a roadmap or terrain network: the vertices' box widened by `4r + cell`, in
-/// whole cells (`docs/FORMAT.md`), worked out in f64.
-fn check_extent(net: &Network<'_>, spec: &NetworkSpec) {
+/// The box of `spec`'s vertices, `(min, max)`, f64.
+pub(crate) fn vertex_box(spec: &NetworkSpec) -> ([f64; 2], [f64; 2]) {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for v in &spec.vertices {
+        let p = [v.position.x as f64, v.position.y as f64];
+        lo = [lo[0].min(p[0]), lo[1].min(p[1])];
+        hi = [hi[0].max(p[0]), hi[1].max(p[1])];
+    }
+    (lo, hi)
+}
+
+/// The grid of `net`, written from `spec`: the box `(lo, hi)` widened by `4r + cell`, in whole
+/// cells (`docs/FORMAT.md`), worked out in f64.
+pub(crate) fn check_extent(net: &Network<'_>, spec: &NetworkSpec, (lo, hi): ([f64; 2], [f64; 2])) {
     let h = net.header();
-    let (cell, widen) = (
-        spec.grid_cell_m as f64,
-        4.0 * spec.turn_radius_m as f64 + spec.grid_cell_m as f64,
-    );
+    let cell = spec.grid_cell_m as f64;
+    let widen = 4.0 * spec.turn_radius_m as f64 + cell;
+    let origin = [h.grid_origin_x as f64, h.grid_origin_y as f64];
+    let counts = [h.grid_nx as f64, h.grid_ny as f64];
     for k in 0..2 {
-        let along = |p: &Pose| [p.position.x, p.position.y][k] as f64;
-        let lo = spec
-            .vertices
-            .iter()
-            .map(along)
-            .fold(f64::INFINITY, f64::min);
-        let hi = spec
-            .vertices
-            .iter()
-            .map(along)
-            .fold(f64::NEG_INFINITY, f64::max);
-        let origin = [h.grid_origin_x, h.grid_origin_y][k] as f64;
         assert!(
-            (origin - (lo - widen)).abs() < 0.01,
-            "axis {k}: {origin} for {lo}"
+            (origin[k] - (lo[k] - widen)).abs() < 0.01,
+            "axis {k}: {origin:?} for {lo:?}"
         );
-        let (count, cells) = (
-            [h.grid_nx, h.grid_ny][k] as f64,
-            (hi - lo + 2.0 * widen) / cell,
-        );
+        let cells = (hi[k] - lo[k] + 2.0 * widen) / cell;
         assert!(
-            count > cells - 1e-3 && count < cells + 1.0 + 1e-3,
-            "axis {k}: {count}"
+            counts[k] > cells - 1e-3 && counts[k] < cells + 1.0 + 1e-3,
+            "axis {k}: {counts:?}"
         );
     }
 }
@@ -254,7 +250,7 @@ fn a_roadmap_edge_is_listed_in_the_cells_its_primitives_boxes_overlap() {
         let spec = sampled_roadmap(&mut rng, cell);
         let bytes = encode(&spec).unwrap();
         let net = Network::from_bytes(&bytes).unwrap();
-        check_extent(&net, &spec);
+        check_extent(&net, &spec, vertex_box(&spec));
         let boxes: Vec<Vec<([f64; 2], [f64; 2])>> = (0..net.edge_count())
             .map(|e| {
                 let path = net.edge_path(e).unwrap();
@@ -326,7 +322,7 @@ fn a_terrain_edge_is_listed_in_the_cells_its_segment_comes_near() {
         let spec = sampled_terrain(&mut rng, cell);
         let bytes = encode(&spec).unwrap();
         let net = Network::from_bytes(&bytes).unwrap();
-        check_extent(&net, &spec);
+        check_extent(&net, &spec, vertex_box(&spec));
         let segment = |e: u32| {
             let edge = net.edge(e).unwrap();
             let (a, b) = (
@@ -553,11 +549,7 @@ fn the_writers_own_checks_refuse_by_name() {
     );
 
     let vertical = VerticalSpec {
-        limits: crate::geometry::vertical::VerticalLimits {
-            airspeed: 25.0,
-            climb_rate: 10.0,
-            vertical_accel: 20.0,
-        },
+        limits: crate::geometry::vertical::VerticalLimits::niendorf(25.0),
         altitudes: vec![100.0; 2],
         heights: Vec::new(),
     };

@@ -48,23 +48,17 @@ fn a_chain_is_listed_in_the_cells_its_pieces_widened_boxes_overlap() {
 /// index), worked out in f64 for cells of 7–90 m.
 #[test]
 fn the_grid_covers_every_chains_reach_and_the_vertices_surroundings() {
+    use crate::network::write::tests::{check_extent, vertex_box};
     let mut rng = crate::test_rng::Rng(0x9a1d_ec4e_2026_1206);
     for _ in 0..8 {
         let mut s = spec();
         s.grid_cell_m = rng.range(7.0, 90.0);
         s.edges[1] = EdgeSpec::chain(4, 9, 6000.0);
         let bytes = encode(&s).unwrap();
-        let h = *crate::network::Network::from_bytes(&bytes)
-            .unwrap()
-            .header();
+        let net = crate::network::Network::from_bytes(&bytes).unwrap();
         let cell = s.grid_cell_m as f64;
         let f = |p: Vec2| [p.x as f64, p.y as f64];
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for v in &s.vertices {
-            let p = f(v.position);
-            lo = [lo[0].min(p[0]), lo[1].min(p[1])];
-            hi = [hi[0].max(p[0]), hi[1].max(p[1])];
-        }
+        let (mut lo, mut hi) = vertex_box(&s);
         let chains = &s.landmark.as_ref().unwrap().chains;
         for (e, chain) in s.edges.iter().zip(chains) {
             let (a, b) = (f(chain[0].position), f(chain[chain.len() - 1].position));
@@ -75,20 +69,7 @@ fn the_grid_covers_every_chains_reach_and_the_vertices_surroundings() {
                 hi[k] = hi[k].max(mid + half);
             }
         }
-        let widen = 4.0 * s.turn_radius_m as f64 + cell;
-        let origin = [h.grid_origin_x as f64, h.grid_origin_y as f64];
-        let counts = [h.grid_nx as f64, h.grid_ny as f64];
-        for k in 0..2 {
-            assert!(
-                (origin[k] - (lo[k] - widen)).abs() < 0.01,
-                "{origin:?} {lo:?}"
-            );
-            let cells = (hi[k] - lo[k] + 2.0 * widen) / cell;
-            assert!(
-                counts[k] > cells - 1e-3 && counts[k] < cells + 1.0 + 1e-3,
-                "{counts:?}"
-            );
-        }
+        check_extent(&net, &s, (lo, hi));
         assert!(
             lo[0] < -1500.0,
             "the reach, not the vertices, sets the west edge"
@@ -129,11 +110,7 @@ fn the_writers_landmark_checks_refuse_by_name() {
     s.landmark.as_mut().unwrap().chains[1].truncate(1);
     assert_eq!(encode(&s), bad("a chain has fewer than 2 line elements"));
     let vertical = VerticalSpec {
-        limits: crate::geometry::vertical::VerticalLimits {
-            airspeed: 25.0,
-            climb_rate: 10.0,
-            vertical_accel: 20.0,
-        },
+        limits: crate::geometry::vertical::VerticalLimits::niendorf(25.0),
         altitudes: vec![100.0; spec().vertices.len()],
         heights: StdVec::new(),
     };
