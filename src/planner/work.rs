@@ -364,8 +364,8 @@ pub struct VoronoiBoundInputs {
     /// The spline fit's bound for a coarse route through every graph vertex
     /// ([`fit_work_bound`](crate::geometry::spline::fit_work_bound)).
     pub fit_steps: u64,
-    /// The most clearance queries the fit makes for such a route: `2(n + 4) + 1` for `n`
-    /// corners (`geometry::spline::fit`).
+    /// The most clearance queries the fit makes for such a route
+    /// ([`fit_clear_bound`](crate::geometry::spline::fit_clear_bound)).
     pub fit_clears: u64,
 }
 

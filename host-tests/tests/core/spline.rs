@@ -13,7 +13,8 @@
 //!   points, the curvature 0 on both sides; the path starts at the start along its heading
 //!   and ends at the goal (along its heading when given); every line lies on the coarse
 //!   polyline or on a segment `clear` accepted; every corner's hull triangle was offered to
-//!   `clear`; the counted work is within `fit_work_bound`;
+//!   `clear`; the counted work is within `fit_work_bound`, the calls to `clear` within
+//!   `fit_clear_bound` (itself `2(n + 4) + 1`, worked out by hand);
 //! * **`clear`**: a refused triangle gives `CornerBlocked` naming its corner, a refused segment
 //!   `SegmentBlocked`; `out` is untouched on every error;
 //! * **bad input** (NaN, infinities, empty waypoints, `κ_max` 0, negative or NaN, capacity 1,
@@ -26,7 +27,7 @@ use skyroute::geometry::spline::table::{
     build_corner_table, corner_bound, table_angle, table_ratio, TABLE_LEN, TABLE_RATIOS,
 };
 use skyroute::geometry::spline::{
-    fit, fit_work_bound, FitError, FitInput, Piece, Vertex, TABLE_MAX_ANGLE,
+    fit, fit_clear_bound, fit_work_bound, FitError, FitInput, Piece, Vertex, TABLE_MAX_ANGLE,
 };
 use skyroute::geometry::{Pose, Vec2};
 
@@ -278,6 +279,12 @@ fn check_fit(c: &Case, out: &[Piece], rec: &Record, work: u64) {
         mag = mag.max(p.x.abs() as f64).max(p.y.abs() as f64);
     }
     assert!(work <= fit_work_bound(c.waypoints.len()), "work {work}");
+    let clears = (rec.segments.len() + rec.triangles.len()) as u64;
+    assert!(
+        clears <= fit_clear_bound(c.waypoints.len()),
+        "{clears} clearance queries for {} waypoints",
+        c.waypoints.len()
+    );
     assert!(!out.is_empty());
     assert_eq!(out[0].start(), c.start.position);
     assert_eq!(out.last().unwrap().end(), c.goal);
@@ -381,6 +388,15 @@ fn run_fit(
         true
     };
     fit(&input(c), &table, &mut clear, out)
+}
+
+/// `fit_clear_bound` is its documented `2(n + 4) + 1`, worked out by hand: 9 with no waypoint,
+/// 35 with 13, and saturated rather than wrapped for the largest count.
+#[test]
+fn the_clearance_query_bound_is_its_documented_count() {
+    assert_eq!(fit_clear_bound(0), 9);
+    assert_eq!(fit_clear_bound(13), 35);
+    assert_eq!(fit_clear_bound(usize::MAX), u64::MAX);
 }
 
 #[test]

@@ -159,12 +159,23 @@ pub struct FitSummary {
 /// at most 4 corners; `2n + 1` checks in the sweep
 /// (each pushes or pops a waypoint), `n + 1` at the goal and 2 per corner of the final list
 /// (at most `n + 4` corners) when checking and writing it. `clear` is called at most
-/// `2(n + 4) + 1` times.
+/// [`fit_clear_bound`] times.
 pub fn fit_work_bound(waypoints: usize) -> u64 {
     let n = waypoints as u64;
     (3 * n + 6 + 2 * LEAD_ROUNDS)
         .saturating_mul(SEARCH_EVALS)
         .saturating_add(5 * n + 12 + 4 * LEAD_ROUNDS)
+}
+
+/// The most times [`fit`] calls `clear` for `waypoints` waypoints (`n`): `2(n + 4) + 1`. The
+/// final list holds at most `n + 4` corners (`n` waypoints, 2 lead-in and 2 lead-out) between
+/// the start and the goal, so at most `n + 5` segments are offered, and one hull triangle per
+/// corner, `n + 4`.
+pub fn fit_clear_bound(waypoints: usize) -> u64 {
+    (waypoints as u64)
+        .saturating_add(4)
+        .saturating_mul(2)
+        .saturating_add(1)
 }
 
 #[derive(Clone, Copy, Debug)]

@@ -52,7 +52,7 @@
 pub mod fit;
 pub mod table;
 
-pub use fit::{fit, fit_work_bound, FitError, FitInput, FitSummary, Vertex};
+pub use fit::{fit, fit_clear_bound, fit_work_bound, FitError, FitInput, FitSummary, Vertex};
 pub use table::{
     choose_legs, corner_bound, table_angle, table_ratio, CornerBound, Legs, TABLE_ANGLES,
     TABLE_LEN, TABLE_MAX_ANGLE, TABLE_RATIOS,
