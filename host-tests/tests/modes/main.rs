@@ -40,6 +40,7 @@ mod plan_slices;
 mod raw_dem;
 /// The roadmap builder on niendorf-urban: threads, parameters, both collision checks.
 mod roadmap_build;
+mod scratch_explore;
 /// Terrain search corner cases on small synthetic networks: degenerate fillets, zero-length
 /// edges, nodes at the start or goal, work bounds, ignored sections.
 mod terrain_corner_cases;
