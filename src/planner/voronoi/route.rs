@@ -17,6 +17,9 @@ use crate::planner::{
 use crate::planner::{MAX_CANDIDATES, MAX_LINKS};
 use heapless::Vec;
 
+#[cfg(all(test, feature = "std"))]
+mod tests;
+
 /// The graph vertices the start and the goal are each joined to (the paper's three nearest;
 /// nearer candidates whose segment is not clear are skipped, up to [`MAX_CANDIDATES`]).
 pub const VORONOI_LINKS: usize = 3;
@@ -318,7 +321,7 @@ impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner
             }
             Err(FitError::LeadOutInfeasible) => {
                 return Err(PlanError::Smoothing {
-                    corner: waypoints.len() as u32 + 1,
+                    corner: corner_number(Vertex::Goal, waypoints.len()),
                 })
             }
             Err(_) => return Err(PlanError::Smoothing { corner: 0 }),
