@@ -40,7 +40,6 @@ mod plan_slices;
 mod raw_dem;
 /// The roadmap builder on niendorf-urban: threads, parameters, both collision checks.
 mod roadmap_build;
-mod scratch_explore;
 /// Terrain search corner cases on small synthetic networks: degenerate fillets, zero-length
 /// edges, nodes at the start or goal, work bounds, ignored sections.
 mod terrain_corner_cases;
@@ -53,6 +52,9 @@ mod terrain_search;
 /// Voronoi mode (Judd & McLain) end to end: the onboard graph, an f64 Dijkstra, flyable
 /// smoothed routes, the weight's effect, pop-up threats.
 mod voronoi_plan;
+/// Voronoi mode's refusals: a goal heading no lead-out reaches, a lead-out across a no-fly
+/// zone, a pop-up on a lead-in line, a route of more coarse legs than chords.
+mod voronoi_refusals;
 /// Voronoi mode's route as written out: chords within their tolerance of the smoothed
 /// pieces, a blocked direct segment, a start and goal out of the graph's reach.
 mod voronoi_route;

@@ -84,7 +84,7 @@ fn cost64(a: P, b: P, threats: &[Threat], k: f64) -> f64 {
 }
 
 /// The polygons of the network (no-fly zones), in f64.
-fn zones(b: &Built) -> Vec<Vec<P>> {
+pub(crate) fn zones(b: &Built) -> Vec<Vec<P>> {
     b.obstacles
         .iter()
         .filter_map(|o| match o {

@@ -213,7 +213,7 @@ fn a_popup_inside_a_corner_hull_refuses_that_corner_and_keeps_the_route() {
 
 /// voronoi-dense's query planned once: the query, the planner (its network leaked: a test's
 /// lifetime), the clearance and the coarse route's legs.
-fn dense_route() -> (Query, Box<VPlanner<'static>>, f64, Vec<(P, P)>) {
+pub(crate) fn dense_route() -> (Query, Box<VPlanner<'static>>, f64, Vec<(P, P)>) {
     let (s, b) = voronoi("voronoi-dense");
     let q = query(&s, &b);
     let bytes: &'static [u8] = Box::leak(b.bytes.into_boxed_slice());
@@ -225,7 +225,7 @@ fn dense_route() -> (Query, Box<VPlanner<'static>>, f64, Vec<(P, P)>) {
 }
 
 /// The coarse route's legs (start, graph vertices, goal).
-fn coarse_legs(p: &VPlanner) -> Vec<(P, P)> {
+pub(crate) fn coarse_legs(p: &VPlanner) -> Vec<(P, P)> {
     p.route_paths()
         .iter()
         .map(|l| (p64(l.start.position), p64(l.end().position)))
@@ -235,7 +235,7 @@ fn coarse_legs(p: &VPlanner) -> Vec<(P, P)> {
 /// Adds `popup` and plans again: refused at a corner with the route kept (returns the corner),
 /// or flown at least the clearance from the pop-up by `distance` (negative inside it), sampling
 /// every piece in f64.
-fn replan_with_popup(
+pub(crate) fn replan_with_popup(
     p: &mut VPlanner,
     q: &Query,
     popup: skyroute::Popup,
