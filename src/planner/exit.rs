@@ -35,6 +35,9 @@ use crate::network::Obstacle;
 use core::f32::consts::PI;
 use heapless::Vec;
 
+#[cfg(all(test, feature = "std"))]
+mod tests;
+
 /// A region the start lay in: a static obstacle (its index in the network) or an active
 /// pop-up (its id).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

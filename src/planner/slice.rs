@@ -88,7 +88,7 @@ pub(super) struct Flight<'n> {
     candidates: Candidates,
     next: usize,
     /// The cheapest route found so far (at first the direct path, if any), with its cost.
-    best: Vec<(f32, Arrival), 1>,
+    pub(super) best: Vec<(f32, Arrival), 1>,
 }
 
 impl Flight<'_> {

@@ -7,6 +7,9 @@ use crate::geometry::{DubinsPath, DubinsWord, Pose, Turn};
 use crate::planner::search::Arrival;
 use crate::planner::{Meter, PlanError, Planner, RouteSummary};
 
+#[cfg(all(test, feature = "std"))]
+mod tests;
+
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {
     /// Walks the route of `arrival` back from the goal, calling `visit` with each path (goal
     /// end first): the leg after each node starts at its turn's entry point with the turn arc,
