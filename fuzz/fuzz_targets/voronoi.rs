@@ -1,14 +1,15 @@
 //! The onboard Voronoi diagram on arbitrary sites (many on a small lattice, so collinear,
 //! cocircular and duplicate sites are common, and raw floats): insertions and rebuilds never
 //! panic, refused sites leave the diagram as it was, the counted work stays within
-//! `delaunay_work_bound`, and the clipped graph fits its documented bounds with every vertex
-//! inside the box.
+//! `delaunay_work_bound`, and the clipped graph fits its documented bounds (its size and its
+//! counted work, `graph_work_bound`) with every vertex inside the box.
 #![no_main]
 
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
 use skyroute::geometry::voronoi::{
-    delaunay_work_bound, graph_edge_bound, graph_vertex_bound, Bounds, Delaunay, VoronoiGraph,
+    delaunay_work_bound, graph_edge_bound, graph_vertex_bound, graph_work_bound, Bounds, Delaunay,
+    VoronoiGraph,
 };
 use skyroute::Vec2;
 
@@ -64,6 +65,7 @@ fuzz_target!(|input: Input| {
         let n = d.site_count();
         assert!(g.vertices().len() <= graph_vertex_bound(n));
         assert!(g.edges().len() <= graph_edge_bound(n));
+        assert!(g.work() <= graph_work_bound(n), "graph work over its bound");
         let slack = 1e-3 * (h + 750.0);
         for v in g.vertices() {
             assert!(

@@ -49,7 +49,9 @@ pub struct ThreatSummary {
     pub threats: u32,
     /// Vertices and undirected edges of the rebuilt search graph.
     pub graph: (u32, u32),
-    /// Diagram predicates and triangle visits counted by the rebuild.
+    /// The rebuild's counted work: the diagram's insertions (its comparisons, predicates and
+    /// triangle visits), the graph built from it ([`VoronoiGraph::work`]) and the grouping of
+    /// its half-edges; at most [`threat_rebuild_work_bound`](crate::planner::threat_rebuild_work_bound).
     pub work: u64,
 }
 
@@ -255,8 +257,9 @@ impl SearchGraph {
     }
 
     /// Groups the half-edges by source (a counting sort): `offsets[v]` is the number of
-    /// half-edges leaving vertices before `v`.
-    fn index_half_edges(&mut self) {
+    /// half-edges leaving vertices before `v`. Returns its steps: each edge twice (counted,
+    /// then placed) and each vertex once (the running sum), `2E + V`.
+    fn index_half_edges(&mut self) -> u64 {
         let n = self.diagram.vertices().len();
         self.offsets = [0; VORONOI_GRAPH_VERTICES + 1];
         for g in self.diagram.edges() {
@@ -284,6 +287,8 @@ impl SearchGraph {
                 *slot += 1;
             }
         }
+        let edges = self.diagram.edges().len() as u64;
+        2 * edges + n as u64
     }
 }
 
@@ -393,10 +398,11 @@ impl VoronoiStorage {
     }
 
     /// Rebuilds the search graph from the diagram (costs and clearance are set per search).
-    fn rebuild_graph(&mut self) -> Result<(), ThreatError> {
+    /// Returns its work: the graph's ([`VoronoiGraph::work`]) and the half-edges' grouping.
+    fn rebuild_graph(&mut self) -> Result<u64, ThreatError> {
         self.diagram.graph(&self.bounds, &mut self.graph.diagram)?;
-        self.graph.index_half_edges();
-        Ok(())
+        let grouping = self.graph.index_half_edges();
+        Ok(self.graph.diagram.work().saturating_add(grouping))
     }
 
     /// The threats in force.
@@ -457,8 +463,9 @@ impl VoronoiStorage {
             origin: ThreatOrigin::Popped(id),
         });
         // The graph's storage holds the bounds of MAX_THREATS sites: it fits.
-        self.rebuild_graph()?;
-        Ok(self.summary(id, self.diagram.work().saturating_sub(work_before)))
+        let graph = self.rebuild_graph()?;
+        let insertion = self.diagram.work().saturating_sub(work_before);
+        Ok(self.summary(id, insertion.saturating_add(graph)))
     }
 
     /// Removes threat `id` added in flight, rebuilding the diagram from the others.
@@ -477,7 +484,7 @@ impl VoronoiStorage {
         // The remaining sites were accepted before, in this order: the rebuild succeeds.
         self.diagram.rebuild(&kept)?;
         let _ = self.threats.remove(at);
-        self.rebuild_graph()?;
-        Ok(self.summary(id, self.diagram.work()))
+        let graph = self.rebuild_graph()?;
+        Ok(self.summary(id, self.diagram.work().saturating_add(graph)))
     }
 }

@@ -17,6 +17,14 @@ use std::collections::BinaryHeap;
 
 pub(crate) type VPlanner<'n> = Planner<'n, 1024, 1024, 4, 4096>;
 
+/// A diagram of the threats' capacity.
+type Diagram = skyroute::geometry::voronoi::Delaunay<MAX_THREATS, { 2 * MAX_THREATS }>;
+/// A graph of the planner's capacity.
+type Graph = skyroute::geometry::voronoi::VoronoiGraph<
+    { VORONOI_GRAPH_VERTICES },
+    { skyroute::planner::VORONOI_GRAPH_EDGES },
+>;
+
 /// The scenario taken as a Voronoi scenario (as `--mode voronoi`), and its network.
 pub(crate) fn voronoi(name: &str) -> (Scenario, Built) {
     let mut s = scenario(name).clone();
@@ -446,6 +454,10 @@ fn exposure_falls_and_length_grows_as_the_weight_falls() {
     }
 }
 
+/// A radar popped up in the middle of the longest coarse leg: the graph rebuilt in flight is
+/// the graph of all the sites built from scratch, the counted work is the insertion's, the
+/// graph's and the grouping's of that build, the route re-planned is less exposed to it than
+/// the old one, and its removal (counted as a rebuild from the sites left) restores the route.
 #[test]
 fn a_popped_threat_reroutes_and_its_removal_restores_the_route() {
     let (s, b) = voronoi("ruz-popups");
@@ -478,22 +490,28 @@ fn a_popped_threat_reroutes_and_its_removal_restores_the_route() {
     };
     let added = p.add_threat(at, 3000.0).unwrap();
     assert!(added.work <= skyroute::planner::threat_rebuild_work_bound(p.threats().len() as u64));
-    // The incrementally updated graph is the graph of all the sites built from scratch.
+    // The incrementally updated graph is the graph of all the sites built from scratch, one
+    // site at a time as the load and the addition did.
     let sites: Vec<Vec2> = p.threats().iter().map(|t| t.position).collect();
-    let mut fresh: Box<skyroute::geometry::voronoi::Delaunay<MAX_THREATS, { 2 * MAX_THREATS }>> =
-        Box::new(skyroute::geometry::voronoi::Delaunay::new());
-    fresh.rebuild(&sites).unwrap();
-    let mut g: Box<
-        skyroute::geometry::voronoi::VoronoiGraph<
-            { skyroute::planner::VORONOI_GRAPH_VERTICES },
-            { skyroute::planner::VORONOI_GRAPH_EDGES },
-        >,
-    > = Box::new(skyroute::geometry::voronoi::VoronoiGraph::new());
-    fresh
-        .graph(&p.network().voronoi_bounds().unwrap(), &mut g)
-        .unwrap();
+    let (last, earlier) = sites.split_last().unwrap();
+    let mut fresh = Box::new(Diagram::new());
+    for s in earlier {
+        fresh.insert(*s).unwrap();
+    }
+    let before_last = fresh.work();
+    fresh.insert(*last).unwrap();
+    let bounds = p.network().voronoi_bounds().unwrap();
+    let mut g = Box::new(Graph::new());
+    fresh.graph(&bounds, &mut g).unwrap();
     assert_eq!(g.vertices(), p.threat_graph().unwrap().vertices());
     assert_eq!(g.edges(), p.threat_graph().unwrap().edges());
+    // Its counted work: the insertion, the graph and the grouping of its half-edges by
+    // source, each edge twice and each vertex once.
+    let grouping = |g: &Graph| 2 * g.edges().len() as u64 + g.vertices().len() as u64;
+    assert_eq!(
+        added.work,
+        fresh.work() - before_last + g.work() + grouping(&g)
+    );
     p.plan(&q, p.worst_case_work()).unwrap();
     let (new_pts, _) = coarse_cost(&p, 0.5);
     let new_exposure: f64 = new_pts
@@ -501,7 +519,11 @@ fn a_popped_threat_reroutes_and_its_removal_restores_the_route() {
         .map(|w| exposure64(w[0], w[1], p.threats()))
         .sum();
     assert!(new_exposure < old_exposure_with_it, "re-planned exposure {new_exposure} not below the old route's {old_exposure_with_it} under the new threat");
-    p.remove_threat(added.id).unwrap();
+    let removed = p.remove_threat(added.id).unwrap();
+    // A removal rebuilds the diagram from the sites left.
+    fresh.rebuild(earlier).unwrap();
+    fresh.graph(&bounds, &mut g).unwrap();
+    assert_eq!(removed.work, fresh.work() + g.work() + grouping(&g));
     p.plan(&q, p.worst_case_work()).unwrap();
     assert_eq!(
         p.route_pieces(),

@@ -56,6 +56,8 @@ pub struct GraphEdge {
 pub struct VoronoiGraph<const VV: usize, const EE: usize> {
     vertices: Vec<Vec2, VV>,
     edges: Vec<GraphEdge, EE>,
+    /// Steps counted by the [`Delaunay::graph`] call that built it.
+    work: u64,
 }
 
 /// Upper bound on the vertices of the graph of `n` sites: `8n + 4`.
@@ -77,12 +79,46 @@ pub const fn graph_edge_bound(n: usize) -> usize {
     n.saturating_mul(11).saturating_add(4)
 }
 
+/// The documented worst case of [`VoronoiGraph::work`] for the graph of `n` sites (saturating).
+///
+/// Counted units: a vertex compared in the scan that shares vertices, an edge added, a
+/// triangle visited, a neighbour examined (with its in-circle test), a union–find step, a
+/// piece, a bisector, a vertex or a site scanned on the border. With `t ≤ 2n` triangles
+/// (ghosts included), `V ≤` [`graph_vertex_bound`]`(n)` vertices at any time and a find of at
+/// most `t` steps (each moves to a distinct ancestor):
+/// * the cocircular groups: per triangle 1, per neighbour 1 and two finds, `t(4 + 6t)`;
+/// * the circumcentres: per triangle 1, a find and a vertex scan, `t(1 + t + V)`;
+/// * the pieces: per triangle 1 and a find, per neighbour 1, a find and a piece (1, two vertex
+///   scans and an edge: `2 + 2V`), `t(10 + 4t + 6V)`;
+/// * with no triangle, the bisectors of at most `n − 1` consecutive pairs, each 1 and a piece,
+///   `n(3 + 2V)`;
+/// * the border: its 4 corners' scans, and per side at most `V` steps, each scanning every
+///   vertex and every site and adding an edge, `4V + 4V(V + n + 1)`.
+///
+/// The total is below `t(15 + 11t + 7V) + n(3 + 2V) + 4V(V + n + 2)`.
+pub const fn graph_work_bound(n: usize) -> u64 {
+    let v = graph_vertex_bound(n) as u64;
+    let n = n as u64;
+    let t = n.saturating_mul(2);
+    let triangles = t.saturating_mul(
+        15u64
+            .saturating_add(t.saturating_mul(11))
+            .saturating_add(v.saturating_mul(7)),
+    );
+    let bisectors = n.saturating_mul(v.saturating_mul(2).saturating_add(3));
+    let border = v
+        .saturating_mul(4)
+        .saturating_mul(v.saturating_add(n).saturating_add(2));
+    triangles.saturating_add(bisectors).saturating_add(border)
+}
+
 impl<const VV: usize, const EE: usize> VoronoiGraph<VV, EE> {
     /// An empty graph.
     pub const fn new() -> Self {
         Self {
             vertices: Vec::new(),
             edges: Vec::new(),
+            work: 0,
         }
     }
 
@@ -96,9 +132,22 @@ impl<const VV: usize, const EE: usize> VoronoiGraph<VV, EE> {
         &self.edges
     }
 
-    /// The vertex at exactly `p`, added if new.
+    /// The steps [`Delaunay::graph`] counted building this graph: at most
+    /// [`graph_work_bound`] of the site count.
+    pub fn work(&self) -> u64 {
+        self.work
+    }
+
+    /// Adds `k` to the work counter.
+    fn tick(&mut self, k: u64) {
+        self.work = self.work.saturating_add(k);
+    }
+
+    /// The vertex at exactly `p`, added if new. Counts each vertex compared.
     fn vertex(&mut self, p: Vec2) -> Result<u16, VoronoiError> {
-        if let Some(i) = self.vertices.iter().position(|v| *v == p) {
+        let found = self.vertices.iter().position(|v| *v == p);
+        self.tick(found.map_or(self.vertices.len(), |i| i + 1) as u64);
+        if let Some(i) = found {
             return Ok(i as u16);
         }
         let i = self.vertices.len();
@@ -109,8 +158,9 @@ impl<const VV: usize, const EE: usize> VoronoiGraph<VV, EE> {
         Ok(i as u16)
     }
 
-    /// Adds the edge `a`–`b` unless it has zero length.
+    /// Adds the edge `a`–`b` unless it has zero length. Counts 1.
     fn edge(&mut self, a: u16, b: u16, sites: [u16; 2], border: bool) -> Result<(), VoronoiError> {
+        self.tick(1);
         if a == b {
             return Ok(());
         }
@@ -266,6 +316,7 @@ fn add_piece<const VV: usize, const EE: usize>(
     bx: &Box64,
     piece: &Piece,
 ) -> Result<(), VoronoiError> {
+    out.tick(1);
     if let (Some(a), Some(b)) = (piece.v0, piece.v1) {
         return out.edge(a, b, piece.sites, false);
     }
@@ -290,10 +341,12 @@ fn add_piece<const VV: usize, const EE: usize>(
     out.edge(a, b, piece.sites, false)
 }
 
-/// Union–find root of `x` with path halving (at most `parent.len()` steps).
-fn find(parent: &mut [u32], x: u32) -> u32 {
+/// Union–find root of `x` with path halving (at most `parent.len()` steps, each counted in
+/// `work`).
+fn find(parent: &mut [u32], x: u32, work: &mut u64) -> u32 {
     let mut x = x;
     for _ in 0..parent.len() {
+        *work = work.saturating_add(1);
         let p = parent.get(x as usize).copied().unwrap_or(x);
         if p == x {
             break;
@@ -330,12 +383,14 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
 
     /// Union–find over the finite triangles: neighbours with the same circumcircle (the
     /// in-circle determinant of one triangle and the far vertex of the other exactly zero)
-    /// share a root.
-    fn cocircular_groups(&self, parent: &mut [u32; T]) {
+    /// share a root. Counts each triangle, each neighbour and each find step in `work`.
+    fn cocircular_groups(&self, parent: &mut [u32; T], work: &mut u64) {
         for t in 0..self.triangle_count() {
+            *work = work.saturating_add(1);
             let v = self.triangle(t);
             let Some(qv) = self.corners(v) else { continue };
             for o in self.neighbours(t) {
+                *work = work.saturating_add(1);
                 let ov = self.triangle(o as usize);
                 if (o as usize) <= t || is_ghost(ov) {
                     continue;
@@ -345,7 +400,7 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
                     continue;
                 };
                 if incircle(qv[0], qv[1], qv[2], qd) == 0 {
-                    let (rt, ro) = (find(parent, t as u32), find(parent, o));
+                    let (rt, ro) = (find(parent, t as u32, work), find(parent, o, work));
                     if let Some(slot) = parent.get_mut(ro as usize) {
                         *slot = rt;
                     }
@@ -363,9 +418,10 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
     ) -> Result<(), VoronoiError> {
         out.clear();
         let mut parent: [u32; T] = core::array::from_fn(|i| i as u32);
-        self.cocircular_groups(&mut parent);
+        let mut work = 0;
+        self.cocircular_groups(&mut parent, &mut work);
         for t in 0..self.triangle_count() {
-            if find(&mut parent, t as u32) as usize != t {
+            if find(&mut parent, t as u32, &mut work) as usize != t {
                 continue;
             }
             if let Some(c) = self.centre(t) {
@@ -384,7 +440,7 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
     /// ([`VoronoiError::GraphFull`]; capacities of [`graph_vertex_bound`] and
     /// [`graph_edge_bound`] of the site count always suffice). Uses `6T` bytes of stack; the
     /// cost is `O(V² + n·B)` for `V` vertices, `B` border edges and `n` sites (vertices are
-    /// shared by a scan).
+    /// shared by a scan), counted in [`VoronoiGraph::work`] (at most [`graph_work_bound`]).
     pub fn graph<const VV: usize, const EE: usize>(
         &self,
         bounds: &Bounds,
@@ -392,6 +448,7 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
     ) -> Result<(), VoronoiError> {
         out.vertices.clear();
         out.edges.clear();
+        out.work = 0;
         let result = Box64::new(bounds).and_then(|bx| {
             if self.triangle_count() == 0 {
                 self.bisector_graph(&bx, out)?;
@@ -414,6 +471,7 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
         out: &mut VoronoiGraph<VV, EE>,
     ) -> Result<(), VoronoiError> {
         for w in self.line_order().windows(2) {
+            out.tick(1);
             let (a, b) = (w[0], w[1]);
             let (Some(qa), Some(qb)) = (self.q(a), self.q(b)) else {
                 continue;
@@ -442,10 +500,15 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
     ) -> Result<(), VoronoiError> {
         let nt = self.triangle_count();
         let mut parent: [u32; T] = core::array::from_fn(|i| i as u32);
-        self.cocircular_groups(&mut parent);
+        let mut work = 0;
+        self.cocircular_groups(&mut parent, &mut work);
+        out.tick(work);
         let mut vid = [NO_VERTEX; T];
         for t in 0..nt {
-            if find(&mut parent, t as u32) as usize != t {
+            let mut work = 1;
+            let root = find(&mut parent, t as u32, &mut work);
+            out.tick(work);
+            if root as usize != t {
                 continue;
             }
             if let Some(c) = self.centre(t).filter(|c| bx.contains(*c)) {
@@ -457,15 +520,19 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
         }
         let vertex_of = |r: u32| vid.get(r as usize).copied().filter(|v| *v != NO_VERTEX);
         for t in 0..nt {
+            out.tick(1);
             let v = self.triangle(t);
             if is_ghost(v) {
                 continue;
             }
-            let rt = find(&mut parent, t as u32);
+            let mut work = 0;
+            let rt = find(&mut parent, t as u32, &mut work);
+            out.tick(work);
             let Some(ct) = self.centre(rt as usize) else {
                 continue;
             };
             for (i, o) in self.neighbours(t).into_iter().enumerate() {
+                out.tick(1);
                 let (x, y) = (v[(i + 1) % 3], v[(i + 2) % 3]);
                 let sites = [site16(x), site16(y)];
                 if is_ghost(self.triangle(o as usize)) {
@@ -486,7 +553,9 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
                     add_piece(out, bx, &piece)?;
                     continue;
                 }
-                let ro = find(&mut parent, o);
+                let mut work = 0;
+                let ro = find(&mut parent, o, &mut work);
+                out.tick(work);
                 if (o as usize) <= t || ro == rt {
                     continue;
                 }
@@ -513,7 +582,7 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
         Ok(())
     }
 
-    /// The site nearest to `p` (f64), or [`NO_SITE`].
+    /// The site nearest to `p` (f64), or [`NO_SITE`]: a scan of every site.
     fn nearest_site(&self, p: P) -> u16 {
         let mut best = (f64::INFINITY, NO_SITE);
         for i in 0..self.site_count() {
@@ -566,6 +635,8 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
             };
             let (mut cur, last) = (start, end);
             for _ in 0..out.vertices.len() {
+                // The scan of every vertex, and of every site for the edge's site.
+                out.tick((out.vertices.len() + self.site_count()) as u64);
                 let here = out.vertices.get(usize::from(cur)).copied().unwrap_or(lo);
                 let mut next: Option<(f32, u16)> = None;
                 for (i, w) in out.vertices.iter().enumerate() {

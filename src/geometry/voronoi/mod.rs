@@ -30,7 +30,10 @@ mod exact;
 mod graph;
 
 pub use delaunay::{delaunay_work_bound, Delaunay};
-pub use graph::{graph_edge_bound, graph_vertex_bound, Bounds, GraphEdge, VoronoiGraph, NO_SITE};
+pub use graph::{
+    graph_edge_bound, graph_vertex_bound, graph_work_bound, Bounds, GraphEdge, VoronoiGraph,
+    NO_SITE,
+};
 
 use super::Vec2;
 use core::fmt;

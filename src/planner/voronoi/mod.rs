@@ -20,17 +20,24 @@ pub use super::threats::{
 pub use exposure::{segment_exposure, EXPOSURE_POINTS};
 
 use super::Planner;
-use crate::geometry::voronoi::delaunay_work_bound;
+use crate::geometry::voronoi::{
+    delaunay_work_bound, graph_edge_bound, graph_vertex_bound, graph_work_bound,
+};
 use crate::geometry::Vec2;
 use crate::network::LoadError;
 
 /// The most work one rebuild counts for `n` sites ([`ThreatSummary::work`]): the diagram's
-/// insertions, [`delaunay_work_bound`]. The search graph built from the diagram afterwards
-/// (its pieces clipped to the box, vertices shared by a scan, the border joined: `O(V² + n·B)`
-/// steps for `V` vertices and `B` border edges) is not counted; the firmware figures in
-/// `docs/BENCHMARKS.md` measure the whole call.
+/// insertions ([`delaunay_work_bound`]), the graph built from it ([`graph_work_bound`]) and
+/// the grouping of its half-edges by source, `2E + V` for the graph's most edges and vertices
+/// ([`graph_edge_bound`], [`graph_vertex_bound`]). Saturating.
 pub fn threat_rebuild_work_bound(n: u64) -> u64 {
+    let sites = usize::try_from(n).unwrap_or(usize::MAX);
+    let grouping = (graph_edge_bound(sites) as u64)
+        .saturating_mul(2)
+        .saturating_add(graph_vertex_bound(sites) as u64);
     delaunay_work_bound(n)
+        .saturating_add(graph_work_bound(sites))
+        .saturating_add(grouping)
 }
 
 impl<'n, const V: usize, const E: usize, const P: usize, const R: usize> Planner<'n, V, E, P, R> {

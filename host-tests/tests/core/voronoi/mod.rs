@@ -16,8 +16,8 @@
 use std::collections::{BTreeSet, VecDeque};
 
 use skyroute::geometry::voronoi::{
-    delaunay_work_bound, graph_edge_bound, graph_vertex_bound, Bounds, Delaunay, VoronoiError,
-    VoronoiGraph, NO_SITE,
+    delaunay_work_bound, graph_edge_bound, graph_vertex_bound, graph_work_bound, Bounds, Delaunay,
+    VoronoiError, VoronoiGraph, NO_SITE,
 };
 use skyroute::Vec2;
 
@@ -255,6 +255,11 @@ fn check_graph(dt: &Dt, g: &Graph, b: &Bounds, ctx: &str) {
     let (vs, es) = (g.vertices(), g.edges());
     assert!(vs.len() <= graph_vertex_bound(dt.site_count()), "{ctx}");
     assert!(es.len() <= graph_edge_bound(dt.site_count()), "{ctx}");
+    assert!(
+        g.work() <= graph_work_bound(dt.site_count()),
+        "graph work {} over its bound ({ctx})",
+        g.work()
+    );
     let distinct: BTreeSet<(u32, u32)> =
         vs.iter().map(|v| (v.x.to_bits(), v.y.to_bits())).collect();
     assert_eq!(distinct.len(), vs.len(), "repeated vertex ({ctx})");
@@ -478,6 +483,17 @@ fn check_work(pts: &[(i64, i64)], what: &str) {
         dt.work(),
         delaunay_work_bound(pts.len() as u64)
     );
+}
+
+/// `graph_work_bound` is its documented `t(15 + 11t + 7V) + n(3 + 2V) + 4V(V + n + 2)` with
+/// `t = 2n` and `V = 8n + 4`, worked out by hand: 96 with no site (the border alone),
+/// 83 465 with 13 sites; it saturates rather than wraps.
+#[test]
+fn the_graph_work_bound_is_its_documented_sum() {
+    assert_eq!(graph_work_bound(0), 4 * 4 * 6);
+    assert_eq!(graph_work_bound(13), 26 * 1057 + 13 * 219 + 432 * 123);
+    assert_eq!(graph_work_bound(13), 83_465);
+    assert_eq!(graph_work_bound(usize::MAX), u64::MAX);
 }
 
 #[test]
