@@ -239,7 +239,7 @@ fn reference(start: (P, f64)) -> (u64, f64) {
 #[test]
 fn the_exit_counts_each_candidates_trace_sort_and_clearance_check() {
     let image = network();
-    let mut p: Box<Planner<'_, 64, 64, 4, 64>> = Box::new(Planner::new());
+    let mut p: Box<Planner<'_, 64, 64, 4, 64>> = Box::default();
     p.load(&image).unwrap();
     let pentagon: heapless::Vec<Vec2, 16> = pentagon().iter().map(|q| v(*q)).collect();
     p.add_popup(Popup::Polygon(pentagon)).unwrap();

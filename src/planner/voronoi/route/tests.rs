@@ -34,7 +34,7 @@ fn network(obstacles: &[Vec<Vec2>]) -> Vec<u8> {
         min: Vec2::new(-5000.0, -5000.0),
         max: Vec2::new(5000.0, 5000.0),
     };
-    let mut diagram: Box<Delaunay<MAX_THREATS, { 2 * MAX_THREATS }>> = Box::new(Delaunay::new());
+    let mut diagram: Box<Delaunay<MAX_THREATS, { 2 * MAX_THREATS }>> = Box::default();
     for s in sites {
         diagram.insert(s).unwrap();
     }
@@ -79,7 +79,7 @@ fn network(obstacles: &[Vec<Vec2>]) -> Vec<u8> {
 /// A planner of `image` (its storage leaked: a test's lifetime).
 fn planner(image: &[u8]) -> Box<TestPlanner<'_>> {
     let storage = Box::leak(Box::new(VoronoiStorage::new()));
-    let mut p: Box<TestPlanner> = Box::new(Planner::new());
+    let mut p: Box<TestPlanner> = Box::default();
     p.load_voronoi(image, storage).unwrap();
     p
 }
