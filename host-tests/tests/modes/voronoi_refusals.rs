@@ -39,9 +39,9 @@ fn fit_unchecked(p: &VPlanner, q: &Query, waypoints: &[Vec2]) -> Result<Vec<Piec
 }
 
 /// Plans `q` without its goal heading (the same search: links are straight), returning the
-/// coarse route's inner vertices; then plans `q` and expects `PlanError::Smoothing` at
-/// `corner(waypoints)` with the previous route kept.
-fn refused_at(p: &mut VPlanner, q: &Query, corner: impl Fn(usize) -> u32) -> Vec<Vec2> {
+/// coarse route's inner vertices; then plans `q` and expects `PlanError::Smoothing` at the
+/// goal's corner, `n + 1` for `n` coarse vertices, with the previous route kept.
+fn refused_at_the_goal_corner(p: &mut VPlanner, q: &Query) -> Vec<Vec2> {
     let free = Query {
         goal: Goal {
             heading: None,
@@ -55,7 +55,7 @@ fn refused_at(p: &mut VPlanner, q: &Query, corner: impl Fn(usize) -> u32) -> Vec
     assert_eq!(
         p.plan(q, p.worst_case_work()),
         Err(PlanError::Smoothing {
-            corner: corner(coarse.len())
+            corner: coarse.len() as u32 + 1
         })
     );
     assert_eq!((p.route().to_vec(), p.route_pieces().to_vec()), kept);
@@ -77,7 +77,7 @@ fn a_goal_heading_no_lead_out_reaches_is_refused_at_the_goal_corner() {
         },
         ..query(&s, &b)
     };
-    let coarse = refused_at(&mut p, &q, |n| n as u32 + 1);
+    let coarse = refused_at_the_goal_corner(&mut p, &q);
     assert_eq!(
         fit_unchecked(&p, &q, &coarse),
         Err(FitError::LeadOutInfeasible)
@@ -103,7 +103,7 @@ fn a_lead_out_across_a_no_fly_zone_is_refused_at_the_goal_corner() {
         },
         ..query(&s, &b)
     };
-    let coarse = refused_at(&mut p, &q, |n| n as u32 + 1);
+    let coarse = refused_at_the_goal_corner(&mut p, &q);
     let pieces = fit_unchecked(&p, &q, &coarse).expect("the fit alone flies it");
     let clearance = p.network().clearance() as f64;
     let zones = zones(&b);

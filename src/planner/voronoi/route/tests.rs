@@ -92,16 +92,21 @@ const TRIANGLE: [Vec2; 3] = [
     Vec2::new(0.0, 1000.0),
 ];
 
+/// Two no-fly squares 3 km from the triangle, on either side.
+fn far_squares() -> [Vec<Vec2>; 2] {
+    [
+        square(Vec2::new(-3000.0, -3000.0), 100.0),
+        square(Vec2::new(3000.0, 3000.0), 100.0),
+    ]
+}
+
 /// Zones far from the triangle leave it clear. A no-fly square wholly inside it (no point near
 /// a side) refuses it by its first vertex, and a pop-up disc wholly inside by its centre.
 /// A pop-up square across the long side, its centre outside the triangle and none of the
 /// triangle's corners inside it, refuses it by that side alone.
 #[test]
 fn a_zone_inside_the_hull_or_across_one_side_refuses_it() {
-    let far = [
-        square(Vec2::new(-3000.0, -3000.0), 100.0),
-        square(Vec2::new(3000.0, 3000.0), 100.0),
-    ];
+    let far = far_squares();
     let image = network(&far);
     let mut p = planner(&image);
     let mut meter = Meter::new(u64::MAX);
@@ -131,10 +136,7 @@ fn a_zone_inside_the_hull_or_across_one_side_refuses_it() {
 /// one point) is not tested.
 #[test]
 fn a_hull_test_counts_its_sides_then_one_test_per_zone_and_popup() {
-    let far = [
-        square(Vec2::new(-3000.0, -3000.0), 100.0),
-        square(Vec2::new(3000.0, 3000.0), 100.0),
-    ];
+    let far = far_squares();
     let image = network(&far);
     let mut p = planner(&image);
     for x in [-4000.0, -3500.0, -2500.0] {
