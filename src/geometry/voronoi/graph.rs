@@ -418,6 +418,7 @@ impl<const N: usize, const T: usize> Delaunay<N, T> {
     ) -> Result<(), VoronoiError> {
         out.clear();
         let mut parent: [u32; T] = core::array::from_fn(|i| i as u32);
+        // This query is not part of a counted rebuild, so its steps are counted and dropped.
         let mut work = 0;
         self.cocircular_groups(&mut parent, &mut work);
         for t in 0..self.triangle_count() {
